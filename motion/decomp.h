@@ -1,0 +1,34 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * decomp.h - a matrix into scale, shear, rotation and translation, and back
+ * (FORMULAS.md section 2; the seed paper's key-matrix pipeline).
+ *
+ * The linear part is S . H . R with H unit lower-triangular, found by
+ * Gram-Schmidt on the rows. A reflection (det < 0) is carried by negating all
+ * three scales so that R stays a proper rotation. A scale below 1e-9 of the
+ * largest row norm is singular.
+ */
+#ifndef MOT_DECOMP_H
+#define MOT_DECOMP_H
+
+#include "fix.h"
+#include "mat.h"
+#include "quat.h"
+
+struct mot_decomp {
+	mot_q32 scale[3];     /* sx, sy, sz */
+	mot_q32 shear[3];     /* hxy, hxz, hyz */
+	struct mot_quat rot;  /* unit, w >= 0 */
+	mot_q32 translate[3]; /* row 3 */
+};
+
+/* Decompose m. rot_mat, when not NULL, receives R as a matrix (exactly the
+ * Gram-Schmidt rows, before the quaternion). MOT_E_SINGULAR for a singular
+ * matrix (out untouched). Init-time and real-time safe. */
+int mot_mat_decompose(struct mot_decomp *out, struct mot_mat *rot_mat, const struct mot_mat *m,
+		      uint32_t *sat);
+
+/* Recompose: rows sx.R0, sy.(hxy.R0 + R1), sz.(hxz.R0 + hyz.R1 + R2), t. */
+void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *sat);
+
+#endif /* MOT_DECOMP_H */

@@ -1,0 +1,402 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * fix.h - the number formats of the strand motion core, and the integer
+ * arithmetic every other file of motion/ is built on.
+ *
+ * One format, Q32.32 in an int64_t, holds every real quantity the core
+ * computes with. What changes from one quantity to the next is the unit:
+ *
+ *   quantity                       unit                  resolution      range
+ *   ------------------------------ --------------------- --------------- ----------------
+ *   length, position, translation  the scene's unit (m)  2.3e-10 unit    +-2^30 units (*)
+ *   matrix entry (rot/scale/shear) dimensionless         2.3e-10         +-2^31
+ *   quaternion component           dimensionless         2.3e-10         +-2^31
+ *   angle                          turns (1 = 360 deg)   1.46e-9 rad     +-2^31 turns
+ *   time of a key or a sample      frames                2.3e-10 frame   +-2^31 frames
+ *   curve parameter, ease fraction dimensionless, [0,1]  2.3e-10
+ *   spin speed                     revolutions/minute    2.3e-10 rpm     +-2^31 rpm
+ *
+ *   (*) lengths are limited to +-2^30 units so that the sum of a translation
+ *       and a rotated offset cannot overflow; the scene loader enforces it.
+ *
+ * Why Q32.32 and not something narrower. The core must hold a 5-joint chain
+ * within 1e-6 rad and 1 um of a double-precision reference over a +-100 m
+ * workspace. An int32 length can have either the range (Q8.24 is +-128 m at
+ * 60 nm) or headroom for millimetre scenes, not both; int32 matrix entries
+ * in Q2.30 reach 0.1 um at 100 m but cannot hold a scale above 2. Q16.16
+ * (libfixmath) misses both goals by an order of magnitude (15 um, 1.5e-5
+ * rad). With 64-bit storage everything has 32 fractional bits, a scene may be
+ * in metres or millimetres, and rounding stays three to four orders of
+ * magnitude below the goals, so a long chain of products cannot eat the
+ * margin.
+ *
+ * Why turns for angles. A turn is a power of two: the fractional 32 bits are
+ * the phase on the circle, so sin/cos index their table without a division,
+ * quarter turns are exact (0.25 turn = 2^30), and a joint that has spun
+ * through a million revolutions keeps full resolution within the turn.
+ * Degrees exist only at the edges (scene files, export).
+ *
+ * Intermediates. A product of two Q32.32 values is Q64.64 and needs 128
+ * bits. Sums of products (dot products, matrix rows) accumulate in 128 bits
+ * and are rounded once. On 64-bit targets the compiler's __int128 is used;
+ * on 32-bit targets (armhf, Cortex-M) a two-word struct does the same exact
+ * integer arithmetic, so results are bit-identical everywhere. Define
+ * MOT_NO_INT128 to force the portable path (the tests do, to prove it).
+ *
+ * Rounding. Every narrowing rounds to nearest, ties toward +infinity
+ * (floor(x + 1/2)): one rule, independent of sign, cheap, deterministic.
+ *
+ * Saturation. Narrowing saturates to MOT_Q32_MAX / MOT_Q32_MIN and reports it
+ * through a sticky status word that the caller owns (mot_sat_*); the value is
+ * never used as an in-band error marker. The loader bounds every input so that
+ * playback of a valid scene never saturates; the flag proves it in the tests.
+ *
+ * Only <stdint.h>, <stddef.h> and <stdbool.h> are used: no libc, no floating
+ * point, no allocation, no global mutable state.
+ */
+#ifndef MOT_FIX_H
+#define MOT_FIX_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+typedef int64_t mot_q32; /* Q32.32: value = raw / 2^32 */
+
+#define MOT_Q32_FRAC 32
+#define MOT_Q32_ONE ((mot_q32)1 << 32)
+#define MOT_Q32_HALF ((mot_q32)1 << 31)
+#define MOT_Q32_MAX INT64_MAX
+#define MOT_Q32_MIN INT64_MIN
+#define MOT_Q32_INT(n) ((mot_q32)(n) * MOT_Q32_ONE) /* integer n, |n| < 2^31 */
+
+/* Largest length magnitude the core accepts from a scene (see the table above). */
+#define MOT_LEN_LIMIT ((mot_q32)1 << 62)
+
+/* Error codes of the core: 0 or one of these negative values. */
+enum mot_err {
+	MOT_OK = 0,
+	MOT_E_INVAL = -1,    /* argument outside its documented domain */
+	MOT_E_RANGE = -2,    /* a result would not fit its format */
+	MOT_E_ORDER = -3,    /* keys not strictly increasing in frame */
+	MOT_E_SINGULAR = -4, /* a matrix with a (near) zero scale */
+	MOT_E_NOKEYS = -5,   /* a strand without keys */
+	MOT_E_CAPACITY = -6, /* caller-provided memory is too small */
+	MOT_E_PARENT = -7,   /* a parent index at or after its child */
+	MOT_E_KIND = -8,     /* a key or strand of the wrong kind for its node */
+};
+
+/* Sticky status bits, accumulated by the caller across many operations. */
+enum mot_sat {
+	MOT_SAT_OVERFLOW = 1u << 0, /* a result saturated */
+	MOT_SAT_DOMAIN = 1u << 1,   /* an input outside a function's domain was mapped */
+};
+
+/* ---- 128-bit intermediates ------------------------------------------------ */
+
+#if defined(__SIZEOF_INT128__) && !defined(MOT_NO_INT128)
+#define MOT_HAVE_INT128 1
+__extension__ typedef __int128 mot_acc;
+__extension__ typedef unsigned __int128 mot_uacc;
+#else
+#define MOT_HAVE_INT128 0
+/* Two's complement 128-bit value: hi holds bits 127..64 (sign in bit 63). */
+typedef struct {
+	uint64_t lo;
+	uint64_t hi;
+} mot_acc;
+#endif
+
+/* 0 */
+static inline mot_acc mot_acc_zero(void)
+{
+#if MOT_HAVE_INT128
+	return 0;
+#else
+	mot_acc r = { 0, 0 };
+	return r;
+#endif
+}
+
+/* a sign-extended to 128 bits, scaled by 2^shift (0 <= shift < 64). */
+static inline mot_acc mot_acc_from(int64_t a, unsigned shift)
+{
+#if MOT_HAVE_INT128
+	return (mot_acc)a * ((mot_acc)1 << shift);
+#else
+	mot_acc r;
+	uint64_t ua = (uint64_t)a;
+	uint64_t sx = a < 0 ? ~(uint64_t)0 : 0;
+
+	if (shift == 0) {
+		r.lo = ua;
+		r.hi = sx;
+	} else {
+		r.lo = ua << shift;
+		r.hi = (sx << shift) | (ua >> (64 - shift));
+	}
+	return r;
+#endif
+}
+
+/* The 128-bit value hi * 2^64 + lo (two's complement). */
+static inline mot_acc mot_acc_make(uint64_t hi, uint64_t lo)
+{
+#if MOT_HAVE_INT128
+	return (mot_acc)(((mot_uacc)hi << 64) | lo);
+#else
+	mot_acc r;
+
+	r.lo = lo;
+	r.hi = hi;
+	return r;
+#endif
+}
+
+/* The exact 128-bit product a * b. */
+static inline mot_acc mot_acc_mul(int64_t a, int64_t b)
+{
+#if MOT_HAVE_INT128
+	return (mot_acc)a * b;
+#else
+	/* Unsigned 64x64 from four 32x32 products, then the two's complement
+	 * correction for negative operands (subtract the other operand from the
+	 * high word). */
+	uint64_t ua = (uint64_t)a, ub = (uint64_t)b;
+	uint64_t a0 = ua & 0xffffffffu, a1 = ua >> 32;
+	uint64_t b0 = ub & 0xffffffffu, b1 = ub >> 32;
+	uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+	uint64_t mid = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);
+	mot_acc r;
+
+	r.lo = (mid << 32) | (p00 & 0xffffffffu);
+	r.hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+	if (a < 0)
+		r.hi -= ub;
+	if (b < 0)
+		r.hi -= ua;
+	return r;
+#endif
+}
+
+static inline mot_acc mot_acc_add(mot_acc x, mot_acc y)
+{
+#if MOT_HAVE_INT128
+	/* Wrap-around is impossible for the magnitudes the core uses (<2^126),
+	 * but do it unsigned so that it is defined either way. */
+	return (mot_acc)((mot_uacc)x + (mot_uacc)y);
+#else
+	mot_acc r;
+
+	r.lo = x.lo + y.lo;
+	r.hi = x.hi + y.hi + (r.lo < x.lo);
+	return r;
+#endif
+}
+
+static inline mot_acc mot_acc_neg(mot_acc x)
+{
+#if MOT_HAVE_INT128
+	return (mot_acc)(-(mot_uacc)x);
+#else
+	mot_acc r;
+
+	r.lo = ~x.lo + 1;
+	r.hi = ~x.hi + (r.lo == 0);
+	return r;
+#endif
+}
+
+static inline mot_acc mot_acc_sub(mot_acc x, mot_acc y)
+{
+	return mot_acc_add(x, mot_acc_neg(y));
+}
+
+/* acc + a * b */
+static inline mot_acc mot_acc_mac(mot_acc acc, int64_t a, int64_t b)
+{
+	return mot_acc_add(acc, mot_acc_mul(a, b));
+}
+
+/* Bits 127..64 and 63..0 of x. */
+static inline uint64_t mot_acc_hi(mot_acc x)
+{
+#if MOT_HAVE_INT128
+	return (uint64_t)((mot_uacc)x >> 64);
+#else
+	return x.hi;
+#endif
+}
+
+static inline uint64_t mot_acc_lo(mot_acc x)
+{
+#if MOT_HAVE_INT128
+	return (uint64_t)x;
+#else
+	return x.lo;
+#endif
+}
+
+static inline bool mot_acc_is_neg(mot_acc x)
+{
+#if MOT_HAVE_INT128
+	return x < 0;
+#else
+	return (int64_t)x.hi < 0;
+#endif
+}
+
+/*
+ * Round x / 2^shift to nearest (ties toward +inf) and narrow to int64,
+ * saturating. 1 <= shift <= 126. Sets MOT_SAT_OVERFLOW in *sat on saturation
+ * (sat may be NULL when the caller has proven the result fits).
+ */
+static inline int64_t mot_acc_round(mot_acc x, unsigned shift, uint32_t *sat)
+{
+	bool neg = mot_acc_is_neg(x);
+	uint64_t lo, hi;
+#if MOT_HAVE_INT128
+	mot_acc r = (mot_acc)((mot_uacc)x + ((mot_uacc)1 << (shift - 1)));
+
+	r >>= shift; /* arithmetic shift: gcc and clang define it for signed */
+	lo = (uint64_t)r;
+	hi = (uint64_t)(r >> 64);
+#else
+	mot_acc half;
+
+	if (shift <= 64) {
+		half.lo = (uint64_t)1 << (shift - 1);
+		half.hi = 0;
+	} else {
+		half.lo = 0;
+		half.hi = (uint64_t)1 << (shift - 65);
+	}
+	x = mot_acc_add(x, half);
+	if (shift < 64) {
+		lo = (x.lo >> shift) | (x.hi << (64 - shift));
+		hi = (uint64_t)((int64_t)x.hi >> shift);
+	} else {
+		lo = (uint64_t)((int64_t)x.hi >> (shift - 64));
+		hi = (int64_t)x.hi < 0 ? ~(uint64_t)0 : 0;
+	}
+#endif
+	/* Fits iff hi is the sign extension of lo. */
+	if (hi != ((int64_t)lo < 0 ? ~(uint64_t)0 : 0)) {
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return neg ? INT64_MIN : INT64_MAX;
+	}
+	return (int64_t)lo;
+}
+
+/* ---- Q32.32 arithmetic ---------------------------------------------------- */
+
+/* a * b, rounded, saturating. */
+static inline mot_q32 mot_mul(mot_q32 a, mot_q32 b, uint32_t *sat)
+{
+	return mot_acc_round(mot_acc_mul(a, b), MOT_Q32_FRAC, sat);
+}
+
+/* a0*b0 + a1*b1 + a2*b2, rounded once. */
+static inline mot_q32 mot_dot3(const mot_q32 a[3], const mot_q32 b[3], uint32_t *sat)
+{
+	mot_acc acc = mot_acc_mul(a[0], b[0]);
+
+	acc = mot_acc_mac(acc, a[1], b[1]);
+	acc = mot_acc_mac(acc, a[2], b[2]);
+	return mot_acc_round(acc, MOT_Q32_FRAC, sat);
+}
+
+static inline mot_q32 mot_add_sat(mot_q32 a, mot_q32 b, uint32_t *sat)
+{
+	mot_q32 r;
+
+	if (__builtin_add_overflow(a, b, &r)) {
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return a < 0 ? MOT_Q32_MIN : MOT_Q32_MAX;
+	}
+	return r;
+}
+
+static inline mot_q32 mot_sub_sat(mot_q32 a, mot_q32 b, uint32_t *sat)
+{
+	mot_q32 r;
+
+	if (__builtin_sub_overflow(a, b, &r)) {
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return a < 0 ? MOT_Q32_MIN : MOT_Q32_MAX;
+	}
+	return r;
+}
+
+static inline mot_q32 mot_abs(mot_q32 a)
+{
+	return a < 0 ? (a == MOT_Q32_MIN ? MOT_Q32_MAX : -a) : a;
+}
+
+/* Number of leading zero bits of x (64 for 0). */
+static inline unsigned mot_clz64(uint64_t x)
+{
+	unsigned n = 0;
+
+	if (x == 0)
+		return 64;
+	if ((x >> 32) == 0) {
+		n += 32;
+		x <<= 32;
+	}
+	return n + (unsigned)__builtin_clz((unsigned)(x >> 32));
+}
+
+/*
+ * Exact divisions, rounded to nearest with ties toward +inf like everything
+ * else. They cost tens of nanoseconds: use them to prepare, and for the few
+ * per-tick divisions by run-time values.
+ */
+
+/* round(a * 2^32 / b), saturating; b == 0 saturates with the sign of a and
+ * sets MOT_SAT_DOMAIN. */
+mot_q32 mot_div(mot_q32 a, mot_q32 b, uint32_t *sat);
+
+/* round(a * m / d) for d > 0 with the product in 128 bits, saturating. */
+int64_t mot_muldiv(int64_t a, int64_t m, int64_t d, uint32_t *sat);
+
+/* floor(n / d) for d > 0, and the remainder in [0, d). Exact for all n. */
+int64_t mot_floordiv(int64_t n, int64_t d, int64_t *rem);
+
+/* Unsigned 128 / 64 division: floor(x / d), remainder in *rem. x must be
+ * non-negative and the quotient must fit 64 bits; otherwise returns
+ * UINT64_MAX and sets MOT_SAT_OVERFLOW. */
+uint64_t mot_acc_udiv(mot_acc x, uint64_t d, uint64_t *rem, uint32_t *sat);
+
+/*
+ * A prepared reciprocal, for dividing many numbers by one d > 0 with a
+ * product instead of a division: m / 2^shift ~ 2^32 / d with m in
+ * [2^62, 2^63), relative error below 2^-62.
+ */
+struct mot_recip {
+	int64_t m;
+	uint32_t shift;
+};
+
+/* Prepare 1/d for d > 0 (d <= 0 gives MOT_E_INVAL). Init only (a division). */
+int mot_recip_init(struct mot_recip *r, int64_t d);
+
+/* round(x * 2^32 / d) within 1 LSB, saturating: the Q32.32 ratio x/d when x
+ * and d have the same scale. Real-time safe (one product). */
+static inline mot_q32 mot_recip_ratio(int64_t x, const struct mot_recip *r, uint32_t *sat)
+{
+	return mot_acc_round(mot_acc_mul(x, r->m), r->shift, sat);
+}
+
+/* ---- conversions used at the edges (integers only) ------------------------ */
+
+/* round(num / den) in Q32.32, den > 0, exact rational conversion. */
+static inline mot_q32 mot_q32_ratio(int64_t num, int64_t den, uint32_t *sat)
+{
+	return mot_muldiv(num, MOT_Q32_ONE, den, sat);
+}
+
+#endif /* MOT_FIX_H */

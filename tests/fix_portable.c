@@ -1,0 +1,34 @@
+/* SPDX-License-Identifier: MIT */
+/* fix_portable.c - see fix_portable.h. The portable path of fix.h and a
+ * private copy of fix.c, both without __int128. */
+#define MOT_NO_INT128 1
+#define mot_acc_udiv fixp_acc_udiv_
+#define mot_floordiv fixp_floordiv_
+#define mot_muldiv fixp_muldiv_
+#define mot_div fixp_div_
+#define mot_recip_init fixp_recip_init_
+#include "../motion/fix.c"
+#include "fix_portable.h"
+
+void fixp_mul(int64_t a, int64_t b, uint64_t *hi, uint64_t *lo)
+{
+	mot_acc p = mot_acc_mul(a, b);
+
+	*hi = mot_acc_hi(p);
+	*lo = mot_acc_lo(p);
+}
+
+int64_t fixp_round(int64_t a, int64_t b, unsigned shift, uint32_t *sat)
+{
+	return mot_acc_round(mot_acc_mul(a, b), shift, sat);
+}
+
+uint64_t fixp_udiv(uint64_t hi, uint64_t lo, uint64_t d, uint64_t *rem)
+{
+	return fixp_acc_udiv_(mot_acc_make(hi, lo), d, rem, NULL);
+}
+
+int64_t fixp_muldiv(int64_t a, int64_t m, int64_t d)
+{
+	return fixp_muldiv_(a, m, d, NULL);
+}
