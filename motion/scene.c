@@ -1,0 +1,274 @@
+/* SPDX-License-Identifier: MIT */
+/* scene.c - validating and evaluating a scene (see scene.h). */
+#include "scene.h"
+#include "decomp.h"
+#include "trig.h"
+
+static bool in_range(int32_t idx, uint32_t n)
+{
+	return idx >= 0 && (uint32_t)idx < n;
+}
+
+static bool opt_in_range(int32_t idx, uint32_t n)
+{
+	return idx == -1 || in_range(idx, n);
+}
+
+static bool axis_is_unit(const mot_q32 a[3])
+{
+	/* |a|^2 within 2^-24 of 1, compared in Q64.64 */
+	mot_acc n2 = mot_acc_mac(mot_acc_mac(mot_acc_mul(a[0], a[0]), a[1], a[1]), a[2], a[2]);
+	int64_t q = mot_acc_round(n2, 64 - 24, NULL); /* Q40.24 */
+
+	return q >= ((int64_t)1 << 24) - 1 && q <= ((int64_t)1 << 24) + 1;
+}
+
+int mot_scene_validate(const struct mot_scene *sc)
+{
+	uint32_t i, k;
+
+	for (i = 0; i < sc->nnodes; i++) {
+		const struct mot_node *n = &sc->nodes[i];
+
+		if (n->parent < -1 || (n->parent >= 0 && (uint32_t)n->parent >= i))
+			return MOT_E_PARENT;
+		switch (n->kind) {
+		case MOT_NODE_FREE:
+			if (n->curve != -1 || n->spin != -1 || !opt_in_range(n->strand, sc->nfree))
+				return MOT_E_KIND;
+			break;
+		case MOT_NODE_REVOLUTE:
+		case MOT_NODE_PRISMATIC:
+			if (n->strand != -1 || !opt_in_range(n->curve, sc->ncurves) ||
+			    !opt_in_range(n->spin, sc->ncurves) || (n->curve >= 0 && n->spin >= 0))
+				return MOT_E_KIND;
+			if (n->spin >= 0 &&
+			    (n->kind != MOT_NODE_REVOLUTE || !sc->curves[n->spin].integral))
+				return MOT_E_KIND;
+			if (n->axis_id > MOT_AXIS_VEC || !axis_is_unit(n->axis))
+				return MOT_E_INVAL;
+			if (n->axis_id != MOT_AXIS_VEC)
+				for (k = 0; k < 3; k++)
+					if (n->axis[k] != (k == n->axis_id ? MOT_Q32_ONE : 0))
+						return MOT_E_INVAL;
+			break;
+		default:
+			return MOT_E_KIND;
+		}
+	}
+	for (i = 0; i < sc->nfree; i++) {
+		for (k = 0; k < MOT_FREE_NCHANNELS; k++)
+			if (!opt_in_range(sc->free[i].channel[k], sc->ncurves))
+				return MOT_E_INVAL;
+		if (!opt_in_range(sc->free[i].rot, sc->nrot))
+			return MOT_E_INVAL;
+	}
+	if (sc->camera)
+		for (k = 0; k < MOT_CAM_NCHANNELS; k++)
+			if (!in_range(sc->camera->ch[k], sc->ncurves))
+				return MOT_E_INVAL;
+	for (i = 0; i < sc->nattrs; i++)
+		if (!in_range(sc->attr_curve[i], sc->ncurves))
+			return MOT_E_INVAL;
+	return MOT_OK;
+}
+
+int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
+{
+	uint32_t i, n = mot_eval_cursor_count(sc);
+
+	if (ev->ncursors < n)
+		return MOT_E_CAPACITY;
+	for (i = 0; i < n; i++) {
+		ev->cursors[i].seg = 0;
+		ev->cursors[i].key = 0;
+	}
+	ev->sat = 0;
+	return MOT_OK;
+}
+
+/* The joint value of a joint node, and its spin speed. */
+static mot_q32 joint_value(const struct mot_scene *sc, struct mot_eval *ev,
+			   const struct mot_node *n, mot_q32 frame, mot_q32 *rpm)
+{
+	*rpm = 0;
+	if (n->curve >= 0)
+		return mot_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], frame,
+				      &ev->sat);
+	if (n->spin >= 0) {
+		const struct mot_curve *c = &sc->curves[n->spin];
+		struct mot_cursor *cur = &ev->cursors[n->spin];
+
+		*rpm = mot_curve_eval(c, cur, frame, &ev->sat);
+		return mot_add_sat(n->rest, mot_spin_turns(c, cur, &sc->timing, frame, &ev->sat),
+				   &ev->sat);
+	}
+	return n->rest;
+}
+
+/* Local matrix of a free node: T(-p) . S . H . R . T(p) . T(t). */
+static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
+		       const struct mot_node *n, mot_q32 frame)
+{
+	struct mot_decomp d;
+	mot_q32 v[MOT_FREE_NCHANNELS];
+	uint32_t k;
+
+	if (n->strand < 0) {
+		mot_mat_identity(out);
+		return;
+	}
+	{
+		const struct mot_free_strand *fs = &sc->free[n->strand];
+		mot_q32 g = mot_warp_apply(&fs->warp, frame, &ev->sat);
+
+		for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+			int32_t c = fs->channel[k];
+
+			if (c >= 0)
+				v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g,
+						      &ev->sat);
+			else
+				v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
+		}
+		if (fs->rot >= 0)
+			mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
+					   &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g,
+					   &ev->sat);
+		else
+			mot_quat_identity(&d.rot);
+	}
+	for (k = 0; k < 3; k++) {
+		d.translate[k] = v[MOT_FREE_TX + k];
+		d.scale[k] = v[MOT_FREE_SX + k];
+		d.shear[k] = v[MOT_FREE_HXY + k];
+	}
+	mot_mat_compose(out, &d, &ev->sat);
+	mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
+}
+
+/*
+ * World matrix of a revolute joint about a coordinate axis. R mixes two rows
+ * (a, b) of whatever follows it and leaves the third alone:
+ *     Rz: (a, b) = (0, 1)   Rx: (1, 2)   Ry: (2, 0)
+ * so L . P costs 4 + 2 row products instead of a full 3x3 product, and
+ * the translation T(-p) . R . T(p) contributes (p - p.R) . P_lin.
+ */
+static void revolute_world(struct mot_mat *w, const struct mot_mat *parent, unsigned axis,
+			   const mot_q32 p[3], mot_q32 turns, uint32_t *sat)
+{
+	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
+	const unsigned a = ab[axis][0], b = ab[axis][1], o = axis;
+	struct mot_mat id;
+	mot_q32 s, c, ta, tb;
+	unsigned j;
+
+	mot_sincos(turns, &s, &c);
+	/* p - p.R, components a and b (component o is 0) */
+	ta = p[a] - mot_acc_round(mot_acc_mac(mot_acc_mul(c, p[a]), -s, p[b]), 32, sat);
+	tb = p[b] - mot_acc_round(mot_acc_mac(mot_acc_mul(s, p[a]), c, p[b]), 32, sat);
+	if (!parent) {
+		mot_mat_identity(&id);
+		parent = &id;
+	}
+	for (j = 0; j < 3; j++) {
+		mot_q32 pa = parent->m[a][j], pb = parent->m[b][j];
+		mot_acc t = mot_acc_from(parent->m[3][j], 32);
+
+		t = mot_acc_mac(mot_acc_mac(t, ta, pa), tb, pb);
+		w->m[3][j] = mot_acc_round(t, 32, sat);
+		w->m[a][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(c, pa), s, pb), 32, sat);
+		w->m[b][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(-s, pa), c, pb), 32, sat);
+		w->m[o][j] = parent->m[o][j];
+	}
+}
+
+void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
+		    uint32_t node, mot_q32 frame, mot_q32 *value, mot_q32 *rpm)
+{
+	const struct mot_node *n = &sc->nodes[node];
+	mot_q32 v = 0, r = 0, t[3];
+	uint32_t k;
+
+	switch (n->kind) {
+	case MOT_NODE_REVOLUTE:
+		v = joint_value(sc, ev, n, frame, &r);
+		if (n->axis_id == MOT_AXIS_VEC) {
+			mot_mat_rot_axis(out, n->axis, v, &ev->sat);
+			mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
+		} else {
+			revolute_world(out, NULL, n->axis_id, n->pivot, v, &ev->sat);
+		}
+		break;
+	case MOT_NODE_PRISMATIC:
+		v = joint_value(sc, ev, n, frame, &r);
+		for (k = 0; k < 3; k++)
+			t[k] = mot_mul(v, n->axis[k], &ev->sat);
+		mot_mat_translate(out, t);
+		break;
+	default:
+		free_local(out, sc, ev, n, frame);
+		break;
+	}
+	if (value)
+		*value = v;
+	if (rpm)
+		*rpm = r;
+}
+
+void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
+		    struct mot_pose *out)
+{
+	uint32_t i;
+
+	for (i = 0; i < sc->nnodes; i++) {
+		const struct mot_node *n = &sc->nodes[i];
+		const struct mot_mat *parent = n->parent >= 0 ? &out->world[n->parent] : NULL;
+		struct mot_mat *w = &out->world[i];
+		mot_q32 v = 0, r = 0;
+
+		if (n->kind == MOT_NODE_REVOLUTE && n->axis_id != MOT_AXIS_VEC) {
+			v = joint_value(sc, ev, n, frame, &r);
+			revolute_world(w, parent, n->axis_id, n->pivot, v, &ev->sat);
+		} else if (n->kind == MOT_NODE_PRISMATIC) {
+			mot_q32 t[3];
+			uint32_t k;
+
+			v = joint_value(sc, ev, n, frame, &r);
+			for (k = 0; k < 3; k++)
+				t[k] = mot_mul(v, n->axis[k], &ev->sat);
+			if (parent) {
+				/* T(t) . P: P's linear part, translation t.P_lin + P_t */
+				*w = *parent;
+				mot_mat_apply(w->m[3], t, parent, &ev->sat);
+			} else {
+				mot_mat_translate(w, t);
+			}
+		} else {
+			struct mot_mat local;
+
+			mot_node_local(&local, sc, ev, i, frame, &v, &r);
+			if (parent)
+				mot_mat_mul(w, &local, parent, &ev->sat);
+			else
+				*w = local;
+		}
+		mot_mat_apply(out->pos[i], n->pivot, w, &ev->sat);
+		out->value[i] = v;
+		out->rpm[i] = r;
+	}
+	if (sc->camera)
+		mot_camera_eval(&out->cam, sc->camera, sc->curves, ev->cursors, frame, &ev->sat);
+	if (sc->ncycles) {
+		/* the frame a tick belongs to: floor of its frame time */
+		int64_t fnum = frame >> 32;
+
+		for (i = 0; i < sc->ncycles; i++)
+			out->cycle[i] = mot_cycle_index(&sc->cycles[i], fnum);
+	}
+	for (i = 0; i < sc->nattrs; i++) {
+		int32_t c = sc->attr_curve[i];
+
+		out->attr[i] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], frame, &ev->sat);
+	}
+}

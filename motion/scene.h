@@ -1,0 +1,122 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * scene.h - a scene: a flattened forest of nodes, their strands, the camera,
+ * cycled objects and attribute channels, and their evaluation at a frame
+ * (FORMULAS.md section 3; the seed paper sections 3 and 5).
+ *
+ * Nodes sit in an array with every parent before its children, so one pass
+ * in index order computes every world matrix without recursion:
+ *     L = T(-p) . S . H . R . T(p) . T(t)       free node (strand channels)
+ *     L = T(-p) . R(axis, angle) . T(p)         revolute joint
+ *     L = T(position . axis)                    prismatic joint
+ *     W(root) = L, W(child) = L . W(parent)
+ * and a node's reported position is its pivot in world space, (p, 1) . W.
+ *
+ * All arrays are owned by the caller (the scene loader packs them into one
+ * block, see arena.h); the scene itself is read-only while it plays. The
+ * mutable part of an evaluation — one cursor per curve and rotation track,
+ * and a sticky status word — lives in struct mot_eval, one per evaluating
+ * thread.
+ */
+#ifndef MOT_SCENE_H
+#define MOT_SCENE_H
+
+#include "camera.h"
+#include "curve.h"
+#include "cycle.h"
+#include "fix.h"
+#include "mat.h"
+#include "strand.h"
+#include "time.h"
+
+enum mot_node_kind {
+	MOT_NODE_FREE,
+	MOT_NODE_REVOLUTE,  /* value: angle in turns */
+	MOT_NODE_PRISMATIC, /* value: position along the axis, scene units */
+};
+
+enum mot_axis {
+	MOT_AXIS_X,
+	MOT_AXIS_Y,
+	MOT_AXIS_Z,
+	MOT_AXIS_VEC, /* any unit vector */
+};
+
+struct mot_node {
+	int32_t parent;   /* index of the parent, -1 for a root; < own index */
+	uint32_t kind;    /* enum mot_node_kind */
+	uint32_t axis_id; /* enum mot_axis (joints) */
+	mot_q32 pivot[3]; /* rest coordinates shared with the parent */
+	mot_q32 axis[3];  /* joints: unit axis (set for every axis_id) */
+	mot_q32 rest;     /* joints: value when no strand moves it */
+	int32_t curve;    /* joints: curve of the value, or -1 */
+	int32_t spin;     /* revolute joints: rpm curve (prepared with integral), or -1 */
+	int32_t strand;   /* free nodes: index into scene->free, or -1 */
+};
+
+struct mot_scene {
+	struct mot_timing timing;
+	uint32_t nnodes;
+	const struct mot_node *nodes;
+	uint32_t ncurves;
+	const struct mot_curve *curves;
+	uint32_t nrot;
+	const struct mot_rot_track *rot;
+	uint32_t nfree;
+	const struct mot_free_strand *free;
+	const struct mot_camera *camera; /* NULL: no camera */
+	uint32_t ncycles;
+	const struct mot_cycle *cycles;
+	uint32_t nattrs;
+	const int32_t *attr_curve; /* curve index of each attribute */
+};
+
+/* Mutable evaluation state. cursors has mot_eval_cursor_count() entries. */
+struct mot_eval {
+	struct mot_cursor *cursors; /* curves first, then rotation tracks */
+	uint32_t ncursors;
+	uint32_t sat;               /* sticky MOT_SAT_* bits of every evaluation */
+};
+
+/* The result of one evaluation; every array is caller-owned and sized from
+ * the scene's counts. */
+struct mot_pose {
+	struct mot_mat *world; /* nnodes */
+	mot_q32 (*pos)[3];     /* nnodes: pivot in world space */
+	mot_q32 *value;        /* nnodes: joint value (turns or units), 0 for free nodes */
+	mot_q32 *rpm;          /* nnodes: spin speed of spin joints, else 0 */
+	struct mot_cam_pose cam;
+	int32_t *cycle;        /* ncycles */
+	mot_q32 *attr;         /* nattrs */
+};
+
+/*
+ * Check the scene's structure: every parent before its child (MOT_E_PARENT),
+ * every index in range and of the right kind for its node (MOT_E_KIND,
+ * MOT_E_INVAL), every joint axis unit length. Init only.
+ */
+int mot_scene_validate(const struct mot_scene *sc);
+
+static inline uint32_t mot_eval_cursor_count(const struct mot_scene *sc)
+{
+	return sc->ncurves + sc->nrot;
+}
+
+/* Zero the cursors and the status. MOT_E_CAPACITY when ev->ncursors is
+ * too small. */
+int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc);
+
+/*
+ * Evaluate every node, the camera, cycles and attributes at a frame
+ * (Q32.32 frames; the loop passes mot_timing_tick_frame of its tick).
+ * Saturations are ORed into ev->sat. Real-time safe: no allocation, bounded
+ * time, the scene untouched.
+ */
+void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
+		    struct mot_pose *out);
+
+/* The local matrix of one node at a frame (for jog/teach and the tests). */
+void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
+		    uint32_t node, mot_q32 frame, mot_q32 *value, mot_q32 *rpm);
+
+#endif /* MOT_SCENE_H */

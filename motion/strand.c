@@ -1,0 +1,243 @@
+/* SPDX-License-Identifier: MIT */
+/* strand.c - rotation tracks, strand time warps and spin (see strand.h). */
+#include "strand.h"
+
+/* ---- rotation tracks -------------------------------------------------------- */
+
+static void quat_neg(struct mot_quat *q)
+{
+	q->w = -q->w;
+	q->x = -q->x;
+	q->y = -q->y;
+	q->z = -q->z;
+}
+
+/* b, flipped if needed onto a's side of the sphere. */
+static void quat_align(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b)
+{
+	*out = *b;
+	if (mot_quat_dot(a, b, NULL) < 0)
+		quat_neg(out);
+}
+
+int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, uint32_t nkeys,
+		       bool squad, struct mot_rot_seg *seg, uint32_t nseg, uint32_t *sat)
+{
+	struct mot_quat prev, cur, next, s_cur, s_next;
+	uint32_t i;
+	int err;
+
+	if (nkeys == 0)
+		return MOT_E_NOKEYS;
+	if (nseg < nkeys - 1)
+		return MOT_E_CAPACITY;
+	for (i = 0; i < nkeys; i++) {
+		if (keys[i].ease_in < 0 || keys[i].ease_in > MOT_Q32_ONE || keys[i].ease_out < 0 ||
+		    keys[i].ease_out > MOT_Q32_ONE)
+			return MOT_E_INVAL;
+		if (i > 0 && keys[i].frame <= keys[i - 1].frame)
+			return MOT_E_ORDER;
+	}
+	/*
+	 * Walk the keys with a window (prev, cur, next) of sign-aligned
+	 * quaternions: q and -q are the same rotation, and both slerp and
+	 * squad's inner points need consecutive keys on one hemisphere.
+	 */
+	cur = keys[0].q;
+	prev = cur;
+	s_cur = cur;
+	for (i = 0; i + 1 < nkeys; i++) {
+		struct mot_rot_seg *sg = &seg[i];
+
+		quat_align(&next, &cur, &keys[i + 1].q);
+		err = mot_ease_init(&sg->ease, keys[i].ease_out, keys[i + 1].ease_in, sat);
+		if (err)
+			return err;
+		err = mot_recip_init(&sg->inv_h, keys[i + 1].frame - keys[i].frame);
+		if (err)
+			return err;
+		mot_slerp_prepare(&sg->arc, &cur, &next, sat);
+		if (squad) {
+			struct mot_quat after;
+
+			if (i == 0)
+				mot_squad_inner(&s_cur, &prev, &cur, &next, sat);
+			if (i + 2 < nkeys)
+				quat_align(&after, &next, &keys[i + 2].q);
+			else
+				after = next;
+			mot_squad_inner(&s_next, &cur, &next, &after, sat);
+			mot_slerp_prepare(&sg->inner, &s_cur, &s_next, sat);
+			s_cur = s_next;
+		} else {
+			sg->inner = sg->arc;
+		}
+		prev = cur;
+		cur = next;
+	}
+	r->nkeys = nkeys;
+	r->squad = squad;
+	r->keys = keys;
+	r->seg = seg;
+	return MOT_OK;
+}
+
+/* Index i of the key interval [f(i), f(i+1)) holding frame (0 .. n-2), for
+ * frames inside the keys. O(1) when the cursor is on it or the next one. */
+static uint32_t rot_find(const struct mot_rot_track *r, struct mot_cursor *cur, mot_q32 frame)
+{
+	const struct mot_rot_key *k = r->keys;
+	uint32_t lo = 0, hi = r->nkeys - 1; /* invariant: k[lo].frame <= frame < k[hi].frame */
+
+	if (cur) {
+		uint32_t i = cur->seg;
+
+		if (i + 1 < r->nkeys && k[i].frame <= frame) {
+			if (frame < k[i + 1].frame)
+				return i;
+			if (i + 2 < r->nkeys && frame < k[i + 2].frame) {
+				cur->seg = i + 1;
+				return i + 1;
+			}
+		}
+	}
+	while (hi - lo > 1) {
+		uint32_t mid = lo + (hi - lo) / 2;
+
+		if (k[mid].frame <= frame)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	if (cur)
+		cur->seg = lo;
+	return lo;
+}
+
+void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
+			struct mot_cursor *cur, mot_q32 frame, uint32_t *sat)
+{
+	const struct mot_rot_seg *sg;
+	struct mot_quat qa, qb;
+	mot_q32 s;
+	uint32_t i;
+
+	if (r->nkeys == 1 || frame <= r->keys[0].frame) {
+		*out = r->nkeys == 1 ? r->keys[0].q : r->seg[0].arc.a;
+		return;
+	}
+	if (frame >= r->keys[r->nkeys - 1].frame) {
+		*out = r->seg[r->nkeys - 2].arc.b;
+		return;
+	}
+	i = rot_find(r, cur, frame);
+	sg = &r->seg[i];
+	s = mot_recip_ratio(frame - r->keys[i].frame, &sg->inv_h, sat);
+	if (s > MOT_Q32_ONE) /* rounding of the reciprocal, never more than 1 LSB */
+		s = MOT_Q32_ONE;
+	if (!mot_ease_is_identity(&sg->ease))
+		s = mot_ease_apply(&sg->ease, s, sat);
+	mot_slerp_eval(&qa, &sg->arc, s, sat);
+	if (!r->squad) {
+		*out = qa;
+		return;
+	}
+	mot_slerp_eval(&qb, &sg->inner, s, sat);
+	/* 2 s (1 - s) */
+	mot_quat_slerp(out, &qa, &qb, 2 * mot_mul(s, MOT_Q32_ONE - s, sat), sat);
+}
+
+/* ---- strand-wide warp ----------------------------------------------------------- */
+
+int mot_warp_init(struct mot_warp *w, mot_q32 f0, mot_q32 f1, mot_q32 ease_out_frames,
+		  mot_q32 ease_in_frames, uint32_t *sat)
+{
+	mot_q32 span = f1 - f0;
+	int err;
+
+	w->on = false;
+	w->f0 = f0;
+	w->f1 = f1;
+	if (ease_out_frames < 0 || ease_in_frames < 0)
+		return MOT_E_INVAL;
+	if (ease_out_frames == 0 && ease_in_frames == 0)
+		return MOT_OK;
+	if (span <= 0 || ease_out_frames > span || ease_in_frames > span - ease_out_frames)
+		return MOT_E_INVAL;
+	err = mot_ease_init(&w->ease, mot_div(ease_out_frames, span, sat),
+			    mot_div(ease_in_frames, span, sat), sat);
+	if (err)
+		return err;
+	err = mot_recip_init(&w->inv_span, span);
+	if (err)
+		return err;
+	w->on = true;
+	return MOT_OK;
+}
+
+mot_q32 mot_warp_apply(const struct mot_warp *w, mot_q32 frame, uint32_t *sat)
+{
+	mot_q32 s;
+
+	if (!w->on || frame <= w->f0 || frame >= w->f1)
+		return frame;
+	s = mot_recip_ratio(frame - w->f0, &w->inv_span, sat);
+	s = mot_ease_apply(&w->ease, s, sat);
+	return w->f0 + mot_mul(s, w->f1 - w->f0, sat);
+}
+
+/* ---- spin ----------------------------------------------------------------------- */
+
+mot_q32 mot_spin_turns(const struct mot_curve *rpm, struct mot_cursor *cur,
+		       const struct mot_timing *t, mot_q32 frame, uint32_t *sat)
+{
+	/*
+	 * turns = integral(rpm dt) / 60 with dt = df * den / num seconds, so
+	 * turns = I * den / (60 num) for the curve's integral I in rpm x frames
+	 * (Q64.64). I * den needs up to 160 bits: it is formed in three 64-bit
+	 * words and divided by 60 num by schoolbook long division, one word at a
+	 * time, then rounded once to Q32.32. Nothing is summed from tick to tick.
+	 */
+	mot_acc integ, p;
+	uint64_t w2, w1, w0, q2, q1, q0, r, d, res;
+	bool neg;
+
+	if (mot_curve_integral(&integ, rpm, cur, frame, sat) != MOT_OK) {
+		if (sat)
+			*sat |= MOT_SAT_DOMAIN;
+		return 0;
+	}
+	neg = mot_acc_is_neg(integ);
+	if (neg)
+		integ = mot_acc_neg(integ);
+	/* (H * 2^64 + L) * den = H*den * 2^64 + L*den */
+	p = mot_acc_mul((int64_t)(mot_acc_lo(integ) >> 1), (int64_t)t->den);
+	p = mot_acc_add(p, p); /* L*den without signed overflow: (L>>1)*den*2 ... */
+	if (mot_acc_lo(integ) & 1)
+		p = mot_acc_add(p, mot_acc_from((int64_t)t->den, 0));
+	w0 = mot_acc_lo(p);
+	w1 = mot_acc_hi(p);
+	p = mot_acc_mul((int64_t)mot_acc_hi(integ), (int64_t)t->den); /* H < 2^63 */
+	w1 += mot_acc_lo(p);
+	w2 = mot_acc_hi(p) + (w1 < mot_acc_lo(p));
+
+	d = 60 * (uint64_t)t->num;
+	q2 = w2 / d;
+	r = w2 % d;
+	q1 = mot_acc_udiv(mot_acc_make(r, w1), d, &r, NULL);
+	q0 = mot_acc_udiv(mot_acc_make(r, w0), d, &r, NULL);
+	/* round(q / 2^32) = (q + 2^31) >> 32 on the 192-bit quotient q */
+	q0 += (uint64_t)1 << 31;
+	if (q0 < ((uint64_t)1 << 31)) {
+		q1++;
+		if (q1 == 0)
+			q2++;
+	}
+	if (q2 != 0 || (q1 >> 31) != 0) {
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return neg ? MOT_Q32_MIN : MOT_Q32_MAX;
+	}
+	res = (q1 << 32) | (q0 >> 32);
+	return neg ? -(mot_q32)res : (mot_q32)res;
+}

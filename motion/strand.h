@@ -1,0 +1,98 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * strand.h - the timeline of one node (the seed paper's "strand"): rotation
+ * tracks and the free strand that combines a node's channels.
+ *
+ * A joint node's strand is a single scalar curve (curve.h): a revolute angle
+ * in turns or a prismatic position in scene units, or an rpm curve that is
+ * integrated in closed form (mot_spin_turns). A free node's strand has up to
+ * nine scalar channels (translate xyz, scale xyz, shear hxy hxz hyz), each a
+ * curve over the keys that set it, and a rotation track of unit quaternions
+ * interpolated by slerp or squad. A channel without keys holds its rest
+ * value (translate 0, scale 1, shear 0, no rotation).
+ *
+ * Everything here is prepared at init into caller-owned memory and is
+ * real-time safe to evaluate.
+ */
+#ifndef MOT_STRAND_H
+#define MOT_STRAND_H
+
+#include "curve.h"
+#include "ease.h"
+#include "fix.h"
+#include "mat.h"
+#include "quat.h"
+#include "time.h"
+
+/* ---- rotation tracks ------------------------------------------------------ */
+
+struct mot_rot_key {
+	mot_q32 frame;     /* strictly increasing */
+	struct mot_quat q; /* unit (the loader normalises) */
+	mot_q32 ease_in, ease_out;
+};
+
+struct mot_rot_seg {
+	struct mot_slerp arc;   /* q(i) -> q(i+1) */
+	struct mot_slerp inner; /* squad: s(i) -> s(i+1) */
+	struct mot_ease ease;
+	struct mot_recip inv_h; /* 1 / (f(i+1) - f(i)) */
+};
+
+struct mot_rot_track {
+	uint32_t nkeys;
+	bool squad;
+	const struct mot_rot_key *keys;
+	struct mot_rot_seg *seg; /* nkeys - 1 entries */
+};
+
+/* Validate (MOT_E_NOKEYS, MOT_E_ORDER, MOT_E_INVAL for ease fractions,
+ * MOT_E_CAPACITY when nseg < nkeys - 1) and prepare. Init only. */
+int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, uint32_t nkeys,
+		       bool squad, struct mot_rot_seg *seg, uint32_t nseg, uint32_t *sat);
+
+/* Rotation at a frame; holds the end keys outside them. Real-time safe. */
+void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
+			struct mot_cursor *cur, mot_q32 frame, uint32_t *sat);
+
+/* ---- strand-wide time warp -------------------------------------------------- */
+
+/* The slow-in/slow-out of a whole strand (FORMULAS section 7), a remap of
+ * the frame over the span [f0, f1]. */
+struct mot_warp {
+	bool on;
+	mot_q32 f0, f1;
+	struct mot_ease ease;
+	struct mot_recip inv_span;
+};
+
+/* ease_out_frames leaving f0, ease_in_frames arriving at f1; both 0 turns the
+ * warp off. MOT_E_INVAL when they are negative or exceed the span. */
+int mot_warp_init(struct mot_warp *w, mot_q32 f0, mot_q32 f1, mot_q32 ease_out_frames,
+		  mot_q32 ease_in_frames, uint32_t *sat);
+mot_q32 mot_warp_apply(const struct mot_warp *w, mot_q32 frame, uint32_t *sat);
+
+/* ---- free strands ------------------------------------------------------------- */
+
+enum mot_free_channel {
+	MOT_FREE_TX, MOT_FREE_TY, MOT_FREE_TZ,
+	MOT_FREE_SX, MOT_FREE_SY, MOT_FREE_SZ,
+	MOT_FREE_HXY, MOT_FREE_HXZ, MOT_FREE_HYZ,
+	MOT_FREE_NCHANNELS,
+};
+
+struct mot_free_strand {
+	int32_t channel[MOT_FREE_NCHANNELS]; /* curve index in the scene, or -1 */
+	int32_t rot;                         /* rotation track index, or -1 */
+	struct mot_warp warp;
+};
+
+/* ---- spin (FORMULAS section 8) ------------------------------------------------ */
+
+/* Turns a spin has made by `frame`: 360 deg * integral of rpm / 60 over the
+ * seconds from frame 0, from the rpm curve's closed-form integral, rounded
+ * once. Exact to the last bit after any run length. Real-time safe. */
+mot_q32 mot_spin_turns(const struct mot_curve *rpm, struct mot_cursor *cur,
+		       const struct mot_timing *t, mot_q32 frame, uint32_t *sat);
+
+#endif /* MOT_STRAND_H */
