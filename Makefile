@@ -13,7 +13,7 @@ CC      ?= cc
 Q       := $(if $(V),,@)
 
 # ---- Debian packages -------------------------------------------------------
-DEB_BUILD := gcc make pkg-config libc6-dev
+DEB_BUILD := gcc make pkg-config libc6-dev libyaml-dev
 DEB_TEST  := libcmocka-dev
 DEB_CROSS := gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross \
              libc6-dev-armhf-cross qemu-user gcc-arm-none-eabi binutils-arm-none-eabi
@@ -29,14 +29,27 @@ GCC_INC := $(shell $(CC) -print-file-name=include)
 CORE_CFLAGS := -std=c11 -ffreestanding -nostdinc -isystem $(GCC_INC) -fno-builtin \
                $(WARN) -Werror
 SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-TEST_CFLAGS := -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror $(SAN) -Imotion -Itests \
+TEST_CFLAGS := -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror -ffp-contract=off \
+               $(SAN) -Imotion -Itests -Ifirmware \
                $(shell pkg-config --cflags cmocka 2>/dev/null)
-TEST_LIBS   := $(shell pkg-config --libs cmocka 2>/dev/null) -lm
+TEST_LIBS   := $(shell pkg-config --libs cmocka 2>/dev/null) $(FW_LIBS)
 
 MOTION_SRC := $(wildcard motion/*.c)
 MOTION_HDR := $(wildcard motion/*.h)
 MOTION_OBJ := $(MOTION_SRC:%.c=$(BUILD)/%.o)
 MOTION_SAN_OBJ := $(MOTION_SRC:%.c=$(BUILD)/san/%.o)
+
+# firmware/: the strand program; everything but main.c is also linked into tests
+# No fused multiply-add contraction: the loader's double arithmetic must round
+# the same way on x86_64, aarch64 and armhf.
+FW_CFLAGS  := -std=gnu11 $(WARN) -Werror -ffp-contract=off -Imotion -Ifirmware -Ihal -Isim \
+              $(shell pkg-config --cflags yaml-0.1 2>/dev/null)
+FW_LIBS    := $(shell pkg-config --libs yaml-0.1 2>/dev/null) -lm -lpthread
+FW_SRC     := $(wildcard firmware/*.c)
+FW_LIB_SRC := $(filter-out firmware/main.c,$(FW_SRC))
+FW_HDR     := $(wildcard firmware/*.h)
+FW_LIB_SAN_OBJ := $(FW_LIB_SRC:%.c=$(BUILD)/san/%.o)
+FW_OBJ     := $(FW_SRC:%.c=$(BUILD)/%.o)
 
 TEST_SRC   := $(wildcard tests/test_*.c)
 TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -47,7 +60,7 @@ TEST_COMMON_OBJ := $(TEST_COMMON_SRC:%.c=$(BUILD)/san/%.o)
 .DELETE_ON_ERROR:
 .SECONDARY:
 
-all: $(BUILD)/libmotion.a $(TEST_BIN)
+all: $(BUILD)/libmotion.a $(if $(wildcard firmware/main.c),$(BUILD)/strand) $(TEST_BIN)
 
 # ---- dependencies ------------------------------------------------------------
 $(BUILD)/.deps-build: mk/deps.sh
@@ -73,12 +86,23 @@ $(BUILD)/san/motion/%.o: motion/%.c $(MOTION_HDR) | $(BUILD)/.deps-build
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(CORE_CFLAGS) -g -O1 $(SAN) -c $< -o $@
 
+$(BUILD)/firmware/%.o: firmware/%.c $(MOTION_HDR) $(FW_HDR) | $(BUILD)/.deps-build
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(FW_CFLAGS) $(OPT) -g -c $< -o $@
+
+$(BUILD)/strand: $(FW_OBJ) $(BUILD)/libmotion.a
+	$(Q)$(CC) $^ $(FW_LIBS) -o $@
+
+$(BUILD)/san/firmware/%.o: firmware/%.c $(MOTION_HDR) $(FW_HDR) | $(BUILD)/.deps-build
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(FW_CFLAGS) -g -O1 $(SAN) -c $< -o $@
+
 # ---- unit tests ------------------------------------------------------------------
 $(BUILD)/san/tests/%.o: tests/%.c $(MOTION_HDR) $(wildcard tests/*.h) | $(BUILD)/.deps-test
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
 
-$(BUILD)/tests/test_%: $(BUILD)/san/tests/test_%.o $(TEST_COMMON_OBJ) $(MOTION_SAN_OBJ)
+$(BUILD)/tests/test_%: $(BUILD)/san/tests/test_%.o $(TEST_COMMON_OBJ) $(FW_LIB_SAN_OBJ) $(MOTION_SAN_OBJ)
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TEST_CFLAGS) $^ $(TEST_LIBS) -o $@
 
