@@ -102,7 +102,14 @@ $(BUILD)/san/tests/%.o: tests/%.c $(MOTION_HDR) $(wildcard tests/*.h) | $(BUILD)
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
 
-$(BUILD)/tests/test_%: $(BUILD)/san/tests/test_%.o $(TEST_COMMON_OBJ) $(FW_LIB_SAN_OBJ) $(MOTION_SAN_OBJ)
+# Archives, so that a test pulls in only the objects it uses.
+$(BUILD)/san/libmotion.a: $(MOTION_SAN_OBJ)
+	$(Q)rm -f $@ && ar rcs $@ $^
+$(BUILD)/san/libfw.a: $(FW_LIB_SAN_OBJ)
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/tests/test_%: $(BUILD)/san/tests/test_%.o $(TEST_COMMON_OBJ) $(BUILD)/san/libfw.a \
+		$(BUILD)/san/libmotion.a
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TEST_CFLAGS) $^ $(TEST_LIBS) -o $@
 
