@@ -29,9 +29,11 @@ GCC_INC := $(shell $(CC) -print-file-name=include)
 CORE_CFLAGS := -std=c11 -ffreestanding -nostdinc -isystem $(GCC_INC) -fno-builtin \
                $(WARN) -Werror
 SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-TEST_CFLAGS := -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror $(SAN) -Imotion -Itests \
+# '=': pkg-config is asked when a recipe runs, after mk/deps.sh has
+# installed cmocka (on a fresh machine it is not there when make starts).
+TEST_CFLAGS  = -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror $(SAN) -Imotion -Itests \
                $(shell pkg-config --cflags cmocka 2>/dev/null)
-TEST_LIBS   := $(shell pkg-config --libs cmocka 2>/dev/null) -lm
+TEST_LIBS    = $(shell pkg-config --libs cmocka 2>/dev/null) -lm
 
 MOTION_SRC := $(wildcard motion/*.c)
 MOTION_HDR := $(wildcard motion/*.h)
@@ -88,7 +90,7 @@ unit: $(TEST_BIN)
 		else echo "PASS $$(basename $$t)  $$(grep -h '^BOUND' $$t.log | wc -l) bounds checked"; fi; \
 	done; exit $$fail
 
-test: unit
+# test: unit and the checks of mk/*.mk, with a summary (mk/test.mk)
 
 # ---- benchmarks ---------------------------------------------------------------------
 bench:

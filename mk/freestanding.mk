@@ -59,14 +59,15 @@ $(BUILD)/m4/motion/%.o: motion/%.c $(MOTION_HDR) | $(BUILD)/.deps-cross
 	@mkdir -p $(@D)
 	$(Q)$(M4_CC) $(M4_CFLAGS) -c $< -o $@
 
-# All of the core in one relocatable object: what an application links.
-$(BUILD)/m4/motion.o: $(M4_OBJ)
-	$(Q)arm-none-eabi-ld -r -o $@ $^
-
-check-cortexm: $(BUILD)/m4/motion.o | $(BUILD)/.deps-cross
+check-cortexm: $(M4_OBJ) | $(BUILD)/.deps-cross
 	$(Q)CC='$(M4_CC)' CFLAGS='$(M4_CFLAGS)' NM=arm-none-eabi-nm ALLOW='$(M4_ALLOW)' \
 		sh mk/check-selftest.sh $(BUILD)/m4/selftest $(FS_SELFTEST) \
 		objects:tests/freestanding/bad_float.c
 	$(Q)test -n '$(M4_OBJ)' || { echo "check-cortexm: no motion/*.c to check" >&2; exit 1; }
 	$(Q)sh mk/check-objects.sh arm-none-eabi-nm '$(M4_ALLOW)' $(M4_OBJ)
-	$(Q)arm-none-eabi-size $< | awk 'NR == 2 { print "CORTEX-M4 text=" $$1 " data=" $$2 " bss=" $$3 }'
+	@# all of the core in one relocatable object, as an application links it
+	$(Q)arm-none-eabi-ld -r -o $(BUILD)/m4/motion.o $(M4_OBJ)
+	$(Q)echo "CORTEX-M4 integer helpers:" $$(arm-none-eabi-nm -u $(BUILD)/m4/motion.o | \
+		awk '{ print $$NF }' | grep -v -E '^($(MEM_FUNCS))$$' || echo none)
+	$(Q)arm-none-eabi-size $(BUILD)/m4/motion.o | \
+		awk 'NR == 2 { print "CORTEX-M4 text=" $$1 " data=" $$2 " bss=" $$3 }'
