@@ -13,8 +13,10 @@ for arg in "$@"; do
 	# shellcheck disable=SC2086 # COMMAND is a runner and a program
 	(
 		rc=0
+		start=$(date +%s)
 		${arg#*=} >"$dir/$i.out" 2>"$dir/$i.err" || rc=$?
 		echo $rc >"$dir/$i.rc"
+		echo $(($(date +%s) - start)) >"$dir/$i.time"
 	) &
 done
 wait
@@ -31,7 +33,7 @@ for arg in "$@"; do
 		status=1
 		continue
 	fi
-	printf 'DIGEST %s  %s\n' "$digest" "$name"
+	printf 'DIGEST %s  %-10s %3s s  %s\n' "$digest" "$name" "$(cat "$dir/$i.time")" "${arg#*=}"
 	[ -n "$first" ] || first=$digest
 	[ "$digest" = "$first" ] || status=2
 done

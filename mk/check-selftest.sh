@@ -20,10 +20,10 @@ for arg in "$@"; do
 	obj=$out/$(basename "$src" .c).o
 	log=$out/$(basename "$src" .c).log
 	rm -f "$obj"
-	# the first stage that refuses the file
+	# the first stage that refuses the file (CFLAGS is a list of words)
+	# shellcheck disable=SC2086
 	if ! sh "$here/check-includes.sh" "$src" >"$log" 2>&1; then
 		got=includes
-	# shellcheck disable=SC2086 # CFLAGS is a list of words
 	elif ! $CC $CFLAGS -c "$src" -o "$obj" >"$log" 2>&1; then
 		got=compiler
 	elif ! sh "$here/check-objects.sh" "$NM" "$ALLOW" "$obj" >"$log" 2>&1; then
