@@ -44,7 +44,8 @@
 #ifdef HAVE_MOT_EASE
 #include "ease.h"
 #endif
-#ifdef HAVE_MOT_MAT
+#if defined(HAVE_MOT_MAT) || defined(HAVE_MOT_QUAT) || defined(HAVE_MOT_DECOMP)
+#define DG_GEOMETRY
 #include "mat.h"
 #endif
 #ifdef HAVE_MOT_QUAT
@@ -303,19 +304,21 @@ static void wl_ease(struct dg *d)
 }
 #endif
 
-/* ---- mat.c --------------------------------------------------------------- */
+/* ---- helpers of the geometry workloads (mat, quat, decomp) ------------------ */
 
-#ifdef HAVE_MOT_MAT
-#define N_MAT (1 << 13)
+#ifdef DG_GEOMETRY
+/* An angle for them: +-1000 turns. (trig's own workload covers the whole
+ * int64 range.) */
+#define DG_TURNS MOT_Q32_INT(1000)
 
-static void dg_put_vec(struct dg *d, const mot_q32 v[3])
+static inline void dg_put_vec(struct dg *d, const mot_q32 v[3])
 {
 	dg_put(d, (uint64_t)v[0]);
 	dg_put(d, (uint64_t)v[1]);
 	dg_put(d, (uint64_t)v[2]);
 }
 
-static void dg_put_mat(struct dg *d, const struct mot_mat *m)
+static inline void dg_put_mat(struct dg *d, const struct mot_mat *m)
 {
 	int r;
 
@@ -323,13 +326,20 @@ static void dg_put_mat(struct dg *d, const struct mot_mat *m)
 		dg_put_vec(d, m->m[r]);
 }
 
-static void dg_vec(struct dg *d, mot_q32 v[3], mot_q32 lim)
+static inline void dg_vec(struct dg *d, mot_q32 v[3], mot_q32 lim)
 {
 	int k;
 
 	for (k = 0; k < 3; k++)
 		v[k] = dg_range(d, -lim, lim);
 }
+
+#endif
+
+/* ---- mat.c --------------------------------------------------------------- */
+
+#ifdef HAVE_MOT_MAT
+#define N_MAT (1 << 13)
 
 /* A random affine matrix: Euler rotation, scale 0.1 to 10, translation. */
 static void dg_mat(struct dg *d, struct mot_mat *m, uint32_t *sat)
@@ -364,17 +374,19 @@ static void wl_mat(struct dg *d)
 		mot_mat_mul(&m, &a, &b, &sat);
 		dg_put_mat(d, &m);
 		dg_put(d, (uint64_t)mot_mat_det(&m, &sat));
+		mot_mat_identity(&t); /* what a failed inverse leaves */
 		dg_put(d, (uint64_t)mot_mat_inverse(&t, &m, &sat));
 		dg_put_mat(d, &t);
 		mot_mat_apply(out, p, &m, &sat);
 		dg_put_vec(d, out);
 		mot_mat_apply_dir(out, p, &m, &sat);
 		dg_put_vec(d, out);
-		/* a unit axis: a row of a rotation */
-		mot_mat_rot_z(&t, dg_i64(d));
+		/* unit axes: rows of rotations */
+		mot_mat_rot_z(&t, dg_range(d, -DG_TURNS, DG_TURNS));
 		dg_put_mat(d, &t);
-		mot_mat_rot_axis(&t, a.m[0], dg_i64(d), &sat);
-		mot_mat_rot_axis(&t, t.m[1], dg_i64(d), &sat);
+		mot_mat_rot_axis(&t, t.m[0], dg_range(d, -DG_TURNS, DG_TURNS), &sat);
+		dg_put_mat(d, &t);
+		mot_mat_rot_axis(&t, t.m[1], dg_range(d, -DG_TURNS, DG_TURNS), &sat);
 		dg_put_mat(d, &t);
 		mot_mat_shear(&t, h);
 		mot_mat_edit_local(&m, &t, p, &sat);
@@ -406,8 +418,7 @@ static void dg_quat(struct dg *d, struct mot_quat *q, uint32_t *sat)
 {
 	mot_q32 e[3];
 
-	dg_fill(d, e, 3);
-	e[1] = dg_range(d, -MOT_Q32_ONE, MOT_Q32_ONE);
+	dg_vec(d, e, DG_TURNS);
 	mot_quat_from_euler(q, e, sat);
 }
 
@@ -423,13 +434,15 @@ static void wl_quat(struct dg *d)
 		mot_q32 axis[3];
 		uint32_t sat = 0;
 
-		dg_fill(d, axis, 3);
+		dg_vec(d, axis, MOT_Q32_INT(100));
 		dg_quat(d, &a, &sat);
 		dg_quat(d, &b, &sat);
 		dg_quat(d, &c, &sat);
 		/* nearly equal keys now and then, for the nlerp fallback */
-		if ((i & 7) == 0)
-			b.x = a.x + dg_range(d, -4096, 4096);
+		if ((i & 7) == 0) {
+			b = a;
+			b.x += dg_range(d, -4096, 4096);
+		}
 		q.w = 0;
 		q.x = axis[0];
 		q.y = axis[1];
@@ -438,7 +451,7 @@ static void wl_quat(struct dg *d)
 		axis[0] = q.x;
 		axis[1] = q.y;
 		axis[2] = q.z;
-		mot_quat_from_axis_angle(&q, axis, dg_i64(d), &sat);
+		mot_quat_from_axis_angle(&q, axis, dg_range(d, -DG_TURNS, DG_TURNS), &sat);
 		dg_put_quat(d, &q);
 		mot_quat_mul(&q, &a, &b, &sat);
 		dg_put_quat(d, &q);
@@ -466,7 +479,7 @@ static void wl_quat(struct dg *d)
 
 /* ---- decomp.c ------------------------------------------------------------ */
 
-#if defined(HAVE_MOT_DECOMP) && defined(HAVE_MOT_QUAT) && defined(HAVE_MOT_MAT)
+#if defined(HAVE_MOT_DECOMP) && defined(HAVE_MOT_QUAT)
 #define N_DECOMP (1 << 13)
 
 static void wl_decomp(struct dg *d)
@@ -480,8 +493,7 @@ static void wl_decomp(struct dg *d)
 		mot_q32 e[3];
 		uint32_t sat = 0;
 
-		dg_fill(d, e, 3);
-		e[1] = dg_range(d, -MOT_Q32_ONE, MOT_Q32_ONE);
+		dg_vec(d, e, DG_TURNS);
 		for (j = 0; j < 3; j++) {
 			in.scale[j] = dg_range(d, MOT_Q32_ONE / 10, MOT_Q32_INT(10));
 			in.shear[j] = dg_range(d, -MOT_Q32_ONE, MOT_Q32_ONE);
@@ -514,7 +526,7 @@ static void wl_decomp(struct dg *d)
 /* ---- curve.c ------------------------------------------------------------- */
 
 #ifdef HAVE_MOT_CURVE
-#define N_CURVE 512
+#define N_CURVE 192
 #define CURVE_KEYS 12
 #define CURVE_SEGS 64
 
@@ -565,7 +577,7 @@ static void wl_curve(struct dg *d)
 		dg_put(d, (uint64_t)rc);
 		if (rc != MOT_OK)
 			continue;
-		tick = dg_range(d, MOT_Q32_ONE / 8, MOT_Q32_INT(2));
+		tick = dg_range(d, MOT_Q32_ONE / 2, MOT_Q32_INT(4));
 		for (f = keys[0].frame - MOT_Q32_INT(3); f < keys[n - 1].frame + MOT_Q32_INT(3);
 		     f += tick) {
 			mot_acc area = mot_acc_zero();
@@ -609,7 +621,7 @@ static const struct workload workloads[] = {
 #ifdef HAVE_MOT_QUAT
 	{ "quat", wl_quat },
 #endif
-#if defined(HAVE_MOT_DECOMP) && defined(HAVE_MOT_QUAT) && defined(HAVE_MOT_MAT)
+#if defined(HAVE_MOT_DECOMP) && defined(HAVE_MOT_QUAT)
 	{ "decomp", wl_decomp },
 #endif
 #ifdef HAVE_MOT_CURVE
