@@ -1,7 +1,8 @@
 # strand - top-level Makefile. Plain make; objects under $(BUILD)/.
 #
 #   make          build the core library, the program and the tests
-#   make test     build and run every test (unit, freestanding, cross-arch)
+#   make test     build and run every test (unit, freestanding, cross-arch,
+#                 Cortex-M4) and print a summary
 #   make bench    build and run the benchmarks (prints BENCH lines)
 #   make clean    remove $(BUILD)/
 #
