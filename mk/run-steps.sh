@@ -29,7 +29,11 @@ for step in "$@"; do
 		failed=$((failed + 1))
 	fi
 	printf '%s %-20s %4s s   (log: %s)\n' "$verdict" "$step" "$(cat "$logs/$step.time")" "$logs/$step.log"
-	grep -E '^(PASS|FAIL|FREESTANDING|CROSS|CORTEX-M4) ' "$logs/$step.log" | sed 's/^/    /' || true
+	if [ $verdict = PASS ]; then
+		grep -E '^(PASS|FAIL|FREESTANDING|CROSS|CORTEX-M4) ' "$logs/$step.log" || true
+	else
+		grep -v -e ", as expected" -e "^make\[" "$logs/$step.log" | tail -n 6
+	fi | sed 's/^/    /'
 done
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]
