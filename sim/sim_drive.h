@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * drive.h - a simulated servo drive behind the HAL axis interface.
+ * sim_drive.h - a simulated servo drive behind the HAL axis interface.
  *
  * Each channel is a second-order plant, the textbook model of a position
  * loop: with target r (counts), feed-forward velocity r' (counts/s), actual

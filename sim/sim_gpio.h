@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * gpio.h - a simulated GPIO chip behind the HAL digital output and input
+ * sim_gpio.h - a simulated GPIO chip behind the HAL digital output and input
  * interfaces.
  *
  * Output lines keep their physical level and timestamp every edge with the

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * camera.h - a simulated camera on a simulated trigger line.
+ * sim_camera.h - a simulated camera on a simulated trigger line.
  *
  * It exposes on each asserting edge of its trigger line, unless it is still
  * busy with the previous picture (exposure plus readout), in which case the
@@ -18,7 +18,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "gpio.h"
+#include "sim_gpio.h"
 
 struct sim_camera_params {
 	int64_t exposure_ns;

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* camera.c - the simulated camera (see camera.h). */
-#include "camera.h"
+/* sim_camera.c - the simulated camera (see sim_camera.h). */
+#include "sim_camera.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* drive.c - the simulated servo drive (see drive.h). */
-#include "drive.h"
+/* sim_drive.c - the simulated servo drive (see sim_drive.h). */
+#include "sim_drive.h"
 
 #include <errno.h>
 #include <math.h>

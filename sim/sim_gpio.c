@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* gpio.c - the simulated GPIO chip (see gpio.h). */
-#include "gpio.h"
+/* sim_gpio.c - the simulated GPIO chip (see sim_gpio.h). */
+#include "sim_gpio.h"
 
 #include <errno.h>
 #include <stddef.h>
