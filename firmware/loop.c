@@ -15,7 +15,8 @@
 #define LIMIT_REL 1e-6
 
 static const char *const state_names[] = {
-	[LOOP_PREROLL] = "pre-roll",	 [LOOP_PLAY] = "play",
+	[LOOP_PREROLL] = "pre-roll",	 [LOOP_RUNUP] = "run-up",
+	[LOOP_PLAY] = "play",
 	[LOOP_BRIDGE_STOP] = "bridge",	 [LOOP_BRIDGE_MOVE] = "bridge",
 	[LOOP_POSTROLL] = "post-roll",	 [LOOP_STEP_NEXT] = "step",
 	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
@@ -261,7 +262,7 @@ static void eval_at_tick(struct loop *L, int64_t scene_tick, mot_q32 *out)
 }
 
 /* A move from `from` (at rest) to `to`; its sample 0 is `from`, and the
- * following ticks take samples 1, 2, ... */
+ * following ticks take samples 1, 2, ... up to the target. */
 static void plan_move(struct loop *L, const mot_q32 *from, const mot_q32 *to)
 {
 	/* limits were checked positive and finite when the rig was built */
@@ -298,6 +299,58 @@ static void setup_pass(struct loop *L)
 		t->edge_k = mot_timing_trigger_tick(L->tm, t->next_frame) +
 			    L->dir * L->rig->trig[i].offset;
 	}
+}
+
+/*
+ * The way into a pass (loop.h, "run-up"): the first pose and speed of the
+ * pass, each channel's ramp, and in L->target where the ramps start (the
+ * pre-roll's or bridge's destination). -1 and the channel's index in *bad
+ * when a ramp would start outside its position limits.
+ */
+static int plan_entry(struct loop *L, int32_t *bad)
+{
+	const double hz = L->tm->tick_hz, dt = 1.0 / hz;
+	uint32_t i;
+
+	eval_at_tick(L, L->scene_begin, L->ru_end);
+	eval_at_tick(L, L->scene_begin + L->dir, L->target);
+	L->ru_ticks = 0;
+	L->ru_j = 0;
+	for (i = 0; i < L->n; i++) {
+		const struct rig_out *o = &L->rig->out[i];
+		double v = (move_q2d(L->target[i]) - move_q2d(L->ru_end[i])) * hz;
+		double back;
+		int64_t n = (int64_t)ceil(fabs(v) * hz / o->amax * (1 + 1e-9));
+
+		L->ru_v[i] = v;
+		L->ru_n[i] = n;
+		if (n > L->ru_ticks)
+			L->ru_ticks = n;
+		/* speeds v k / n for k = 1..n cover v dt (n + 1) / 2 */
+		back = v * dt * (double)(n + 1) / 2;
+		L->target[i] = n ? L->ru_end[i] - move_d2q(back) : L->ru_end[i];
+		if (move_q2d(L->target[i]) < o->min - 1e-9 || move_q2d(L->target[i]) > o->max + 1e-9) {
+			*bad = (int32_t)i;
+			return -1;
+		}
+	}
+	return 0;
+}
+
+/* Channel i at step j of the run-up (0: at rest at its start, ru_ticks:
+ * the first pose). */
+static mot_q32 runup_at(const struct loop *L, uint32_t i, int64_t j)
+{
+	int64_t n = L->ru_n[i], m = j - (L->ru_ticks - n); /* the ramps end together */
+	double left;
+
+	if (n == 0 || m >= n)
+		return L->ru_end[i];
+	if (m < 0)
+		m = 0;
+	/* the distance still to go after step m: sum of v k / n dt, k = m+1..n */
+	left = L->ru_v[i] / n / L->tm->tick_hz * (double)(n * (n + 1) - m * (m + 1)) / 2;
+	return L->ru_end[i] - move_d2q(left);
 }
 
 static bool more_passes(const struct loop *L)
@@ -341,6 +394,7 @@ static bool pulses_active(const struct loop *L)
 /* This tick's setpoints into L->val, moving through the segments. */
 static void sequence(struct loop *L)
 {
+	int32_t bad;
 	uint32_t i;
 
 	for (;;) {
@@ -348,20 +402,33 @@ static void sequence(struct loop *L)
 		case LOOP_PREROLL:
 		case LOOP_BRIDGE_MOVE:
 		case LOOP_STEP_MOVE:
-			if (++L->mv_j < L->mv.ticks) {
+			/* samples 1..ticks: the last one is the target */
+			if (++L->mv_j <= L->mv.ticks) {
 				for (i = 0; i < L->n; i++)
 					L->val[i] = move_at(&L->mv, i, L->mv_j);
 				return;
 			}
-			/* arrived: the next segment's first tick is the target */
 			if (L->state == LOOP_STEP_MOVE) {
 				L->state = LOOP_STEP_SETTLE;
 				L->settled = 0;
 				L->seg_j = 0;
 			} else {
-				L->state = LOOP_PLAY;
-				L->scene_k = L->scene_begin - L->dir;
+				L->state = LOOP_RUNUP;
+				L->ru_j = -1;
 			}
+			continue;
+		case LOOP_RUNUP:
+			/* samples 0..ru_ticks - 1: sample 0 repeats the move's
+			 * target, so the rig is at rest (two equal setpoints)
+			 * before the ramp's first step; PLAY's first tick is the
+			 * ramp's end, the pass's first pose */
+			if (++L->ru_j < L->ru_ticks) {
+				for (i = 0; i < L->n; i++)
+					L->val[i] = runup_at(L, i, L->ru_j);
+				return;
+			}
+			L->state = LOOP_PLAY;
+			L->scene_k = L->scene_begin - L->dir;
 			continue;
 		case LOOP_PLAY:
 			L->scene_k += L->dir;
@@ -376,7 +443,13 @@ static void sequence(struct loop *L)
 				return;
 			L->pass++;
 			setup_pass(L);
-			eval_at_tick(L, L->scene_begin, L->target);
+			if (plan_entry(L, &bad)) {
+				fault_out(L, (uint32_t)bad, LOOP_CAUSE_LIMIT_POS,
+					  move_q2d(L->target[bad]), 0);
+				L->state = LOOP_ENDED;
+				report(L, LOOP_END_FAULT, LOOP_CAUSE_LIMIT_POS);
+				return;
+			}
 			/* from where this tick's stop sample rests */
 			plan_move(L, L->val, L->target);
 			L->state = LOOP_BRIDGE_MOVE;
@@ -780,6 +853,7 @@ int loop_init(struct loop *L, const struct loop_cfg *cfg, struct rig *rig,
 {
 	uint32_t i, n = rig->nout;
 	int64_t min_off = 0, max_off = 0;
+	int32_t bad;
 	bool ok = true;
 
 	memset(L, 0, sizeof(*L));
@@ -803,6 +877,9 @@ int loop_init(struct loop *L, const struct loop_cfg *cfg, struct rig *rig,
 	L->amax = zalloc(n, sizeof(double), &ok);
 	L->limited = zalloc(n, sizeof(int64_t), &ok);
 	L->mv_ch = zalloc(n, sizeof(struct move_ch), &ok);
+	L->ru_end = zalloc(n, sizeof(mot_q32), &ok);
+	L->ru_v = zalloc(n, sizeof(double), &ok);
+	L->ru_n = zalloc(n, sizeof(int64_t), &ok);
 	L->dev_off = zalloc(rig->naxes, sizeof(bool), &ok);
 	L->dout_dirty = zalloc(rig->ndouts, sizeof(bool), &ok);
 	L->ts = zalloc(rig->ntrig, sizeof(struct trig_state), &ok);
@@ -876,7 +953,19 @@ int loop_init(struct loop *L, const struct loop_cfg *cfg, struct rig *rig,
 	}
 	L->pass = 0;
 	setup_pass(L);
-	eval_at_tick(L, L->scene_begin, L->target);
+	if (plan_entry(L, &bad)) {
+		const struct rig_out *o = &rig->out[bad];
+
+		snprintf(err, errsize,
+			 "%s moves at %.6g %s/s at frame %lld: coming up to that speed within "
+			 "its acceleration limit needs a run-up from %.6g %s, outside its limits; "
+			 "start from a frame where it moves slower",
+			 o->channel, rig_file_units(o->unit, L->ru_v[bad]), rig_unit_name(o->unit),
+			 (long long)L->pass_first, rig_file_units(o->unit, move_q2d(L->target[bad])),
+			 rig_unit_name(o->unit));
+		loop_free(L);
+		return -ERANGE;
+	}
 	plan_move(L, L->prev, L->target);
 	L->state = LOOP_PREROLL;
 	return 0;
@@ -894,6 +983,9 @@ void loop_free(struct loop *L)
 	free(L->amax);
 	free(L->limited);
 	free(L->mv_ch);
+	free(L->ru_end);
+	free(L->ru_v);
+	free(L->ru_n);
 	free(L->dev_off);
 	free(L->dout_dirty);
 	free(L->ts);

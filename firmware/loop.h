@@ -11,10 +11,21 @@
  * Sequence. A run is a chain of segments, each producing one setpoint per
  * output per tick:
  *
- *   continuous   PREROLL (a move from where the rig stands to the first
- *                pose) -> PLAY (the scene, tick by tick) -> POSTROLL (to
- *                rest); with --loop or --ping-pong each pass is followed by
- *                BRIDGE (to rest, then a move to the next pass's first pose)
+ *   continuous   PREROLL (a move from where the rig stands to the start of
+ *                the run-up) -> RUNUP -> PLAY (the scene, tick by tick) ->
+ *                POSTROLL (to rest); with --loop or --ping-pong each pass
+ *                is followed by BRIDGE (to rest, then a move to the next
+ *                pass's run-up)
+ *
+ * The run-up exists because a range may start where the scene is already
+ * moving (--from 100 in the middle of a pan): arriving there at rest and
+ * jumping to the scene's speed would break the acceleration limit. So each
+ * channel ramps its speed linearly up to the scene's first speed v, at its
+ * acceleration limit, over n = ceil(|v| / (amax dt)) ticks, ending exactly
+ * on the first pose; the pre-roll brings it to rest at the ramp's start,
+ * v dt (n + 1) / 2 behind that pose. The ramps of all channels end on the
+ * same tick. A ramp that would start outside a channel's position limits is
+ * refused with the channel named.
  *   step         for each frame: MOVE to its exact pose -> SETTLE (every
  *                drive in position for the settle time) -> the trigger ->
  *                EXPOSE (exposure time, or the camera-ready edge)
@@ -80,6 +91,7 @@ enum loop_mode {
 
 enum loop_state {
 	LOOP_PREROLL,
+	LOOP_RUNUP,
 	LOOP_PLAY,
 	LOOP_BRIDGE_STOP,
 	LOOP_BRIDGE_MOVE,
@@ -195,6 +207,10 @@ struct loop {
 	struct move mv;
 	struct move_ch *mv_ch;
 	int64_t mv_j;
+	mot_q32 *ru_end;        /* run-up: the pass's first pose */
+	double *ru_v;           /* the scene's speed there, units/s */
+	int64_t *ru_n;          /* ramp ticks per channel */
+	int64_t ru_ticks, ru_j;
 	bool *dev_off;          /* axis devices disabled */
 	bool *dout_dirty;
 	struct journal_rec **armed; /* ntrig */
