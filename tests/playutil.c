@@ -1,6 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* playutil.c - shared pieces of the play tests (see playutil.h). */
 #include "playutil.h"
+#include "sim_camera.h"
+#include "sim_drive.h"
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
 
 #include <errno.h>
 #include <math.h>
@@ -109,6 +116,8 @@ void pu_rig_init(struct pu_rig *r, const struct pu_source *ps, uint32_t ntrig, u
 	r->dev[0].driver = RIG_DRIVER_SIM;
 	r->dev[1].name = "io";
 	r->dev[1].driver = RIG_DRIVER_SIM;
+	r->dev[2].name = "arm2";
+	r->dev[2].driver = RIG_DRIVER_SIM;
 	for (i = 0; i < ps->nch; i++) {
 		struct rig_output_desc *o = &r->out[i];
 
@@ -133,7 +142,7 @@ void pu_rig_init(struct pu_rig *r, const struct pu_source *ps, uint32_t ntrig, u
 		r->in[i++] = (struct rig_input_desc){ "ready", "io", 1, RIG_INPUT_CAMERA_READY, false };
 	if (inputs & PU_STOP)
 		r->in[i++] = (struct rig_input_desc){ "stop", "io", 2, RIG_INPUT_STOP, false };
-	r->d.ndevices = 2;
+	r->d.ndevices = 3;
 	r->d.devices = r->dev;
 	r->d.noutputs = ps->nch;
 	r->d.outputs = r->out;
@@ -201,3 +210,123 @@ uint64_t pu_loop_allocations(void)
 {
 	return atomic_load(&loop_allocs);
 }
+
+int pu_csv_read(struct pu_csv *c, const char *journal_path)
+{
+	char msg[256], *line, *save = NULL;
+	size_t len = 0;
+	FILE *f;
+	int rc;
+	uint32_t cap = 64;
+
+	memset(c, 0, sizeof(*c));
+	f = open_memstream(&c->text, &len);
+	if (!f)
+		return -errno;
+	rc = journal_csv(journal_path, f, msg, sizeof(msg));
+	fclose(f);
+	if (rc) {
+		printf("journal_csv: %s\n", msg);
+		return rc;
+	}
+	c->cell = calloc(cap, sizeof(*c->cell));
+	for (line = strtok_r(c->text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+		uint32_t n = 1, k = 0;
+		char *p;
+
+		for (p = line; *p; p++)
+			n += *p == ',';
+		if (c->nrows == cap) {
+			cap *= 2;
+			c->cell = realloc(c->cell, cap * sizeof(*c->cell));
+		}
+		c->cell[c->nrows] = calloc(n, sizeof(char *));
+		c->cell[c->nrows][k++] = line;
+		for (p = line; *p; p++)
+			if (*p == ',') {
+				*p = '\0';
+				c->cell[c->nrows][k++] = p + 1;
+			}
+		if (c->nrows == 0)
+			c->ncols = n;
+		else if (n != c->ncols)
+			return -EBADMSG;
+		c->nrows++;
+	}
+	return 0;
+}
+
+void pu_csv_free(struct pu_csv *c)
+{
+	uint32_t i;
+
+	for (i = 0; i < c->nrows; i++)
+		free(c->cell[i]);
+	free(c->cell);
+	free(c->text);
+	memset(c, 0, sizeof(*c));
+}
+
+int pu_csv_col(const struct pu_csv *c, const char *name)
+{
+	uint32_t i;
+
+	for (i = 0; c->nrows && i < c->ncols; i++)
+		if (!strcmp(c->cell[0][i], name))
+			return (int)i;
+	fail_msg("no column %s in the journal", name);
+	return -1;
+}
+
+struct pu_smooth pu_m_a = { 10, 200, 90, 0 };     /* degrees */
+struct pu_smooth pu_m_b = { 0, 150, 0.25, 0.1 };  /* metres */
+
+/* The arm of most tests: a revolute and a prismatic channel, 0..240 at
+ * 24 fps on a 1 kHz tick. */
+void pu_arm_source(struct pu_source *ps, uint32_t num, uint32_t den, uint32_t hz,
+		       int64_t first, int64_t last)
+{
+	pu_source_init(ps, "test-arm", num, den, hz, first, last);
+	pu_source_add(ps, "a.angle", SRC_UNIT_TURNS, pu_smooth, &pu_m_a, 60, 120);
+	pu_source_add(ps, "b.position", SRC_UNIT_LENGTH, pu_smooth, &pu_m_b, 0.5, 2);
+}
+
+/* Run and check the things every run must satisfy: no allocation in the
+ * loop, commanded speed and acceleration within every output's limits (as
+ * the drive saw them), the camera never missing a trigger. */
+int pu_run(struct play *p, struct pu_rig *r, struct pu_source *ps, struct play_opts *o)
+{
+	char err[256] = "";
+	uint64_t before = pu_loop_allocations();
+	int rc, code;
+	uint32_t i;
+
+	pu_alloc_hook_install();
+	rc = play_prepare(p, &r->d, &ps->s, o, err, sizeof(err));
+	if (rc)
+		fail_msg("play_prepare: %s", err);
+	code = play_run(p);
+	if (code) {
+		play_describe(p, err, sizeof(err));
+		printf("run ended %d: %s\n", code, err);
+	}
+	assert_int_equal(pu_loop_allocations() - before, 0);
+	for (i = 0; i < p->rig.nout; i++) {
+		const struct rig_out *ro = &p->rig.out[i];
+		const struct sim_drive_watch *w =
+			sim_drive_watch(p->rig.sim_drive[ro->dev], ro->ch);
+		double pu = fabs(ro->scale.per_unit_d);
+
+		/* counts are integers: allow a count per tick of rounding */
+		if (w->cmd_vel_max > ro->vmax * pu * (1 + 1e-6) + 1.0 * ps->s.timing.tick_hz ||
+		    w->cmd_acc_max > ro->amax * pu * (1 + 1e-6) +
+					     2.0 * ps->s.timing.tick_hz * ps->s.timing.tick_hz)
+			fail_msg("%s: commanded %g counts/s, %g counts/s^2; limits %g, %g",
+				 ro->channel, w->cmd_vel_max, w->cmd_acc_max, ro->vmax * pu,
+				 ro->amax * pu);
+	}
+	for (i = 0; i < p->rig.ntrig; i++)
+		assert_int_equal(sim_camera_missed(p->rig.camera[i]), 0);
+	return code;
+}
+

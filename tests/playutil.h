@@ -56,7 +56,7 @@ double pu_smooth(const void *ctx, double frame);
  * I/O device "io" with `ntrig` trigger lines and the inputs asked for. */
 struct pu_rig {
 	struct rig_desc d;
-	struct rig_device_desc dev[2];
+	struct rig_device_desc dev[3]; /* arm, io, and arm2 for tests to use */
 	struct rig_output_desc out[PU_MAX_CH];
 	struct rig_trigger_desc trig[2];
 	struct rig_input_desc in[3];
@@ -73,6 +73,30 @@ void pu_rig_init(struct pu_rig *r, const struct pu_source *ps, uint32_t ntrig, u
 /* Default play options: virtual clock, continuous over the source's span,
  * no journal, no telemetry. */
 void pu_opts(struct play_opts *o, const struct pu_source *ps);
+
+/* The arm of most tests: a.angle (90 deg over frames 10..200, limits 60
+ * deg/s and 120 deg/s^2) and b.position (0.1 + 0.25 m over 0..150, limits
+ * 0.5 m/s, 2 m/s^2). */
+extern struct pu_smooth pu_m_a, pu_m_b;
+void pu_arm_source(struct pu_source *ps, uint32_t num, uint32_t den, uint32_t hz,
+		   int64_t first, int64_t last);
+
+/* Prepare and run, failing the test on a preparation error, then check
+ * what every run must satisfy: no allocation by the loop thread, every
+ * command the drives saw within its output's speed and acceleration limits,
+ * no trigger missed by a camera. Returns the exit code. */
+int pu_run(struct play *p, struct pu_rig *r, struct pu_source *ps, struct play_opts *o);
+
+/* A journal file as rows of CSV fields (journal_csv's output): rows[0] is
+ * the header. Free with pu_csv_free. */
+struct pu_csv {
+	uint32_t nrows, ncols;
+	char ***cell; /* cell[row][col] */
+	char *text;
+};
+int pu_csv_read(struct pu_csv *c, const char *journal_path);
+void pu_csv_free(struct pu_csv *c);
+int pu_csv_col(const struct pu_csv *c, const char *name);
 
 /* A temporary file name under $TMPDIR, unique per call. */
 void pu_tmpname(char *buf, size_t size, const char *what);

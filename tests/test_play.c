@@ -19,58 +19,6 @@
 #include "sim_gpio.h"
 #include "testutil.h"
 
-static struct pu_smooth m_a = { 10, 200, 90, 0 };     /* degrees */
-static struct pu_smooth m_b = { 0, 150, 0.25, 0.1 };  /* metres */
-
-/* The arm of most tests: a revolute and a prismatic channel, 0..240 at
- * 24 fps on a 1 kHz tick. */
-static void arm_source(struct pu_source *ps, uint32_t num, uint32_t den, uint32_t hz,
-		       int64_t first, int64_t last)
-{
-	pu_source_init(ps, "test-arm", num, den, hz, first, last);
-	pu_source_add(ps, "a.angle", SRC_UNIT_TURNS, pu_smooth, &m_a, 60, 120);
-	pu_source_add(ps, "b.position", SRC_UNIT_LENGTH, pu_smooth, &m_b, 0.5, 2);
-}
-
-/* Run and check the things every run must satisfy: no allocation in the
- * loop, commanded speed and acceleration within every output's limits (as
- * the drive saw them), the camera never missing a trigger. */
-static int run(struct play *p, struct pu_rig *r, struct pu_source *ps, struct play_opts *o)
-{
-	char err[256] = "";
-	uint64_t before = pu_loop_allocations();
-	int rc, code;
-	uint32_t i;
-
-	pu_alloc_hook_install();
-	rc = play_prepare(p, &r->d, &ps->s, o, err, sizeof(err));
-	if (rc)
-		fail_msg("play_prepare: %s", err);
-	code = play_run(p);
-	if (code) {
-		play_describe(p, err, sizeof(err));
-		printf("run ended %d: %s\n", code, err);
-	}
-	assert_int_equal(pu_loop_allocations() - before, 0);
-	for (i = 0; i < p->rig.nout; i++) {
-		const struct rig_out *ro = &p->rig.out[i];
-		const struct sim_drive_watch *w =
-			sim_drive_watch(p->rig.sim_drive[ro->dev], ro->ch);
-		double pu = fabs(ro->scale.per_unit_d);
-
-		/* counts are integers: allow a count per tick of rounding */
-		if (w->cmd_vel_max > ro->vmax * pu * (1 + 1e-6) + 1.0 * ps->s.timing.tick_hz ||
-		    w->cmd_acc_max > ro->amax * pu * (1 + 1e-6) +
-					     2.0 * ps->s.timing.tick_hz * ps->s.timing.tick_hz)
-			fail_msg("%s: commanded %g counts/s, %g counts/s^2; limits %g, %g",
-				 ro->channel, w->cmd_vel_max, w->cmd_acc_max, ro->vmax * pu,
-				 ro->amax * pu);
-	}
-	for (i = 0; i < p->rig.ntrig; i++)
-		assert_int_equal(sim_camera_missed(p->rig.camera[i]), 0);
-	return code;
-}
-
 /* Every frame from..to fired once, at FORMULAS section 5's tick after the
  * pre-roll (the first frame fired at tick0; -1: take it from the camera).
  * Returns tick0. */
@@ -103,10 +51,10 @@ static void test_whole_run(void **state)
 	struct play_opts o;
 	struct play p;
 
-	arm_source(&ps, 24, 1, 1000, 0, 240);
+	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
 	pu_rig_init(&r, &ps, 1, PU_ESTOP);
 	pu_opts(&o, &ps);
-	assert_int_equal(run(&p, &r, &ps, &o), STRAND_EXIT_OK);
+	assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
 	assert_int_equal(p.L.rep.cause, LOOP_CAUSE_FINISHED);
 	/* the rig stood at the first pose, where b is just starting to move:
 	 * a one-tick move to the start of b's one-tick run-up, a tick at rest
@@ -128,12 +76,12 @@ static void test_preroll(void **state)
 	struct play p;
 	int64_t t0;
 
-	arm_source(&ps, 24, 1, 1000, 0, 240);
+	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
 	pu_rig_init(&r, &ps, 1, 0);
 	r.out[0].home = -45; /* degrees away from the first pose */
 	r.out[1].home = 0.3;
 	pu_opts(&o, &ps);
-	assert_int_equal(run(&p, &r, &ps, &o), STRAND_EXIT_OK);
+	assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
 	t0 = sim_camera_exposure(p.rig.camera[0], 0)->tick;
 	printf("pre-roll %lld ticks\n", (long long)t0);
 	assert_true(t0 > 0);
@@ -160,11 +108,11 @@ static void test_rates(void **state)
 		struct play_opts o;
 		struct play p;
 
-		arm_source(&ps, rates[i][0], rates[i][1], rates[i][2], 17, 230);
+		pu_arm_source(&ps, rates[i][0], rates[i][1], rates[i][2], 17, 230);
 		pu_rig_init(&r, &ps, 1, 0);
 		r.trig[0].pulse_ms = 1000.0 / rates[i][2]; /* one tick */
 		pu_opts(&o, &ps);
-		assert_int_equal(run(&p, &r, &ps, &o), STRAND_EXIT_OK);
+		assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
 		/* frame 17 is in the middle of a's move: a run-up first */
 		assert_true(check_frames(&p, p.rig.camera[0], 17, 230, -1) > 2);
 		play_free(&p);
@@ -205,6 +153,233 @@ static void test_24h(void **state)
 	play_free(&p);
 }
 
+
+/* The journal holds exactly what the camera saw: one fired row per
+ * exposure, same frame order, same tick and time, and every output's
+ * setpoint equal to the source at that tick's frame time. */
+static void test_journal_matches_camera(void **state)
+{
+	struct pu_source ps;
+	struct pu_rig r;
+	struct play_opts o;
+	struct play p;
+	struct pu_csv c;
+	char path[256];
+	int cf, ct, cs, cm, ca, cb, cd, ctc;
+	uint32_t i;
+
+	pu_arm_source(&ps, 30000, 1001, 1000, 0, 240);
+	pu_rig_init(&r, &ps, 1, PU_ESTOP);
+	pu_opts(&o, &ps);
+	pu_tmpname(path, sizeof(path), "journal");
+	o.journal_path = path;
+	assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
+	assert_int_equal(pu_csv_read(&c, path), 0);
+	cf = pu_csv_col(&c, "frame");
+	ct = pu_csv_col(&c, "tick");
+	cs = pu_csv_col(&c, "state");
+	cm = pu_csv_col(&c, "mono_ns");
+	cd = pu_csv_col(&c, "due_ns");
+	ca = pu_csv_col(&c, "a.angle");
+	cb = pu_csv_col(&c, "b.position");
+	ctc = pu_csv_col(&c, "timecode");
+	assert_string_equal(c.cell[0][0], "frame");
+	assert_int_equal(c.nrows - 1, sim_camera_count(p.rig.camera[0]));
+	for (i = 1; i < c.nrows; i++) {
+		const struct sim_exposure *e = sim_camera_exposure(p.rig.camera[0], i - 1);
+		int64_t tick = atoll(c.cell[i][ct]);
+		mot_q32 fr = mot_timing_tick_frame(p.L.tm, tick - e->tick +
+						   mot_timing_trigger_tick(p.L.tm, i - 1));
+
+		assert_int_equal(atoll(c.cell[i][cf]), i - 1);
+		assert_string_equal(c.cell[i][cs], "fired");
+		assert_int_equal(tick, e->tick);
+		assert_int_equal(atoll(c.cell[i][cm]), e->ts_ns);
+		assert_int_equal(atoll(c.cell[i][cd]), e->ts_ns);
+		/* the scene tick of this frame's edge is its trigger tick */
+		assert_true(fabs(atof(c.cell[i][ca]) - q2d(pu_value(&ps, 0, fr)) * 360) < 1e-7);
+		assert_true(fabs(atof(c.cell[i][cb]) - q2d(pu_value(&ps, 1, fr))) < 1e-9);
+	}
+	/* drop-frame timecode at 29.97: frame 30 is 00:00:01;00 */
+	assert_string_equal(c.cell[31][ctc], "00:00:01;00");
+	pu_csv_free(&c);
+	play_free(&p);
+	unlink(path);
+}
+
+static int slurp(const char *path, char **buf, size_t *len)
+{
+	FILE *f = fopen(path, "rb");
+
+	if (!f)
+		return -1;
+	fseek(f, 0, SEEK_END);
+	*len = (size_t)ftell(f);
+	rewind(f);
+	*buf = malloc(*len ? *len : 1);
+	if (fread(*buf, 1, *len, f) != *len) {
+		fclose(f);
+		return -1;
+	}
+	fclose(f);
+	return 0;
+}
+
+/* The virtual clock is bit-reproducible: two runs, identical journals. */
+static void test_reproducible(void **state)
+{
+	char path[2][256], *buf[2];
+	size_t len[2];
+	int k;
+
+	for (k = 0; k < 2; k++) {
+		struct pu_source ps;
+		struct pu_rig r;
+		struct play_opts o;
+		struct play p;
+
+		pu_arm_source(&ps, 24, 1, 1000, 0, 240);
+		pu_rig_init(&r, &ps, 1, 0);
+		r.out[0].home = 10;
+		pu_opts(&o, &ps);
+		pu_tmpname(path[k], sizeof(path[k]), "repro");
+		o.journal_path = path[k];
+		assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
+		play_free(&p);
+		assert_int_equal(slurp(path[k], &buf[k], &len[k]), 0);
+		unlink(path[k]);
+	}
+	assert_int_equal(len[0], len[1]);
+	assert_true(len[0] > 241 * sizeof(struct journal_rec));
+	assert_memory_equal(buf[0], buf[1], len[0]);
+	free(buf[0]);
+	free(buf[1]);
+}
+
+/* --loop and --ping-pong: the frames each pass fires, in order, with the
+ * ticks between them as section 5 says in either direction; bridges
+ * within the limits between passes (pu_run checks the drive's commands).
+ * The range ends in the middle of a's move, so every pass ends moving. */
+static void test_loop_and_ping_pong(void **state)
+{
+	int mode;
+
+	for (mode = 0; mode < 2; mode++) {
+		struct pu_source ps;
+		struct pu_rig r;
+		struct play_opts o;
+		struct play p;
+		struct pu_csv c;
+		char path[256];
+		int64_t want[3 * 41], n = 0, f, pass_end[3];
+		int cf, ct;
+		uint32_t i;
+
+		pu_arm_source(&ps, 24, 1, 1000, 20, 60);
+		pu_rig_init(&r, &ps, 1, 0);
+		pu_opts(&o, &ps);
+		o.loop.loop = mode == 0;
+		o.loop.ping_pong = mode == 1;
+		o.loop.passes = 3;
+		pu_tmpname(path, sizeof(path), "passes");
+		o.journal_path = path;
+		assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
+		if (mode == 0) {
+			for (i = 0; i < 3; i++) {
+				for (f = 20; f <= 60; f++)
+					want[n++] = f;
+				pass_end[i] = n;
+			}
+		} else {
+			for (f = 20; f <= 60; f++)
+				want[n++] = f;
+			pass_end[0] = n;
+			for (f = 59; f >= 20; f--)
+				want[n++] = f;
+			pass_end[1] = n;
+			for (f = 21; f <= 60; f++)
+				want[n++] = f;
+			pass_end[2] = n;
+		}
+		assert_int_equal(sim_camera_count(p.rig.camera[0]), n);
+		assert_int_equal(pu_csv_read(&c, path), 0);
+		assert_int_equal(c.nrows - 1, n);
+		cf = pu_csv_col(&c, "frame");
+		ct = pu_csv_col(&c, "tick");
+		for (i = 0; i < (uint32_t)n; i++) {
+			int64_t tick = atoll(c.cell[i + 1][ct]);
+
+			assert_int_equal(atoll(c.cell[i + 1][cf]), want[i]);
+			assert_int_equal(tick, sim_camera_exposure(p.rig.camera[0], i)->tick);
+			/* within a pass, the gap is the difference of trigger ticks */
+			if (i > 0 && i != pass_end[0] && i != pass_end[1]) {
+				int64_t gap = llabs(mot_timing_trigger_tick(p.L.tm, want[i]) -
+						    mot_timing_trigger_tick(p.L.tm, want[i - 1]));
+
+				assert_int_equal(tick - atoll(c.cell[i][ct]), gap);
+			} else if (i > 0) {
+				/* a bridge: the rig stops and comes back */
+				assert_true(tick - atoll(c.cell[i][ct]) > 100);
+			}
+		}
+		pu_csv_free(&c);
+		play_free(&p);
+		unlink(path);
+	}
+}
+
+/* A negative offset fires before the frame's tick, by exactly the offset;
+ * the pulse lasts its width; both from the loop's own schedule. */
+static void test_offset_and_width(void **state)
+{
+	struct pu_source ps;
+	struct pu_rig r;
+	struct play_opts o;
+	struct play p;
+	struct sim_gpio_edge edges[1024];
+	int64_t tick0;
+	uint64_t i, n;
+
+	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
+	pu_rig_init(&r, &ps, 2, 0);
+	r.trig[0].offset_ms = -8;
+	r.trig[0].pulse_ms = 3;
+	r.trig[1].offset_ms = 5;
+	r.trig[1].pulse_ms = 1;
+	pu_opts(&o, &ps);
+	{
+		char err[256];
+
+		pu_alloc_hook_install();
+		assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
+	}
+	sim_gpio_record(p.rig.sim_gpio[0], edges, 1024);
+	assert_int_equal(play_run(&p), STRAND_EXIT_OK);
+	n = sim_gpio_edges(p.rig.sim_gpio[0]);
+	assert_int_equal(n, 4 * 241);
+	/* the camera on line 1 fires 13 ticks after the one on line 0 */
+	tick0 = sim_camera_exposure(p.rig.camera[0], 0)->tick + 8;
+	for (i = 0; i < 241; i++) {
+		int64_t t = tick0 + mot_timing_trigger_tick(p.L.tm, (int64_t)i);
+
+		assert_int_equal(sim_camera_exposure(p.rig.camera[0], i)->tick, t - 8);
+		assert_int_equal(sim_camera_exposure(p.rig.camera[1], i)->tick, t + 5);
+	}
+	for (i = 0; i < n; i++) {
+		uint64_t k;
+
+		if (!edges[i].asserted)
+			continue;
+		/* the matching falling edge of the same line */
+		for (k = i + 1; k < n && edges[k].line != edges[i].line; k++)
+			;
+		assert_true(k < n);
+		assert_false(edges[k].asserted);
+		assert_int_equal(edges[k].tick - edges[i].tick, edges[i].line == 0 ? 3 : 1);
+	}
+	play_free(&p);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -212,6 +387,10 @@ int main(void)
 		cmocka_unit_test(test_preroll),
 		cmocka_unit_test(test_rates),
 		cmocka_unit_test(test_24h),
+		cmocka_unit_test(test_journal_matches_camera),
+		cmocka_unit_test(test_reproducible),
+		cmocka_unit_test(test_loop_and_ping_pong),
+		cmocka_unit_test(test_offset_and_width),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
