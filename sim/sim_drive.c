@@ -107,7 +107,7 @@ static int sd_input(struct hal_axis *ax, int64_t tick)
 				c->jammed = true;
 				break;
 			case SIM_DRIVE_SLUGGISH:
-				c->omega /= 20;
+				c->omega /= 100;
 				break;
 			}
 		}
@@ -190,7 +190,7 @@ static void sd_disable(struct hal_axis *ax)
 		struct sim_chan *c = &d->ch[i];
 
 		if (c->w.disabled_tick < 0)
-			c->w.disabled_tick = d->tick;
+			c->w.disabled_tick = c->w.commits ? c->w.last_commit_tick + 1 : 0;
 		c->w.powered = false;
 		c->w.v = 0;
 	}

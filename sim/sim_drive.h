@@ -46,7 +46,7 @@ struct sim_drive_channel {
 enum sim_drive_fault {
 	SIM_DRIVE_TRIP,     /* "overcurrent": fault latched, channel unpowered */
 	SIM_DRIVE_JAM,      /* the axis stops dead; no fault of its own */
-	SIM_DRIVE_SLUGGISH, /* bandwidth / 20 from then on */
+	SIM_DRIVE_SLUGGISH, /* bandwidth / 100 from then on */
 };
 
 /* What the drive saw on one channel. */
@@ -57,7 +57,8 @@ struct sim_drive_watch {
 	double cmd_acc_max;   /* largest |second difference| of the targets, counts/s^2 */
 	int64_t commits;      /* setpoints received */
 	int64_t last_commit_tick;
-	int64_t disabled_tick; /* -1 while enabled */
+	int64_t disabled_tick; /* the first tick whose setpoint it did not get
+				* because it was disabled; -1 while enabled */
 	bool powered;
 };
 
