@@ -86,6 +86,9 @@ void pu_arm_source(struct pu_source *ps, uint32_t num, uint32_t den, uint32_t hz
  * command the drives saw within its output's speed and acceleration limits,
  * no trigger missed by a camera. Returns the exit code. */
 int pu_run(struct play *p, struct pu_rig *r, struct pu_source *ps, struct play_opts *o);
+/* The same for a run already prepared (play_prepare); the camera check only
+ * when check_missed. */
+int pu_finish(struct play *p, bool check_missed);
 
 /* A journal file as rows of CSV fields (journal_csv's output): rows[0] is
  * the header. Free with pu_csv_free. */

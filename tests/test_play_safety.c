@@ -38,36 +38,11 @@ static void prepare(struct play *p, struct pu_rig *r, struct pu_source *ps,
 	g_play = p;
 }
 
-static const struct sim_drive_watch *watch(struct play *p, uint32_t out)
+static const struct sim_drive_watch *watch(const struct play *p, uint32_t out)
 {
 	const struct rig_out *o = &p->rig.out[out];
 
 	return sim_drive_watch(p->rig.sim_drive[o->dev], o->ch);
-}
-
-/* The drives' commands after run_checked: within the limits. */
-static int run_checked(struct play *p, struct pu_rig *r, struct pu_source *ps,
-		       struct play_opts *o)
-{
-	/* pu_run prepares; here the run is prepared already, so do its checks
-	 * by hand */
-	uint64_t before = pu_loop_allocations();
-	uint32_t i;
-	int code = play_run(p);
-
-	assert_int_equal(pu_loop_allocations() - before, 0);
-	for (i = 0; i < p->rig.nout; i++) {
-		const struct rig_out *ro = &p->rig.out[i];
-		const struct sim_drive_watch *w = watch(p, i);
-		double pu = fabs(ro->scale.per_unit_d), hz = ps->s.timing.tick_hz;
-
-		if (w->cmd_vel_max > ro->vmax * pu * (1 + 1e-6) + hz ||
-		    w->cmd_acc_max > ro->amax * pu * (1 + 1e-6) + 2 * hz * hz)
-			fail_msg("%s: commanded %g counts/s, %g counts/s^2; limits %g, %g",
-				 ro->channel, w->cmd_vel_max, w->cmd_acc_max, ro->vmax * pu,
-				 ro->amax * pu);
-	}
-	return code;
 }
 
 /* The last traced targets of an output: at rest (the last two equal). */
@@ -104,7 +79,7 @@ static void test_estop(void **state)
 		prepare(&p, &r, &ps, &o, PU_ESTOP);
 		assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0,
 						   loop_due(&p.L, 3000) + when[k], true), 0);
-		assert_int_equal(run_checked(&p, &r, &ps, &o), STRAND_EXIT_ESTOP);
+		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
 		assert_int_equal(p.L.rep.cause, LOOP_CAUSE_ESTOP);
 		assert_int_equal(p.L.rep.tick, 3000);
 		for (i = 0; i < 2; i++) {
@@ -129,7 +104,7 @@ static void test_estop_before_start(void **state)
 
 	prepare(&p, &r, &ps, &o, PU_ESTOP);
 	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, INT64_MIN, true), 0);
-	assert_int_equal(run_checked(&p, &r, &ps, &o), STRAND_EXIT_ESTOP);
+	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
 	assert_int_equal(p.L.rep.tick, 0);
 	assert_int_equal(watch(&p, 0)->commits, 0);
 	assert_int_equal(sim_camera_count(p.rig.camera[0]), 0);
@@ -149,7 +124,7 @@ static void test_stop_input(void **state)
 	sim_drive_trace(p.rig.sim_drive[0], trace[0], 12000);
 	sim_drive_trace(p.rig.sim_drive[1], trace[1], 12000);
 	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, loop_due(&p.L, 3000), true), 0);
-	assert_int_equal(run_checked(&p, &r, &ps, &o), STRAND_EXIT_STOPPED);
+	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_STOPPED);
 	assert_int_equal(p.L.rep.cause, LOOP_CAUSE_STOP_INPUT);
 	no_exposure_from(&p, 3001);
 	/* a was moving fast: stopping took a while, and ended at rest */
@@ -209,7 +184,7 @@ static void test_sigint(void **state)
 		prepare(&p, &r, &ps, &o, 0);
 		sim_drive_trace(p.rig.sim_drive[0], trace, 12000);
 		sim_camera_on_exposure(p.rig.camera[0], kill_at_100, &p);
-		assert_int_equal(run_checked(&p, &r, &ps, &o), STRAND_EXIT_STOPPED);
+		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_STOPPED);
 		at = sim_camera_exposure(p.rig.camera[0], 100)->tick;
 		assert_int_equal(sim_camera_count(p.rig.camera[0]), 101);
 		assert_int_equal(p.L.rep.tick, at + 1);
@@ -244,7 +219,7 @@ static void test_drive_trip(void **state)
 	prepare(&p, &r, &ps, &o, 0);
 	sim_drive_trace(p.rig.sim_drive[0], trace, 12000);
 	sim_drive_inject(p.rig.sim_drive[1], 0, 3000, SIM_DRIVE_TRIP);
-	assert_int_equal(run_checked(&p, &r, &ps, &o), STRAND_EXIT_FAULT);
+	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
 	assert_int_equal(p.L.rep.cause, LOOP_CAUSE_DEVICE);
 	assert_string_equal(p.L.rep.device, "arm2");
 	assert_int_equal(p.L.rep.channel, 0);
@@ -275,7 +250,7 @@ static void test_following_error(void **state)
 
 		prepare(&p, &r, &ps, &o, 0);
 		sim_drive_inject(p.rig.sim_drive[0], 0, 3000, faults[k]);
-		assert_int_equal(run_checked(&p, &r, &ps, &o), STRAND_EXIT_FAULT);
+		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
 		assert_int_equal(p.L.rep.cause, LOOP_CAUSE_FERROR);
 		assert_string_equal(p.L.rep.device, "arm");
 		assert_int_equal(p.L.rep.out, 0);
@@ -314,7 +289,7 @@ static void test_runtime_limits(void **state)
 		o.loop.force = force;
 		pu_alloc_hook_install();
 		assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
-		code = run_checked(&p, &r, &ps, &o);
+		code = pu_finish(&p, true);
 		if (!force) {
 			assert_int_equal(code, STRAND_EXIT_FAULT);
 			assert_true(p.L.rep.cause == LOOP_CAUSE_LIMIT_ACC ||
