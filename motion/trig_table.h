@@ -9,10 +9,14 @@
 
 #include <stdint.h>
 
-#define MOT_TRIG_RAD_PER_PHASE_Q70 ((int64_t)1727108826179LL) /* 2 pi / 2^32: radians per 2^-32 turn, Q70 */
-#define MOT_TRIG_RAD6_PER_PHASE_Q70 ((int64_t)287851471030LL) /* the same divided by 6, Q70 */
-#define MOT_TRIG_TURN_PER_RAD_Q62 ((int64_t)733972625820500307LL) /* 1 / (2 pi), Q62 */
-#define MOT_TRIG_TURN_PER_RAD3_Q64 ((int64_t)978630167760667075LL) /* 1 / (6 pi), Q64 */
+/* 2 pi / 2^32 (rad per 2^-32 turn), Q70 */
+#define MOT_TRIG_RAD_PER_PHASE_Q70 ((int64_t)1727108826179LL)
+/* the same divided by 6, Q70 */
+#define MOT_TRIG_RAD6_PER_PHASE_Q70 ((int64_t)287851471030LL)
+/* 1 / (2 pi), Q62 */
+#define MOT_TRIG_TURN_PER_RAD_Q62 ((int64_t)733972625820500307LL)
+/* 1 / (6 pi), Q64 */
+#define MOT_TRIG_TURN_PER_RAD3_Q64 ((int64_t)978630167760667075LL)
 
 /* sin(i/256 quarter turn), i = 0..256, Q62. cos is the same table read backwards. */
 static const int64_t mot_trig_sin_q62[257] = {

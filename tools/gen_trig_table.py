@@ -95,7 +95,7 @@ def main():
 
     consts = [
         ("MOT_TRIG_RAD_PER_PHASE_Q70", rnd(2 * PI * 2 ** 38),
-         "2 pi / 2^32: radians per 2^-32 turn, Q70"),
+         "2 pi / 2^32 (rad per 2^-32 turn), Q70"),
         ("MOT_TRIG_RAD6_PER_PHASE_Q70", rnd(2 * PI / 6 * 2 ** 38),
          "the same divided by 6, Q70"),
         ("MOT_TRIG_TURN_PER_RAD_Q62", rnd(2 ** 62 / (2 * PI)), "1 / (2 pi), Q62"),
@@ -114,7 +114,7 @@ def main():
 #include <stdint.h>
 """)
     for name, value, what in consts:
-        print(f"#define {name} ((int64_t){value}LL) /* {what} */")
+        print(f"/* {what} */\n#define {name} ((int64_t){value}LL)")
     print(f"""
 /* sin(i/{n_sin} quarter turn), i = 0..{n_sin}, Q62. cos is the same table read backwards. */
 static const int64_t mot_trig_sin_q62[{n_sin + 1}] = {{
