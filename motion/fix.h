@@ -334,6 +334,20 @@ static inline mot_q32 mot_sum_prod(const mot_q32 *a, const mot_q32 *b, unsigned 
 	return mot_acc_round(acc, MOT_Q32_FRAC, sat);
 }
 
+/* p * q for |p|, |q| <= 1 rounded to Q2.62, not Q32.32, so that a third
+ * factor can follow without a second rounding at Q32.32 resolution
+ * (products of sines and cosines). */
+static inline int64_t mot_mul_q62(mot_q32 p, mot_q32 q)
+{
+	return mot_acc_round(mot_acc_mul(p, q), 2, NULL);
+}
+
+/* round(p * c + q * d) to Q32.32, for p, q in Q2.62 and |c|, |d| <= 1. */
+static inline mot_q32 mot_sum2_q62(int64_t p, mot_q32 c, int64_t q, mot_q32 d)
+{
+	return mot_acc_round(mot_acc_mac(mot_acc_mul(p, c), q, d), 62, NULL);
+}
+
 static inline mot_q32 mot_add_sat(mot_q32 a, mot_q32 b, uint32_t *sat)
 {
 	mot_q32 r;

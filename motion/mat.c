@@ -73,19 +73,6 @@ void mot_mat_rot_axis(struct mot_mat *out, const mot_q32 axis[3], mot_q32 turns,
 	mot_quat_to_mat(out, &q, sat);
 }
 
-/* p * q for |p|, |q| <= 1, rounded to Q2.62: a third factor can follow
- * without a second rounding at the resolution of Q32.32. */
-static inline int64_t mul62(mot_q32 p, mot_q32 q)
-{
-	return mot_acc_round(mot_acc_mul(p, q), 2, NULL);
-}
-
-/* round(p * c + q * d) to Q32.32, for p, q in Q2.62 and |c|, |d| <= 1. */
-static inline mot_q32 sum62(int64_t p, mot_q32 c, int64_t q, mot_q32 d)
-{
-	return mot_acc_round(mot_acc_mac(mot_acc_mul(p, c), q, d), 62, NULL);
-}
-
 void mot_mat_euler(struct mot_mat *out, const mot_q32 e[3], uint32_t *sat)
 {
 	/* Rx(a).Ry(b).Rz(c) multiplied out; three-factor terms keep 62 bits
@@ -96,14 +83,14 @@ void mot_mat_euler(struct mot_mat *out, const mot_q32 e[3], uint32_t *sat)
 	mot_sincos(e[0], &sa, &ca);
 	mot_sincos(e[1], &sb, &cb);
 	mot_sincos(e[2], &sc, &cc);
-	sasb = mul62(sa, sb);
-	casb = mul62(ca, sb);
+	sasb = mot_mul_q62(sa, sb);
+	casb = mot_mul_q62(ca, sb);
 	*out = (struct mot_mat){ {
 		{ mot_mul(cb, cc, NULL), mot_mul(cb, sc, NULL), -sb },
-		{ sum62(sasb, cc, -mul62(ca, sc), ONE), sum62(sasb, sc, mul62(ca, cc), ONE),
-		  mot_mul(sa, cb, NULL) },
-		{ sum62(casb, cc, mul62(sa, sc), ONE), sum62(casb, sc, -mul62(sa, cc), ONE),
-		  mot_mul(ca, cb, NULL) },
+		{ mot_sum2_q62(sasb, cc, -mot_mul_q62(ca, sc), ONE),
+		  mot_sum2_q62(sasb, sc, mot_mul_q62(ca, cc), ONE), mot_mul(sa, cb, NULL) },
+		{ mot_sum2_q62(casb, cc, mot_mul_q62(sa, sc), ONE),
+		  mot_sum2_q62(casb, sc, -mot_mul_q62(sa, cc), ONE), mot_mul(ca, cb, NULL) },
 		{ 0, 0, 0 },
 	} };
 }
@@ -339,8 +326,8 @@ mot_q32 mot_mat_det(const struct mot_mat *a, uint32_t *sat)
 	struct w192 det;
 	unsigned e = cofactors(c, &det, a);
 
-	/* det(a) = det(n) 2^(3e) / 2^96 */
-	return w192_round(det, 96 - 3 * e, sat);
+	/* det(n) is Q96.96 and det(a) = det(n) 2^(3e): Q32.32 after 64 - 3e bits */
+	return w192_round(det, 64 - 3 * e, sat);
 }
 
 /* |x| of a 128-bit value below 2^127 in magnitude, and its top bit. */

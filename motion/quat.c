@@ -43,18 +43,6 @@ void mot_quat_from_axis_angle(struct mot_quat *out, const mot_q32 axis[3], mot_q
 				  mot_mul(axis[2], s, sat) };
 }
 
-/* p * q for |p|, |q| <= 1 in Q2.62, so that a third factor costs no second
- * rounding at Q32.32 resolution; sum62 adds two such triple products. */
-static inline int64_t mul62(mot_q32 p, mot_q32 q)
-{
-	return mot_acc_round(mot_acc_mul(p, q), 2, NULL);
-}
-
-static inline mot_q32 sum62(int64_t p, mot_q32 c, int64_t q, mot_q32 d)
-{
-	return mot_acc_round(mot_acc_mac(mot_acc_mul(p, c), q, d), 62, NULL);
-}
-
 void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat)
 {
 	/* qz * qy * qx with half angles a, b, c about x, y, z, multiplied out. */
@@ -64,12 +52,14 @@ void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat
 	mot_sincos(half(e[0]), &sa, &ca);
 	mot_sincos(half(e[1]), &sb, &cb);
 	mot_sincos(half(e[2]), &sc, &cc);
-	cacb = mul62(ca, cb);
-	sasb = mul62(sa, sb);
-	sacb = mul62(sa, cb);
-	casb = mul62(ca, sb);
-	*out = (struct mot_quat){ sum62(cacb, cc, sasb, sc), sum62(sacb, cc, -casb, sc),
-				  sum62(casb, cc, sacb, sc), sum62(cacb, sc, -sasb, cc) };
+	cacb = mot_mul_q62(ca, cb);
+	sasb = mot_mul_q62(sa, sb);
+	sacb = mot_mul_q62(sa, cb);
+	casb = mot_mul_q62(ca, sb);
+	out->w = mot_sum2_q62(cacb, cc, sasb, sc);
+	out->x = mot_sum2_q62(sacb, cc, -casb, sc);
+	out->y = mot_sum2_q62(casb, cc, sacb, sc);
+	out->z = mot_sum2_q62(cacb, sc, -sasb, cc);
 }
 
 void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sat)
