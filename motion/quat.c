@@ -22,10 +22,30 @@ void mot_quat_identity(struct mot_quat *out)
 	*out = (struct mot_quat){ ONE, 0, 0, 0 };
 }
 
-/* a/2 rounded like every narrowing (ties toward +inf), without overflow. */
-static mot_q32 half(mot_q32 a)
+/*
+ * sin and cos of an angle held with 64 fractional bits of a turn (a Q64.64
+ * mot_acc): mot_sincos() of the Q32.32 part, then the remaining fraction d of
+ * an LSB (below 1.5e-9 rad) to first order, sin(a + d) = sin a + d cos a,
+ * whose error d^2/2 is nine orders below an LSB. Half angles and t * theta
+ * then cost no rounding of the angle (the turn LSB is 1.46e-9 rad, several
+ * quaternion LSB).
+ */
+static void sincos_fine(mot_acc turns, mot_q32 *s, mot_q32 *c)
 {
-	return (a >> 1) + (a & 1);
+	mot_q32 a = (mot_q32)((mot_acc_hi(turns) << 32) | (mot_acc_lo(turns) >> 32));
+	int64_t d = (int64_t)(mot_acc_lo(turns) & 0xffffffffu); /* 2^-64 turn */
+	mot_q32 s0, c0;
+
+	mot_sincos(a, &s0, &c0);
+	d = mot_acc_round(mot_acc_mul(d, MOT_TWO_PI_Q32), MOT_Q32_FRAC, NULL); /* 2^-64 rad */
+	*s = s0 + mot_acc_round(mot_acc_mul(c0, d), 64, NULL);
+	*c = c0 - mot_acc_round(mot_acc_mul(s0, d), 64, NULL);
+}
+
+/* sin and cos of turns / 2, exactly halved */
+static void sincos_half(mot_q32 turns, mot_q32 *s, mot_q32 *c)
+{
+	sincos_fine(mot_acc_from(turns, 31), s, c);
 }
 
 static mot_q32 neg(mot_q32 a, uint32_t *sat)
@@ -38,7 +58,7 @@ void mot_quat_from_axis_angle(struct mot_quat *out, const mot_q32 axis[3], mot_q
 {
 	mot_q32 s, c;
 
-	mot_sincos(half(turns), &s, &c);
+	sincos_half(turns, &s, &c);
 	*out = (struct mot_quat){ c, mot_mul(axis[0], s, sat), mot_mul(axis[1], s, sat),
 				  mot_mul(axis[2], s, sat) };
 }
@@ -49,9 +69,9 @@ void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat
 	mot_q32 sa, ca, sb, cb, sc, cc;
 	int64_t cacb, sasb, sacb, casb;
 
-	mot_sincos(half(e[0]), &sa, &ca);
-	mot_sincos(half(e[1]), &sb, &cb);
-	mot_sincos(half(e[2]), &sc, &cc);
+	sincos_half(e[0], &sa, &ca);
+	sincos_half(e[1], &sb, &cb);
+	sincos_half(e[2], &sc, &cc);
 	cacb = mot_mul_q62(ca, cb);
 	sasb = mot_mul_q62(sa, sb);
 	sacb = mot_mul_q62(sa, cb);
@@ -286,7 +306,7 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 		quat_lerp(out, &s->a, &s->b, t, sat);
 		return;
 	}
-	mot_sincos(mot_mul(t, s->theta, NULL), &sn, &cs);
+	sincos_fine(mot_acc_mul(t, s->theta), &sn, &cs);
 	{
 		const mot_q32 l[8] = { s->a.w, s->c.w, s->a.x, s->c.x,
 				       s->a.y, s->c.y, s->a.z, s->c.z };
