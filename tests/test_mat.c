@@ -158,7 +158,7 @@ static void test_rot_ref(void **state)
 			tu_worst_add(&w, ref_lin_diff(&f, &r), q2d(turns));
 		}
 	}
-	tu_bound("mat.rot_xyz entry", &w, 2e-9, "(1)");
+	tu_bound("mat.rot_xyz entry", &w, 3e-10, "(1)");
 }
 
 static void test_euler_ref(void **state)
@@ -185,7 +185,7 @@ static void test_euler_ref(void **state)
 		tu_worst_add(&w, ref_lin_diff(&f, &r), q2d(e[0]));
 		assert_int_equal(sat, 0);
 	}
-	tu_bound("mat.euler entry", &w, 3e-9, "(1)");
+	tu_bound("mat.euler entry", &w, 1e-9, "(1)");
 }
 
 static void test_rot_axis_ref(void **state)
@@ -223,7 +223,7 @@ static void test_rot_axis_ref(void **state)
 		assert_int_equal(sat, 0);
 	}
 	tu_bound("mat.rot_axis entry", &w, 3e-9, "(1)");
-	tu_bound("mat.rot_axis(x) vs rot_x entry", &wx, 4e-9, "(1)");
+	tu_bound("mat.rot_axis(x) vs rot_x entry", &wx, 2e-9, "(1)");
 }
 
 static void test_mul_ref(void **state)
@@ -352,8 +352,8 @@ static void test_apply_ref(void **state)
 		assert_int_equal(sat, 0);
 	}
 	assert_int_equal(inexact, 0);
-	tu_bound("mat.apply point (+-100 m)", &w, 1e-9, "m");
-	tu_bound("mat.apply_dir (+-100 m)", &wd, 1e-9, "m");
+	tu_bound("mat.apply point (+-100 m)", &w, 2e-10, "m");
+	tu_bound("mat.apply_dir (+-100 m)", &wd, 2e-10, "m");
 }
 
 static void test_inverse_ref(void **state)
@@ -503,8 +503,8 @@ static void test_edit_local(void **state)
 		tu_worst_add(&w, ref_point_diff(&f, &x, REACH), i);
 		assert_int_equal(sat, 0);
 	}
-	tu_bound("mat.edit_local rotation keeps the pivot", &wp, 1e-7, "m");
-	tu_bound("mat.edit_local point vs T(-p).D.T(p).T(t).M", &w, 2e-6, "m");
+	tu_bound("mat.edit_local rotation keeps the pivot", &wp, 5e-8, "m");
+	tu_bound("mat.edit_local point vs T(-p).D.T(p).T(t).M", &w, 1e-7, "m");
 }
 
 static void test_edit_world(void **state)
@@ -553,8 +553,8 @@ static void test_edit_world(void **state)
 		tu_worst_add(&w, ref_point_diff(&f, &x, REACH), i);
 		assert_int_equal(sat, 0);
 	}
-	tu_bound("mat.edit_world scale pulls toward the world pivot", &wp, 1e-7, "m");
-	tu_bound("mat.edit_world point vs M.T(t).T(-w).D.T(w)", &w, 2e-6, "m");
+	tu_bound("mat.edit_world scale pulls toward the world pivot", &wp, 2e-9, "m");
+	tu_bound("mat.edit_world point vs M.T(t).T(-w).D.T(w)", &w, 1e-7, "m");
 }
 
 static void test_switch_space(void **state)
@@ -599,9 +599,9 @@ static void test_switch_space(void **state)
 		assert_int_equal(sat, 0);
 	}
 	assert_int_equal(bad, 0);
-	tu_bound("mat.to_local drawn about the pivot = M", &wl, 1e-9, "m");
-	tu_bound("mat.to_world(to_local(M)) = M", &ww, 1e-9, "m");
-	tu_bound("mat.about_pivot vs T(-p).M.T(p)", &wa, 1e-9, "m");
+	tu_bound("mat.to_local drawn about the pivot = M", &wl, 2e-10, "m");
+	tu_bound("mat.to_world(to_local(M)) = M", &ww, 2e-10, "m");
+	tu_bound("mat.about_pivot vs T(-p).M.T(p)", &wa, 2e-10, "m");
 }
 
 int main(void)
