@@ -82,34 +82,82 @@ void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat
 	out->z = mot_sum2_q62(cacb, sc, -sasb, cc);
 }
 
+/*
+ * R(q) of FORMULAS section 4 as exact Q64.64 sums, when every component is
+ * below 2^62 in magnitude (then nothing can wrap); false otherwise.
+ */
+static bool rot_exact(mot_acc e[3][3], const struct mot_quat *q)
+{
+	const mot_q32 lim = (mot_q32)1 << 62;
+	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
+	mot_acc xx, yy, zz, xy, xz, yz, wx, wy, wz, one;
+
+	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
+	    z >= lim || z <= -lim)
+		return false;
+	xx = mot_acc_mul(x, x), yy = mot_acc_mul(y, y), zz = mot_acc_mul(z, z);
+	xy = mot_acc_mul(x, y), xz = mot_acc_mul(x, z), yz = mot_acc_mul(y, z);
+	wx = mot_acc_mul(w, x), wy = mot_acc_mul(w, y), wz = mot_acc_mul(w, z);
+	one = mot_acc_from(MOT_Q32_ONE, MOT_Q32_FRAC);
+#define TWICE(v) mot_acc_add((v), (v))
+	e[0][0] = mot_acc_sub(one, TWICE(mot_acc_add(yy, zz)));
+	e[0][1] = TWICE(mot_acc_add(xy, wz));
+	e[0][2] = TWICE(mot_acc_sub(xz, wy));
+	e[1][0] = TWICE(mot_acc_sub(xy, wz));
+	e[1][1] = mot_acc_sub(one, TWICE(mot_acc_add(xx, zz)));
+	e[1][2] = TWICE(mot_acc_add(yz, wx));
+	e[2][0] = TWICE(mot_acc_add(xz, wy));
+	e[2][1] = TWICE(mot_acc_sub(yz, wx));
+	e[2][2] = mot_acc_sub(one, TWICE(mot_acc_add(xx, yy)));
+#undef TWICE
+	return true;
+}
+
 void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sat)
 {
-	/* FORMULAS section 4; each entry is round(sum / 2^32) of pairs that
-	 * spell out the factor 2, so it is rounded once. */
+	/* FORMULAS section 4, each entry rounded once. Components beyond 2^62
+	 * (not a rotation at all) take the wrap-aware sums, with pairs that
+	 * spell out the factor 2. */
 	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
-	const mot_q32 nx = neg(x, sat), ny = neg(y, sat), nz = neg(z, sat), nw = neg(w, sat);
 	struct mot_mat r = { { { 0 } } };
+	mot_acc e[3][3];
 	int i;
-	const mot_q32 pairs[9][10] = {
-		{ ONE, ONE, y, ny, y, ny, z, nz, z, nz }, /* 1 - 2(yy + zz) */
-		{ x, y, x, y, w, z, w, z, 0, 0 },         /* 2(xy + wz) */
-		{ x, z, x, z, nw, y, nw, y, 0, 0 },       /* 2(xz - wy) */
-		{ x, y, x, y, nw, z, nw, z, 0, 0 },       /* 2(xy - wz) */
-		{ ONE, ONE, x, nx, x, nx, z, nz, z, nz }, /* 1 - 2(xx + zz) */
-		{ y, z, y, z, w, x, w, x, 0, 0 },         /* 2(yz + wx) */
-		{ x, z, x, z, w, y, w, y, 0, 0 },         /* 2(xz + wy) */
-		{ y, z, y, z, nw, x, nw, x, 0, 0 },       /* 2(yz - wx) */
-		{ ONE, ONE, x, nx, x, nx, y, ny, y, ny }, /* 1 - 2(xx + yy) */
-	};
 
-	for (i = 0; i < 9; i++) {
-		const mot_q32 *p = pairs[i];
-		mot_q32 a[5] = { p[0], p[2], p[4], p[6], p[8] };
-		mot_q32 b[5] = { p[1], p[3], p[5], p[7], p[9] };
+	if (rot_exact(e, q)) {
+		for (i = 0; i < 9; i++)
+			r.m[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], MOT_Q32_FRAC, sat);
+	} else {
+		const mot_q32 nx = neg(x, sat), ny = neg(y, sat), nz = neg(z, sat);
+		const mot_q32 nw = neg(w, sat);
+		const mot_q32 pairs[9][10] = {
+			{ ONE, ONE, y, ny, y, ny, z, nz, z, nz }, { x, y, x, y, w, z, w, z, 0, 0 },
+			{ x, z, x, z, nw, y, nw, y, 0, 0 },       { x, y, x, y, nw, z, nw, z, 0, 0 },
+			{ ONE, ONE, x, nx, x, nx, z, nz, z, nz }, { y, z, y, z, w, x, w, x, 0, 0 },
+			{ x, z, x, z, w, y, w, y, 0, 0 },         { y, z, y, z, nw, x, nw, x, 0, 0 },
+			{ ONE, ONE, x, nx, x, nx, y, ny, y, ny },
+		};
 
-		r.m[i / 3][i % 3] = mot_sum_prod(a, b, 5, sat);
+		for (i = 0; i < 9; i++) {
+			const mot_q32 *p = pairs[i];
+			mot_q32 a[5] = { p[0], p[2], p[4], p[6], p[8] };
+			mot_q32 b[5] = { p[1], p[3], p[5], p[7], p[9] };
+
+			r.m[i / 3][i % 3] = mot_sum_prod(a, b, 5, sat);
+		}
 	}
 	*out = r;
+}
+
+int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
+{
+	mot_acc e[3][3];
+	int i;
+
+	if (!rot_exact(e, q))
+		return MOT_E_RANGE;
+	for (i = 0; i < 9; i++)
+		r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
+	return MOT_OK;
 }
 
 /* Hamilton product terms: component k of a * b is sum a[i] * sign * b[j]. */

@@ -32,6 +32,12 @@ void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat
  * matrix is built from q as given (no renormalisation). */
 void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sat);
 
+/* The linear part of R(q) in Q2.62 (entries value * 2^62, range +-2), so
+ * that a product with it rounds once at Q32.32 (mot_mat_compose). For a
+ * unit q; components of 2^30 or more give MOT_E_RANGE (r untouched), entries
+ * beyond +-2 saturate. */
+int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat);
+
 /* Quaternion of the proper rotation in m's linear part (Shoemake, on the
  * trace, largest-diagonal branch otherwise); result normalised, w >= 0. */
 void mot_quat_from_mat(struct mot_quat *out, const struct mot_mat *m, uint32_t *sat);
