@@ -68,8 +68,9 @@ struct mot_slerp {
 
 void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const struct mot_quat *b,
 		       uint32_t *sat);
-/* t in [0, 1] (Q32.32); outside, the nearer end and MOT_SAT_DOMAIN. The
- * result is unit within 3e-10 (measured by tests/test_quat.c). */
+/* t in [0, 1] (Q32.32); outside, the nearer end and MOT_SAT_DOMAIN. For
+ * unit keys the result is unit within 4 LSB (9.3e-10) and within 4e-9 rad of
+ * the exact slerp (tests/test_quat.c). About 22 ns. */
 void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat);
 /* prepare + eval in one call, for one-off use. */
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
