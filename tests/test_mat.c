@@ -424,6 +424,17 @@ static void test_inverse_singular(void **state)
 	assert_int_equal(mot_mat_inverse(&out, &m, &sat), MOT_OK);
 	assert_true(out.m[1][1] == (mot_q32)1 << 61 && out.m[2][2] == -one && out.m[0][0] == one);
 	assert_int_equal(sat, 0);
+	/* determinants with entries beyond 2^30 (halved inside), and one that
+	 * cannot fit */
+	mot_mat_scale(&m, (const mot_q32[3]){ MOT_Q32_MAX, one, 2 });
+	assert_int_equal(mot_mat_det(&m, &sat), one);
+	mot_mat_scale(&m, (const mot_q32[3]){ MOT_Q32_MIN, one / 2, 4 });
+	assert_int_equal(mot_mat_det(&m, &sat), -one);
+	assert_int_equal(sat, 0);
+	mot_mat_scale(&m, (const mot_q32[3]){ MOT_Q32_MIN, MOT_Q32_MAX, one });
+	assert_int_equal(mot_mat_det(&m, &sat), MOT_Q32_MIN);
+	assert_true(sat & MOT_SAT_OVERFLOW);
+	sat = 0;
 	/* entries near the top of the range: no trap, and the inverse (entries
 	 * of a few LSB) is the reference's within an LSB */
 	for (i = 0; i < 4; i++)
