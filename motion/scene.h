@@ -27,7 +27,7 @@
 #include "fix.h"
 #include "mat.h"
 #include "strand.h"
-#include "time.h"
+#include "timing.h"
 
 enum mot_node_kind {
 	MOT_NODE_FREE,

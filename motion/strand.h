@@ -22,7 +22,7 @@
 #include "fix.h"
 #include "mat.h"
 #include "quat.h"
-#include "time.h"
+#include "timing.h"
 
 /* ---- rotation tracks ------------------------------------------------------ */
 

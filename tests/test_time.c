@@ -4,7 +4,7 @@
  * section 5, against exact __int128 rational arithmetic.
  */
 #include "testutil.h"
-#include "time.h"
+#include "timing.h"
 
 typedef __int128 i128;
 

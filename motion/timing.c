@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* time.c - exact frame/tick arithmetic (see time.h). */
-#include "time.h"
+/* timing.c - exact frame/tick arithmetic (see timing.h). */
+#include "timing.h"
 
 static uint32_t gcd32(uint32_t a, uint32_t b)
 {

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * time.h - exact time: frames, ticks and the frame trigger rule
+ * timing.h - exact time: frames, ticks and the frame trigger rule
  * (FORMULAS.md section 5).
  *
  * Time is never a float and never accumulated. The frame rate is a rational
@@ -16,8 +16,8 @@
  * The trigger rule means never early, at most one tick late. The frame rate
  * may not exceed the tick rate, so a tick fires at most one trigger.
  */
-#ifndef MOT_TIME_H
-#define MOT_TIME_H
+#ifndef MOT_TIMING_H
+#define MOT_TIMING_H
 
 #include "fix.h"
 
@@ -57,4 +57,4 @@ int64_t mot_timing_next_frame(const struct mot_timing *t, int64_t tick);
 /* The instant of a Q32.32 frame time in Q32.32 seconds. */
 mot_q32 mot_timing_frame_seconds(const struct mot_timing *t, mot_q32 frame, uint32_t *sat);
 
-#endif /* MOT_TIME_H */
+#endif /* MOT_TIMING_H */
