@@ -33,7 +33,7 @@ SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fram
 # '=': pkg-config is asked when a recipe runs, after mk/deps.sh has
 # installed cmocka (on a fresh machine it is not there when make starts).
 TEST_CFLAGS  = -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror -ffp-contract=off \
-               $(SAN) -iquote motion -Itests -Ifirmware \
+               $(SAN) -Imotion -Itests -Ifirmware \
                $(shell pkg-config --cflags cmocka 2>/dev/null)
 TEST_LIBS    = $(shell pkg-config --libs cmocka 2>/dev/null) $(FW_LIBS)
 
@@ -43,11 +43,9 @@ MOTION_OBJ := $(MOTION_SRC:%.c=$(BUILD)/%.o)
 MOTION_SAN_OBJ := $(MOTION_SRC:%.c=$(BUILD)/san/%.o)
 
 # firmware/: the strand program; everything but main.c is also linked into tests
-# motion/ is searched for "..." includes only (-iquote): its time.h would
-# otherwise stand in for the C library's <time.h>, also inside <pthread.h>.
 # No fused multiply-add contraction: the loader's double arithmetic must round
 # the same way on x86_64, aarch64 and armhf.
-FW_CFLAGS   = -std=gnu11 $(WARN) -Werror -ffp-contract=off -iquote motion -Ifirmware -Ihal -Isim \
+FW_CFLAGS   = -std=gnu11 $(WARN) -Werror -ffp-contract=off -Imotion -Ifirmware -Ihal -Isim \
               $(shell pkg-config --cflags yaml-0.1 2>/dev/null)
 FW_LIBS     = $(shell pkg-config --libs yaml-0.1 2>/dev/null) -lm -lpthread
 FW_SRC     := $(wildcard firmware/*.c)

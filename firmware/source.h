@@ -13,7 +13,7 @@
 
 #include "fix.h"
 #include "scene_desc.h" /* struct sd_limits */
-#include "time.h"
+#include "timing.h"
 
 enum src_unit {
 	SRC_UNIT_TURNS,  /* angles: core turns, degrees in files */
