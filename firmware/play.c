@@ -90,6 +90,7 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	p->o.loop.wait_for_journal = o->virtual_clock;
 	if (o->virtual_clock)
 		p->o.rt.priority = 0; /* no deadline to meet: no need to starve others */
+	p->failed_at = PLAY_STAGE_RIG;
 	rc = rig_build(&p->rig, rd, src, &p->clk, &o->rig, err, errsize);
 	if (rc)
 		return rc;
@@ -100,14 +101,17 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 		return -ENOMEM;
 	}
 	hal_ring_init(&p->status, p->status_buf, PLAY_STATUS_RING, sizeof(*p->status_buf));
+	p->failed_at = PLAY_STAGE_START;
 	rc = rig_start(&p->rig, err, errsize);
 	if (rc)
 		return rc;
 	p->rig_started = true;
+	p->failed_at = PLAY_STAGE_LOOP;
 	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, NULL, &p->status, err, errsize);
 	if (rc)
 		return rc;
 	p->loop_ready = true;
+	p->failed_at = PLAY_STAGE_JOURNAL;
 	if (o->journal_path) {
 		rc = open_journal(p, src, err, errsize);
 		if (rc)
@@ -122,6 +126,7 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 			return rc;
 		}
 	}
+	p->failed_at = PLAY_STAGE_NONE;
 	return 0;
 }
 

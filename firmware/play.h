@@ -41,8 +41,18 @@ struct play_opts {
 	struct rig_opts rig;
 };
 
+/* Where play_prepare failed, for the exit code. */
+enum play_stage {
+	PLAY_STAGE_NONE,
+	PLAY_STAGE_RIG,     /* the rig description does not fit the scene */
+	PLAY_STAGE_START,   /* a device would not start */
+	PLAY_STAGE_LOOP,    /* the run cannot be planned (range, run-up) */
+	PLAY_STAGE_JOURNAL, /* the journal or telemetry file */
+};
+
 struct play {
 	struct play_opts o;
+	enum play_stage failed_at;
 	struct hal_clock clk;
 	struct rig rig;
 	bool rig_built, rig_started;
