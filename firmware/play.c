@@ -375,7 +375,7 @@ void play_describe(const struct play *p, char *buf, size_t size)
 	}
 }
 
-void play_summary(const struct play *p, FILE *f)
+void play_summary(const struct play *p, FILE *f, bool reason)
 {
 	const struct loop *L = &p->L;
 	const struct lat_stats *s = &L->lat;
@@ -383,7 +383,8 @@ void play_summary(const struct play *p, FILE *f)
 	uint32_t i;
 
 	play_describe(p, why, sizeof(why));
-	fprintf(f, "strand play: %s\n", why);
+	if (reason)
+		fprintf(f, "strand play: %s\n", why);
 	fprintf(f, "  frames fired %lld, ticks %lld (%.3f s of motion) in %.3f s, %s clock\n",
 		(long long)L->frames_fired, (long long)L->ticks_run,
 		(double)L->ticks_run / L->tm->tick_hz, p->wall_ns / 1e9,

@@ -95,8 +95,9 @@ int play_exit_code(const struct loop_report *r);
  * (line 0) at tick 5000, frame 119"), into buf. */
 void play_describe(const struct play *p, char *buf, size_t size);
 
-/* A summary of the run (frames, time, latency, following error). */
-void play_summary(const struct play *p, FILE *f);
+/* A summary of the run (frames, time, latency, following error), with
+ * play_describe's line first when `reason`. */
+void play_summary(const struct play *p, FILE *f, bool reason);
 
 /* Set by the loop thread while loop_run runs: what the tests' allocation
  * counter keys on. */

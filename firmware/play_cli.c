@@ -403,8 +403,9 @@ int play_main(int argc, char **argv, play_load_fn load, play_check_fn check)
 		play_describe(&p, err, sizeof(err));
 		fprintf(stderr, "strand play: %s\n", err);
 	}
+	/* the reason is on stderr already when the run did not finish */
 	if (!c.quiet)
-		play_summary(&p, stdout);
+		play_summary(&p, stdout, code == STRAND_EXIT_OK);
 out:
 	play_free(&p);
 	frames_free(&fl);
