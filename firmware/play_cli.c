@@ -48,6 +48,7 @@ static const char play_usage[] =
 	"  --force               play a scene that strand check rejects; setpoints beyond a\n"
 	"                        limit are clamped to it instead of stopping the run\n"
 	"  --camera-log FILE     the simulated camera logs its exposures there (tests)\n"
+	"  --latency-hist FILE   the wake-up latency histogram (us count), for make bench\n"
 	"  --quiet               no status line, no summary\n"
 	"\n"
 	"Exit: 0 done, 2 scene, 3 usage, 4 file, 5 stopped by SIGINT/SIGTERM, 6 e-stop,\n"
@@ -113,7 +114,7 @@ enum {
 	OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_FRAMES, OPT_LOOP, OPT_PING_PONG,
 	OPT_PASSES, OPT_DURATION, OPT_SETTLE, OPT_EXPOSURE, OPT_TIMEOUT, OPT_JOURNAL,
 	OPT_NO_JOURNAL, OPT_TELEMETRY, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK,
-	OPT_FORCE, OPT_CAMERA_LOG, OPT_QUIET, OPT_HELP,
+	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET, OPT_HELP,
 };
 
 static const struct option play_options[] = {
@@ -138,6 +139,7 @@ static const struct option play_options[] = {
 	{ "no-mlock", no_argument, NULL, OPT_NO_MLOCK },
 	{ "force", no_argument, NULL, OPT_FORCE },
 	{ "camera-log", required_argument, NULL, OPT_CAMERA_LOG },
+	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
 	{ "quiet", no_argument, NULL, OPT_QUIET },
 	{ "help", no_argument, NULL, OPT_HELP },
 	{ NULL, 0, NULL, 0 },
@@ -147,6 +149,7 @@ struct cli {
 	struct play_opts o;
 	const char *scene;
 	const char *frames;
+	const char *lat_hist;
 	bool have_from, have_to, no_journal, quiet, step;
 	int64_t from, to;
 	double duration_s, settle_ms, exposure_ms, timeout_s;
@@ -252,6 +255,9 @@ static int parse(struct cli *c, int argc, char **argv)
 		case OPT_CAMERA_LOG:
 			c->o.rig.camera_log = optarg;
 			break;
+		case OPT_LAT_HIST:
+			c->lat_hist = optarg;
+			break;
 		case OPT_QUIET:
 			c->quiet = true;
 			break;
@@ -275,6 +281,23 @@ static int parse(struct cli *c, int argc, char **argv)
 	if (c->o.loop.passes && !c->o.loop.loop && !c->o.loop.ping_pong)
 		return usage_error("%s", "--passes goes with --loop or --ping-pong");
 	return 0;
+}
+
+/* The histogram as cyclictest -h writes its own: "us count" lines. */
+static int write_hist(const char *path, const struct lat_stats *s)
+{
+	FILE *f = fopen(path, "w");
+	uint32_t i;
+
+	if (!f)
+		return -errno;
+	fprintf(f, "# strand wake-up latency, 1 us buckets\n");
+	for (i = 0; i < LAT_HIST_US; i++)
+		if (s->hist[i])
+			fprintf(f, "%06u %06u\n", i, s->hist[i]);
+	fprintf(f, "# Total: %lld\n# Overflow: %lld\n# Max Latencies: %.3f\n", (long long)s->n,
+		(long long)s->overflow, s->n ? s->max_ns / 1000.0 : 0.0);
+	return fclose(f) ? -errno : 0;
 }
 
 static int prepare_exit(enum play_stage st)
@@ -403,6 +426,8 @@ int play_main(int argc, char **argv, play_load_fn load, play_check_fn check)
 		play_describe(&p, err, sizeof(err));
 		fprintf(stderr, "strand play: %s\n", err);
 	}
+	if (c.lat_hist && write_hist(c.lat_hist, &p.L.lat))
+		fprintf(stderr, "strand play: %s: %s\n", c.lat_hist, strerror(errno));
 	/* the reason is on stderr already when the run did not finish */
 	if (!c.quiet)
 		play_summary(&p, stdout, code == STRAND_EXIT_OK);

@@ -17,3 +17,14 @@ $(BUILD)/bench/fixmath_chain: bench/fixmath_chain.c | $(BUILD)/.deps-bench
 
 bench-fixmath: $(BUILD)/bench/fixmath_chain
 	$(Q)$<
+
+# The play loop's wake-up latency on the wall clock against cyclictest
+# (Debian's rt-tests), 30 s each at 1 kHz and the same priority, and the
+# CPU time per tick of the robot arm on the simulated rig (mk/bench-play.sh).
+DEB_BENCH_PLAY := rt-tests
+.PHONY: bench-play
+bench: bench-play
+$(BUILD)/.deps-bench-play: mk/deps.sh $(BUILD)/.deps-build
+	$(Q)sh mk/deps.sh $(DEB_BENCH_PLAY) && touch $@
+bench-play: $(BUILD)/strand-play | $(BUILD)/.deps-bench-play
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand-play $(RUN_SCENE) $(BUILD)/bench-play
