@@ -88,8 +88,11 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	atomic_init(&p->done, false);
 	hal_clock_init(&p->clk, o->virtual_clock);
 	p->o.loop.wait_for_journal = o->virtual_clock;
-	if (o->virtual_clock)
-		p->o.rt.priority = 0; /* no deadline to meet: no need to starve others */
+	if (o->virtual_clock) {
+		/* no deadline to meet: no need to starve others */
+		p->o.rt.priority = 0;
+		p->o.rt.pm_qos = false;
+	}
 	p->failed_at = PLAY_STAGE_RIG;
 	rc = rig_build(&p->rig, rd, src, &p->clk, &o->rig, err, errsize);
 	if (rc)
@@ -240,6 +243,7 @@ int play_run(struct play *p)
 	rc = pthread_create(&p->thread, &attr, rt_main, p);
 	pthread_attr_destroy(&attr);
 	if (rc) {
+		rt_release(&p->rt);
 		fprintf(stderr, "strand: cannot start the loop thread: %s\n", strerror(rc));
 		return STRAND_EXIT_INTERNAL;
 	}
@@ -252,6 +256,7 @@ int play_run(struct play *p)
 	}
 	pthread_join(p->thread, NULL);
 	p->wall_ns = mono_ns() - start;
+	rt_release(&p->rt);
 	serve(p, true);
 	if (p->o.status_tty)
 		fputc('\n', p->o.status_tty);

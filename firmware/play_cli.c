@@ -165,6 +165,7 @@ static int parse(struct cli *c, int argc, char **argv)
 	c->o.rt.priority = 80;
 	c->o.rt.cpu = -1;
 	c->o.rt.lock_memory = true;
+	c->o.rt.pm_qos = true;
 	c->o.rt.name = "strand-rt";
 	c->settle_ms = 200;
 	c->exposure_ms = 100;

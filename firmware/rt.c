@@ -4,17 +4,42 @@
 #include "rt.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <sched.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
+#include <unistd.h>
 
 void rt_lock_memory(const struct rt_opts *o, struct rt_result *r)
 {
+	int32_t zero = 0;
+
 	r->lock_err = 0;
+	r->qos_err = 0;
+	r->qos_fd = -1;
 	if (o->lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE))
 		r->lock_err = errno;
+	if (!o->pm_qos)
+		return;
+	/* the request lasts as long as the file stays open */
+	r->qos_fd = open("/dev/cpu_dma_latency", O_RDWR | O_CLOEXEC);
+	if (r->qos_fd < 0) {
+		r->qos_err = errno;
+	} else if (write(r->qos_fd, &zero, sizeof(zero)) != (ssize_t)sizeof(zero)) {
+		r->qos_err = errno ? errno : EIO;
+		close(r->qos_fd);
+		r->qos_fd = -1;
+	}
+}
+
+void rt_release(struct rt_result *r)
+{
+	if (r->qos_fd >= 0)
+		close(r->qos_fd);
+	r->qos_fd = -1;
 }
 
 /* Touch RT_PREFAULT_BYTES of stack below this frame. noinline: the array
@@ -71,6 +96,11 @@ void rt_report(const struct rt_opts *o, const struct rt_result *r, FILE *f)
 			"at normal priority with 1 ns timer slack. Grant it with systemd "
 			"LimitRTPRIO=%d, 'rtprio %d' in /etc/security/limits.conf, or run as root.\n",
 			o->priority, strerror(r->sched_err), o->priority, o->priority);
+	if (r->qos_err)
+		fprintf(f,
+			"strand: warning: cannot keep the CPUs out of deep idle states "
+			"(/dev/cpu_dma_latency: %s); wake-ups may come later. Run as root or give "
+			"the service access to that device.\n", strerror(r->qos_err));
 	if (r->cpu_err)
 		fprintf(f, "strand: warning: cannot pin the loop to CPU %d (%s); running unpinned.\n",
 			o->cpu, strerror(r->cpu_err));
