@@ -3,7 +3,11 @@
  * latency.h - the loop's timing statistics, as cyclictest keeps them.
  *
  * Wake-up latency is how late the loop woke for a tick: the clock right
- * after clock_nanosleep returned, minus the tick's absolute start. min, avg
+ * after clock_nanosleep returned, minus the tick's absolute start. It is
+ * sampled once per sleep, as cyclictest samples it: a tick whose start had
+ * already passed when the previous one ended is run at once without
+ * sleeping (a catch-up tick: counted, with the worst lateness of any tick,
+ * but no wake-up sample; cyclictest skips such periods altogether). min, avg
  * and max, and a histogram of 1 us buckets up to LAT_HIST_US (later ones in
  * an overflow count) from which percentiles are read at 1 us resolution,
  * the same resolution as cyclictest's -h histogram they are compared with.
@@ -25,6 +29,8 @@ struct lat_stats {
 	int64_t sum_ns;
 	int64_t max_at_tick;   /* the tick of the worst wake-up */
 	int64_t overruns;
+	int64_t catchup;       /* ticks run late without sleeping */
+	int64_t late_max_ns;   /* the latest any tick started, catch-up ones included */
 	int64_t work_max_ns;   /* longest tick body */
 	int64_t overflow;      /* samples >= LAT_HIST_US us */
 	uint32_t hist[LAT_HIST_US];

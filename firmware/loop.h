@@ -43,7 +43,11 @@
  * until the loop is on time again: nothing is skipped and nothing drifts.
  * A frame trigger therefore always belongs to its own tick and never
  * repeats; in wall time it goes out late by however late the loop is, and
- * the journal's due_ns and mono_ns columns show by how much.
+ * the journal's due_ns and mono_ns columns show by how much. The motion is
+ * not skipped either: the drives receive the missed ticks' setpoints in
+ * quick succession, so a stall shows as a short burst, not a jump. The
+ * statistics count such catch-up ticks apart from wake-up latency
+ * (latency.h).
  *
  * Safety, checked every tick:
  *   - an e-stop input: every drive disabled, every trigger deasserted, in

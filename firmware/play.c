@@ -397,12 +397,14 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 	if (!p->clk.is_virtual && s->n)
 		fprintf(f,
 			"  wake-up latency us: min %.1f avg %.1f max %.1f (tick %lld) p50 %.0f "
-			"p99 %.0f p99.9 %.0f; overruns %lld; longest tick %.1f us; %s\n",
+			"p99 %.0f p99.9 %.0f; %s\n"
+			"  overruns %lld, catch-up ticks %lld, latest tick start %.1f us, "
+			"longest tick %.1f us\n",
 			s->min_ns / 1e3, (double)s->sum_ns / s->n / 1e3, s->max_ns / 1e3,
 			(long long)s->max_at_tick, lat_percentile_us(s, 0.5),
 			lat_percentile_us(s, 0.99), lat_percentile_us(s, 0.999),
-			(long long)s->overruns, s->work_max_ns / 1e3,
-			p->rt.fifo ? "SCHED_FIFO" : "SCHED_OTHER");
+			p->rt.fifo ? "SCHED_FIFO" : "SCHED_OTHER", (long long)s->overruns,
+			(long long)s->catchup, s->late_max_ns / 1e3, s->work_max_ns / 1e3);
 	fprintf(f, "  cpu %.0f ns per tick\n",
 		L->ticks_run ? (double)L->cpu_ns / L->ticks_run : 0.0);
 	if (L->ferr_worst_out >= 0)

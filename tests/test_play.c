@@ -380,6 +380,80 @@ static void test_offset_and_width(void **state)
 	play_free(&p);
 }
 
+/* In the loop thread, at frame 50's edge: the machine stalls for 100.5 ms,
+ * two and a half frames at 24 fps. */
+static void stall_at_50(void *ctx, const struct sim_exposure *e)
+{
+	struct play *p = ctx;
+
+	if (p->L.last_frame == 50)
+		p->clk.vnow += 100500000;
+}
+
+/* A stall: the loop wakes late, runs the 100 missed ticks back to back
+ * (counted as catch-up, not as wake-ups), and still fires every frame once,
+ * in order, at its own tick; frames 51 and 52 go out late in time and the
+ * journal says by how much; frame 53 is on time again. */
+static void test_stall_catch_up(void **state)
+{
+	struct pu_source ps;
+	struct pu_rig r;
+	struct play_opts o;
+	struct play p;
+	struct pu_csv c;
+	static struct sim_gpio_edge edges[1024];
+	char err[256], path[256];
+	int64_t t0, f, k50;
+	int cl, ct;
+
+	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
+	pu_rig_init(&r, &ps, 1, 0);
+	pu_opts(&o, &ps);
+	pu_tmpname(path, sizeof(path), "stall");
+	o.journal_path = path;
+	pu_alloc_hook_install();
+	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
+	sim_camera_on_exposure(p.rig.camera[0], stall_at_50, &p);
+	sim_gpio_record(p.rig.sim_gpio[0], edges, 1024);
+	assert_int_equal(pu_finish(&p, false), STRAND_EXIT_OK);
+	/* 51 and 52 went out back to back: the camera, busy with 51 for half
+	 * a frame, could not take 52 (a real camera would not either) */
+	assert_int_equal(sim_camera_missed(p.rig.camera[0]), 1);
+	assert_int_equal(sim_camera_count(p.rig.camera[0]), 240);
+	/* every trigger went out once, at its own tick */
+	assert_int_equal(sim_gpio_edges(p.rig.sim_gpio[0]), 2 * 241);
+	t0 = edges[0].tick;
+	for (f = 0; f <= 240; f++) {
+		assert_true(edges[2 * f].asserted);
+		assert_int_equal(edges[2 * f].tick, t0 + mot_timing_trigger_tick(p.L.tm, f));
+	}
+	k50 = t0 + mot_timing_trigger_tick(p.L.tm, 50);
+	/* the stalled tick and the 99 catch-up ticks after it that still
+	 * ended after their successor was due; the 100th was back on time */
+	assert_int_equal(p.L.lat.overruns, 100);
+	assert_int_equal(p.L.lat.catchup, 100);
+	assert_int_equal(p.L.lat.late_max_ns, 100500000 - 1000000);
+	/* one wake-up sample per sleep: the catch-up ticks have none */
+	assert_int_equal(p.L.lat.n + p.L.lat.catchup, p.L.ticks_run);
+	assert_int_equal(pu_csv_read(&c, path), 0);
+	cl = pu_csv_col(&c, "late_us");
+	ct = pu_csv_col(&c, "tick");
+	for (f = 51; f <= 52; f++) {
+		int64_t k = atoll(c.cell[f + 1][ct]);
+
+		assert_true(fabs(atof(c.cell[f + 1][cl]) -
+				 (100500.0 - 1000.0 * (double)(k - k50))) < 1e-6);
+	}
+	/* frame 50's edge: the stall struck while it went out, and the clock
+	 * read right after it says so */
+	assert_true(atof(c.cell[50 + 1][cl]) == 100500.0);
+	assert_true(atof(c.cell[49 + 1][cl]) == 0);
+	assert_true(atof(c.cell[53 + 1][cl]) == 0);
+	pu_csv_free(&c);
+	play_free(&p);
+	unlink(path);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -391,6 +465,7 @@ int main(void)
 		cmocka_unit_test(test_reproducible),
 		cmocka_unit_test(test_loop_and_ping_pong),
 		cmocka_unit_test(test_offset_and_width),
+		cmocka_unit_test(test_stall_catch_up),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
