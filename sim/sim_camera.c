@@ -12,9 +12,9 @@
 
 struct sim_camera {
 	struct sim_camera_params p;
-	struct sim_camera_log *log; /* in memory, or the mapped file */
+	struct sim_camera_log *mem; /* the exposures */
+	struct sim_camera_log *log; /* the mapped file of trigger edges, or NULL */
 	size_t log_bytes;
-	bool mapped;
 	uint64_t missed;
 	int64_t busy_until_ns;
 	struct sim_gpio *ready_gpio;
@@ -23,28 +23,35 @@ struct sim_camera {
 	void *ctx;
 };
 
+static void append(struct sim_camera_log *log, const struct sim_exposure *x)
+{
+	uint64_t n = atomic_load_explicit(&log->count, memory_order_relaxed);
+
+	if (n < log->capacity)
+		log->e[n] = *x;
+	/* the entry first, then the count: a reader after a kill sees only
+	 * complete entries */
+	atomic_store_explicit(&log->count, n + 1, memory_order_release);
+}
+
 static void on_edge(void *ctx, const struct sim_gpio_edge *e)
 {
 	struct sim_camera *c = ctx;
-	struct sim_camera_log *log = c->log;
-	uint64_t n;
-	struct sim_exposure x;
+	struct sim_exposure x = { .tick = e->tick, .ts_ns = e->ts_ns, .exposed = 1 };
 
 	if (!e->asserted)
 		return;
 	if (e->ts_ns < c->busy_until_ns) {
 		c->missed++;
+		x.exposed = 0;
+		if (c->log)
+			append(c->log, &x);
 		return;
 	}
 	c->busy_until_ns = e->ts_ns + c->p.exposure_ns + c->p.readout_ns;
-	x.tick = e->tick;
-	x.ts_ns = e->ts_ns;
-	n = atomic_load_explicit(&log->count, memory_order_relaxed);
-	if (n < log->capacity)
-		log->e[n] = x;
-	/* the entry first, then the count: a reader after a kill sees only
-	 * complete entries */
-	atomic_store_explicit(&log->count, n + 1, memory_order_release);
+	if (c->log)
+		append(c->log, &x);
+	append(c->mem, &x);
 	if (c->ready_gpio) {
 		sim_gpio_schedule(c->ready_gpio, c->ready_line, e->ts_ns, false);
 		sim_gpio_schedule(c->ready_gpio, c->ready_line, c->busy_until_ns, true);
@@ -63,13 +70,12 @@ struct sim_camera *sim_camera_new(const struct sim_camera_params *p, uint64_t ca
 	if (!c)
 		return NULL;
 	c->p = *p;
-	c->log_bytes = bytes;
 	c->busy_until_ns = INT64_MIN;
-	if (!log_path) {
-		c->log = calloc(1, bytes);
-		if (!c->log)
-			goto fail;
-	} else {
+	c->mem = calloc(1, bytes);
+	if (!c->mem)
+		goto fail;
+	c->mem->capacity = cap;
+	if (log_path) {
 		fd = open(log_path, O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
 		if (fd < 0)
 			goto fail;
@@ -87,13 +93,14 @@ struct sim_camera *sim_camera_new(const struct sim_camera_params *p, uint64_t ca
 			errno = err;
 			goto fail;
 		}
-		c->mapped = true;
+		c->log_bytes = bytes;
+		memcpy(c->log->magic, "STRANDC2", 8);
+		c->log->capacity = cap;
 	}
-	memcpy(c->log->magic, "STRANDC1", 8);
-	c->log->capacity = cap;
 	return c;
 fail:
 	err = errno;
+	free(c->mem);
 	free(c);
 	errno = err;
 	return NULL;
@@ -103,10 +110,9 @@ void sim_camera_free(struct sim_camera *c)
 {
 	if (!c)
 		return;
-	if (c->mapped)
+	if (c->log)
 		munmap(c->log, c->log_bytes);
-	else
-		free(c->log);
+	free(c->mem);
 	free(c);
 }
 
@@ -131,7 +137,7 @@ void sim_camera_on_exposure(struct sim_camera *c, void (*fn)(void *ctx, const st
 
 uint64_t sim_camera_count(const struct sim_camera *c)
 {
-	return atomic_load_explicit(&c->log->count, memory_order_acquire);
+	return atomic_load_explicit(&c->mem->count, memory_order_acquire);
 }
 
 uint64_t sim_camera_missed(const struct sim_camera *c)
@@ -141,7 +147,7 @@ uint64_t sim_camera_missed(const struct sim_camera *c)
 
 const struct sim_exposure *sim_camera_exposure(const struct sim_camera *c, uint64_t i)
 {
-	return &c->log->e[i];
+	return &c->mem->e[i];
 }
 
 int sim_camera_log_read(const char *path, struct sim_exposure **e, uint64_t *n)
@@ -156,7 +162,7 @@ int sim_camera_log_read(const char *path, struct sim_exposure **e, uint64_t *n)
 	*n = 0;
 	if (fd < 0)
 		return -errno;
-	if (read(fd, &h, sizeof(h)) != (ssize_t)sizeof(h) || memcmp(h.magic, "STRANDC1", 8)) {
+	if (read(fd, &h, sizeof(h)) != (ssize_t)sizeof(h) || memcmp(h.magic, "STRANDC2", 8)) {
 		close(fd);
 		return -EBADMSG;
 	}

@@ -5,9 +5,10 @@
  * It exposes on each asserting edge of its trigger line, unless it is still
  * busy with the previous picture (exposure plus readout), in which case the
  * trigger is counted as missed, as a real camera ignores it. Every exposure
- * is recorded with its tick and clock time; optionally also into a file
- * mapped into memory, which the kernel keeps when the process is killed, so
- * a test can compare what the camera saw with strand's journal after
+ * is recorded with its tick and clock time. Optionally every trigger edge
+ * the camera receives, exposed or missed, is also logged into a file mapped
+ * into memory, which the kernel keeps when the process is killed, so a test
+ * can compare what reached the camera with strand's journal after
  * `kill -9`. When wired to an input line, the camera asserts it when ready
  * for the next picture and deasserts it while busy (step mode's
  * camera-ready).
@@ -28,11 +29,13 @@ struct sim_camera_params {
 struct sim_exposure {
 	int64_t tick;
 	int64_t ts_ns;
+	uint32_t exposed; /* log file: 0 for a trigger the camera missed */
+	uint32_t pad;
 };
 
-/* The log file: this header, then count exposures. */
+/* The log file: this header, then count trigger edges. */
 struct sim_camera_log {
-	char magic[8]; /* "STRANDC1" */
+	char magic[8]; /* "STRANDC2" */
 	_Atomic uint64_t count;
 	uint64_t capacity;
 	struct sim_exposure e[];
@@ -40,8 +43,8 @@ struct sim_camera_log {
 
 /*
  * [init] A camera keeping up to cap exposures in memory (all are counted);
- * log_path, when non-NULL, a file created to hold up to cap exposures (the
- * memory record is then the file). NULL with errno on failure.
+ * log_path, when non-NULL, a file created to log up to cap trigger edges.
+ * NULL with errno on failure.
  */
 struct sim_camera *sim_camera_new(const struct sim_camera_params *p, uint64_t cap,
 				  const char *log_path);
@@ -62,7 +65,8 @@ uint64_t sim_camera_missed(const struct sim_camera *c);
 const struct sim_exposure *sim_camera_exposure(const struct sim_camera *c, uint64_t i);
 
 /* [init] Read a log file written by a camera (possibly killed): 0 and a
- * malloc'd array in *e with *n entries, or a negative errno. */
+ * malloc'd array of its trigger edges in *e with *n entries, or a negative
+ * errno. */
 int sim_camera_log_read(const char *path, struct sim_exposure **e, uint64_t *n);
 
 #endif /* SIM_CAMERA_H */
