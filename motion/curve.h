@@ -46,45 +46,71 @@ enum mot_interp {
 #define MOT_BEZIER_MAX_KEYS 32
 
 struct mot_key {
-	mot_q32 frame;    /* strictly increasing along the array */
-	mot_q32 value;
+	mot_q32 frame;    /* strictly increasing along the array, |frame| <= 2^30 */
+	mot_q32 value;    /* |value| <= 2^30 (MOT_LEN_LIMIT) */
 	mot_q32 ease_in;  /* fraction of the interval arriving here, [0, 1] */
 	mot_q32 ease_out; /* fraction of the interval leaving here, [0, 1] */
 };
 
+/* Beta-spline shape limits: beta1 in [0, MOT_BETA1_MAX], beta2 in
+ * [0, MOT_BETA2_MAX]; the curve is already within a few LSB of its limit
+ * shape there, and the basis fits 64 bits. */
+#define MOT_BETA1_MAX MOT_Q32_INT(256)
+#define MOT_BETA2_MAX MOT_Q32_INT(1 << 24)
+
 struct mot_curve_opts {
-	mot_q32 beta1, beta2;   /* Beta-spline bias (> 0 ... ) and tension (>= 0) */
+	mot_q32 beta1, beta2;    /* Beta-spline bias (>= 0) and tension (>= 0) */
 	mot_q32 ease_in_frames;  /* strand-wide slow-in, frames (0 = none) */
 	mot_q32 ease_out_frames; /* strand-wide slow-out, frames (0 = none) */
 	bool integral;           /* prepare running integrals (rpm strands) */
 };
 
-/* Prepared data of one segment; the fields used depend on the kind. */
+/*
+ * Prepared data; entry j of the array holds two things.
+ *
+ * Piece j of the curve: for step/linear/hermite the key interval j; for
+ * bspline/beta the cubic on extended control points j..j+3; for bezier only
+ * entry 0 (the whole curve). A polynomial P is kept as int64 coefficients of
+ * powers of a parameter u in Q2.62, scaled by 2^sh so that their magnitudes
+ * add up to at most 2^61 (block floating point: ~60 significant bits however
+ * small or large the segment):
+ *     value(u) = vref + P(u) / 2^vsh        (Q32.32 value)
+ *     frame(u) = fref + F(u) / 2^fsh        (Q32.32 frame; approximating kinds)
+ *
+ * Key interval j (j < nkeys - 1), for every kind: its slow-in/out and, for
+ * the approximating kinds, the reciprocal of its width.
+ */
 struct mot_curve_seg {
-	mot_q32 f0, f1;         /* frames covered: [f0, f1) */
-	mot_q32 c[4];           /* value polynomial in the segment parameter */
-	mot_q32 fc[4];          /* frame polynomial (approximating kinds) */
-	uint64_t inv_w_m;       /* 1/(f1 - f0) as m / 2^inv_w_shift */
-	uint32_t inv_w_shift;
-	uint32_t key;           /* index of the key interval it starts in */
-	struct mot_ease ease;   /* interval slow-in/out (interpolating kinds) */
-	mot_acc area;           /* integral of the curve from frame 0 to f0 */
+	mot_q32 f0, f1;          /* frames covered by piece j: [f0, f1) */
+	mot_q32 vref, fref;      /* reference value and frame of the polynomials */
+	int64_t c[4];            /* value polynomial P */
+	union {
+		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
+		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
+	};
+	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
+	int16_t vsh, fsh;        /* scales of c[] and fc[] (may be negative) */
+	uint8_t start;           /* Newton start rule (curve.c) */
+	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
+	struct mot_ease ease;    /* slow-in/out of key interval j */
+	mot_acc area;            /* integral from frame 0 to key j, value x frames, Q64.64 */
 };
 
 struct mot_curve {
 	uint32_t kind;          /* enum mot_interp */
 	uint32_t nkeys;
-	uint32_t nseg;
-	bool seg_ease;          /* some key has a non-zero ease fraction */
+	uint32_t nseg;          /* entries of seg[] in use */
+	bool seg_ease;          /* some key interval has a non-zero ease fraction */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
 	mot_q32 beta1, beta2;
-	mot_q32 span_f0, span_f1;
+	mot_q32 span_f0, span_f1;    /* first and last key frame */
+	struct mot_recip span_inv;   /* 1 / (span_f1 - span_f0) */
 	struct mot_ease span;
-	uint64_t span_inv_m;
-	uint32_t span_inv_shift;
+	mot_acc area_first;          /* integral from frame 0 to the first key */
+	mot_acc area_last;           /* integral from frame 0 to the last key */
 };
 
 /* Cursor for sequential playback: remembers the segment of the last sample so
@@ -128,5 +154,10 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
  */
 int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_cursor *cur,
 		       mot_q32 frame, uint32_t *sat);
+
+/* Diagnostics for tests and benchmarks: the Newton iterations that
+ * mot_curve_eval() takes at this frame (0 where it solves nothing: the
+ * interpolating kinds, the held ends). Real-time safe. */
+int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame);
 
 #endif /* MOT_CURVE_H */

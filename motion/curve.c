@@ -1,0 +1,1010 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * curve.c - scalar curves over keys (FORMULAS.md sections 5 to 8; see curve.h).
+ *
+ * Numbers. Frames and values are Q32.32. Curve parameters (s of a key
+ * interval, u of a spline piece) are Q2.62 in [0, 1]. Every cubic is kept in
+ * power form with int64 coefficients in block floating point: one scale 2^sh
+ * per polynomial, chosen at init so that the coefficients' magnitudes add up
+ * to at most 2^61. Horner's rule then needs one 64x64 product and one
+ * rounding per degree, never overflows, and keeps ~60 significant bits
+ * whether a segment spans a thousandth of a frame or a million frames. The
+ * divisions (tangent ratios, basis denominators, reciprocals of widths) are
+ * all done here at init; evaluation multiplies.
+ *
+ * Real time. mot_curve_eval() and mot_curve_integral() touch only the curve,
+ * its keys and segments, and a small stack frame (bezier: 2 x 32 int64);
+ * they allocate nothing, take no lock and run in bounded time: a segment
+ * lookup is O(1) for a cursor that moved to the same or next segment and
+ * O(log n) otherwise; the Newton solve of the approximating kinds stops
+ * after at most NEWTON_MAX_IT iterations.
+ */
+#include "curve.h"
+
+#define ONE62 MOT_Q62_ONE
+
+/* Newton start rules (seg->start). */
+enum {
+	START_CHORD, /* u0 = (f - f0) / (f1 - f0) */
+	START_CUBE0, /* frame(u) = frame(0) + w u^3: u0 ~ cbrt of the chord fraction */
+	START_CUBE1, /* frame(u) = frame(1) - w (1 - u)^3: mirrored */
+};
+
+/* ---- 128-bit and scaling helpers ----------------------------------------- */
+
+static unsigned bitlen64(uint64_t x)
+{
+	return 64 - mot_clz64(x);
+}
+
+/* x * 2^n for 0 <= n < 128 (bits above 127 are lost: callers check). */
+static mot_acc acc_shl(mot_acc x, unsigned n)
+{
+	uint64_t hi = mot_acc_hi(x), lo = mot_acc_lo(x);
+
+	if (n == 0)
+		return x;
+	if (n >= 64)
+		return mot_acc_make(lo << (n - 64), 0);
+	return mot_acc_make((hi << n) | (lo >> (64 - n)), lo << n);
+}
+
+/* floor(x / 2^n) for 0 <= n < 128 (arithmetic shift). */
+static mot_acc acc_sar(mot_acc x, unsigned n)
+{
+	uint64_t hi = mot_acc_hi(x), lo = mot_acc_lo(x);
+	uint64_t sx = (int64_t)hi < 0 ? ~(uint64_t)0 : 0;
+
+	if (n == 0)
+		return x;
+	if (n >= 64) {
+		/* (int64_t)hi >> k without shifting a negative value: via sx */
+		unsigned k = n - 64;
+		uint64_t l = k ? (hi >> k) | (sx << (64 - k)) : hi;
+
+		return mot_acc_make(sx, l);
+	}
+	return mot_acc_make((hi >> n) | (sx << (64 - n)), (lo >> n) | (hi << (64 - n)));
+}
+
+/* Bit length of |x| (x != -2^127). */
+static unsigned acc_bitlen(mot_acc x)
+{
+	if (mot_acc_is_neg(x))
+		x = mot_acc_neg(x);
+	if (mot_acc_hi(x))
+		return 64 + bitlen64(mot_acc_hi(x));
+	return bitlen64(mot_acc_lo(x));
+}
+
+/* round(x / 2^sh), 128 bits in and out, -127 < sh < 127; a left shift
+ * (sh < 0) must not overflow (callers bound it). */
+static mot_acc acc_round_shift(mot_acc x, int sh)
+{
+	if (sh <= 0)
+		return acc_shl(x, (unsigned)-sh);
+	return acc_sar(mot_acc_add(x, acc_shl(mot_acc_from(1, 0), (unsigned)sh - 1)),
+		       (unsigned)sh);
+}
+
+/* round(x / 2^sh) for an int64 x and any sh, saturating. */
+static int64_t round_shift(int64_t x, int sh, uint32_t *sat)
+{
+	if (sh > 0)
+		return sh >= 127 ? 0 : mot_acc_round(mot_acc_from(x, 0), (unsigned)sh, sat);
+	if (sh < 0) {
+		int64_t lim = sh > -63 ? INT64_MAX >> -sh : 0;
+
+		if (x > lim || x < -lim - 1) {
+			if (sat)
+				*sat |= MOT_SAT_OVERFLOW;
+			return x < 0 ? INT64_MIN : INT64_MAX;
+		}
+		return x * ((int64_t)1 << -sh);
+	}
+	return x;
+}
+
+/*
+ * round(num * 2^sh / den) for den > 0, as int64 in *out. False when the
+ * shifted numerator or the quotient would not fit (the prepared scales keep
+ * quotients below 2^59). For sh < 0 the numerator is floored first: an error
+ * below one unit of the result.
+ */
+static bool acc_div_round(int64_t *out, mot_acc num, int sh, uint64_t den)
+{
+	bool neg = mot_acc_is_neg(num);
+	uint64_t q, r;
+
+	if (neg)
+		num = mot_acc_neg(num);
+	if (sh > 0) {
+		if (acc_bitlen(num) + (unsigned)sh > 126)
+			return false;
+		num = acc_shl(num, (unsigned)sh);
+	} else if (sh < 0) {
+		num = -sh >= 127 ? mot_acc_zero() : acc_sar(num, (unsigned)-sh);
+	}
+	if (mot_acc_hi(num) >= den)
+		return false;
+	q = mot_acc_udiv(num, den, &r, NULL);
+	/* ties toward +infinity, as everywhere in the core */
+	if (neg ? r > den - r : r >= den - r)
+		q++;
+	if (q > (uint64_t)INT64_MAX)
+		return false;
+	*out = neg ? -(int64_t)q : (int64_t)q;
+	return true;
+}
+
+/* a * u / 2^62, rounded: one Horner step with u in Q2.62. */
+static inline int64_t mul62(int64_t a, int64_t u)
+{
+	return mot_acc_round(mot_acc_mul(a, u), 62, NULL);
+}
+
+/*
+ * Block floating point for one cubic: c[p] = round(num[p] / den * 2^sh) with
+ * sh chosen so that sum |c[p]| <= 2^60 + 2. |num[p] / den| < 2^(L - ld + 1)
+ * with L the largest bit length of num[] and ld that of den, so the scale
+ * sh = 57 - L + ld bounds every |c[p]| by 2^58. The same ratio num/den gives
+ * the same sh and coefficients whatever the common factor (which is what
+ * makes the beta spline with beta1 = 1, beta2 = 0 the B-spline bit for bit).
+ */
+static int poly_prep(int64_t c[4], int16_t *sh, const mot_acc num[4], uint64_t den)
+{
+	unsigned l = 0, p;
+	int s;
+
+	for (p = 0; p < 4; p++) {
+		unsigned lp = acc_bitlen(num[p]);
+
+		l = lp > l ? lp : l;
+	}
+	if (l == 0) {
+		c[0] = c[1] = c[2] = c[3] = 0;
+		*sh = 0;
+		return MOT_OK;
+	}
+	s = 57 - (int)l + (int)bitlen64(den);
+	for (p = 0; p < 4; p++)
+		if (!acc_div_round(&c[p], num[p], s, den))
+			return MOT_E_RANGE;
+	*sh = (int16_t)s;
+	return MOT_OK;
+}
+
+/* P(u) = c0 + u (c1 + u (c2 + u c3)); |partial sums| <= sum |c| <= 2^61. */
+static inline int64_t poly_eval(const int64_t c[4], int64_t u)
+{
+	int64_t r = c[3];
+
+	r = mul62(r, u) + c[2];
+	r = mul62(r, u) + c[1];
+	return mul62(r, u) + c[0];
+}
+
+/* P'(u) = c1 + u (2 c2 + u 3 c3); |partial sums| <= 3 * 2^61 < 2^63. */
+static inline int64_t poly_deriv(const int64_t c[4], int64_t u)
+{
+	int64_t r = 3 * c[3];
+
+	r = mul62(r, u) + 2 * c[2];
+	return mul62(r, u) + c[1];
+}
+
+/* round(x * 2^62 / d) for the prepared reciprocal of d: the parameter in
+ * Q2.62 of an offset x in [0, d]. */
+static inline int64_t frac62(int64_t x, const struct mot_recip *r)
+{
+	int64_t s = mot_acc_round(mot_acc_mul(x, r->m), r->shift - 30, NULL);
+
+	return s < 0 ? 0 : s > ONE62 ? ONE62 : s;
+}
+
+/* ---- segment lookup -------------------------------------------------------- */
+
+/*
+ * The last index j in [0, n) with at(j) <= f, for a non-decreasing array of
+ * frames at(j) (a field of a struct array: base and stride) with at(0) <= f.
+ * The hint (the cursor's last answer) is tried first, then its successor;
+ * otherwise a binary search. A stale or foreign hint is only a slower search.
+ */
+static uint32_t locate(const void *base, size_t stride, uint32_t n, uint32_t hint, mot_q32 f)
+{
+#define AT(j) (*(const mot_q32 *)((const char *)base + (size_t)(j) * stride))
+	uint32_t lo = 0, hi = n;
+
+	if (hint < n && AT(hint) <= f) {
+		if (hint + 1 == n || f < AT(hint + 1))
+			return hint;
+		if (hint + 2 == n || f < AT(hint + 2))
+			return hint + 1;
+		lo = hint + 2;
+	}
+	while (hi - lo > 1) {
+		uint32_t mid = lo + (hi - lo) / 2;
+
+		if (AT(mid) <= f)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
+#undef AT
+}
+
+static uint32_t locate_seg(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
+{
+	uint32_t j = locate(&c->seg[0].f0, sizeof(c->seg[0]), c->nseg, cur ? cur->seg : 0, f);
+
+	if (cur)
+		cur->seg = j;
+	return j;
+}
+
+static uint32_t locate_key(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
+{
+	uint32_t i = locate(&c->keys[0].frame, sizeof(c->keys[0]), c->nkeys - 1,
+			    cur ? cur->key : 0, f);
+
+	if (cur)
+		cur->key = i;
+	return i;
+}
+
+/* ---- the Newton solve of the approximating kinds ---------------------------- */
+
+#define NEWTON_MAX_IT 64
+#define NEWTON_TOL ((int64_t)1 << 31) /* 2^-31: a Newton step this small is the last */
+#define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
+
+/*
+ * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-29, with |q| < 2^62;
+ * false when it would not fit. The reciprocal of d comes from Newton-Raphson
+ * on its top 31 bits (the 48/17 - 32/17 y start, three steps, Hacker's
+ * Delight / Goldschmidt), products only: a Newton step of the curve solve
+ * needs only a good direction and size, the solve's own convergence makes up
+ * the rest, and no target has to divide at run time.
+ */
+static bool ratio62(int64_t r, int64_t d, int64_t *q)
+{
+	unsigned n = mot_clz64((uint64_t)d);
+	uint64_t y = ((uint64_t)d << n) >> 33; /* d = y 2^(33 - n), y in [2^30, 2^31) */
+	int64_t z = 6063483241 - (int64_t)((4042322161u * y) >> 31); /* 2^62 / y, Q31 */
+	mot_acc p;
+	int it;
+
+	for (it = 0; it < 3; it++) {
+		int64_t e = ((int64_t)1 << 62) - (int64_t)y * z; /* 2^62 (1 - y z) */
+
+		z += (z * (e / ((int64_t)1 << 31))) / ((int64_t)1 << 31);
+	}
+	/* r / d = r z 2^-62 2^(n - 33), so r / d in Q2.62 is r z 2^(n - 33) */
+	p = mot_acc_mul(r, z);
+	if (n < 33) {
+		uint32_t ovf = 0;
+
+		*q = mot_acc_round(p, 33 - n, &ovf);
+		if (ovf)
+			return false;
+	} else {
+		if (acc_bitlen(p) + (n - 33) > 62)
+			return false;
+		*q = (int64_t)mot_acc_lo(acc_shl(p, n - 33));
+	}
+	return *q > -ONE62 && *q < ONE62;
+}
+
+/* cbrt(x) for x in Q2.62 [0, 1], to about 1%: the Newton start on a piece
+ * whose frame grows as u^3 (the tripled end keys). */
+static int64_t cbrt62(int64_t x)
+{
+	static const int64_t k_third[3] = {
+		ONE62, 3660297618499336453, 2905180145061270980, /* 2^(-r/3) */
+	};
+	unsigned e, q, r;
+	int64_t m, g;
+
+	if (x <= 0)
+		return 0;
+	e = 63 - bitlen64((uint64_t)x); /* x = (1 + m) 2^-e, m in [0, 1) */
+	q = e / 3;
+	r = e % 3;
+	m = (int64_t)((uint64_t)x << e) - ONE62;
+	g = ONE62 + mul62(m, 1198674271695154057); /* cbrt(1 + m) ~ 1 + m (2^(1/3) - 1) */
+	return mul62(g, k_third[r]) >> q;
+}
+
+struct solve {
+	const struct mot_curve *c;
+	const struct mot_curve_seg *s;
+	int64_t d;        /* target: frame - fref, scaled by 2^fsh */
+	int it;           /* iterations taken (mot_curve_newton_iterations) */
+};
+
+/* Bezier: de Casteljau at u on the keys' frames (or values) relative to the
+ * first key, scaled by 2^fsh (2^vsh), until `left` points remain in w[]. */
+static void bezier_reduce(const struct mot_curve *c, bool value, int64_t u, uint32_t left,
+			  int64_t w[MOT_BEZIER_MAX_KEYS])
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, i, r;
+	int sh = value ? c->seg[0].vsh : c->seg[0].fsh;
+
+	for (i = 0; i < n; i++)
+		w[i] = round_shift(value ? k[i].value - k[0].value : k[i].frame - k[0].frame, -sh,
+				   NULL);
+	for (r = n - 1; r >= left; r--)
+		for (i = 0; i < r; i++)
+			w[i] += mul62(w[i + 1] - w[i], u);
+}
+
+/* The frame and its derivative (from the last two points). */
+static void bezier_frame(const struct mot_curve *c, int64_t u, int64_t *f, int64_t *df)
+{
+	int64_t w[MOT_BEZIER_MAX_KEYS];
+
+	bezier_reduce(c, false, u, 2, w);
+	*f = w[0] + mul62(w[1] - w[0], u);
+	*df = (int64_t)(c->nkeys - 1) * (w[1] - w[0]);
+}
+
+static int64_t bezier_value(const struct mot_curve *c, int64_t u, uint32_t *sat)
+{
+	int64_t w[MOT_BEZIER_MAX_KEYS];
+
+	bezier_reduce(c, true, u, 1, w);
+	return mot_add_sat(c->keys[0].value, round_shift(w[0], c->seg[0].vsh, sat), sat);
+}
+
+/*
+ * Solve frame(u) = f on one piece: safeguarded Newton (rtsafe, Numerical
+ * Recipes 9.4). The bracket [lo, hi] starts as [0, 1] and shrinks to the
+ * evaluated points on either side of the root; a Newton step that leaves it,
+ * or that does not halve the step before last, is replaced by bisection. An
+ * end of [0, 1] that has not been evaluated may be stepped to, so a root
+ * that rounding put just outside the piece ends there after one step instead
+ * of after fifty bisections. frame'(u) is zero at the tripled end keys, which
+ * is why the safeguard matters, and why those pieces start from a cube root.
+ *
+ * Determinism: the start is a function of f alone (the chord fraction, or its
+ * cube root), the iteration is pure integer arithmetic and the stopping rule
+ * is fixed: stop after a Newton step below 2^-31 (the error is then about
+ * the square of it) or once the bracket is narrower than 2^-50, or after
+ * NEWTON_MAX_IT iterations. Random and sequential access therefore give the
+ * same u, bit for bit, on every target.
+ */
+static int64_t solve_u(struct solve *sv, int64_t u)
+{
+	const struct mot_curve_seg *s = sv->s;
+	bool bezier = sv->c->kind == MOT_INTERP_BEZIER;
+	bool lo_known = false, hi_known = false;
+	int64_t lo = 0, hi = ONE62, dx = ONE62, dxold = ONE62;
+
+	for (sv->it = 1; sv->it <= NEWTON_MAX_IT; sv->it++) {
+		int64_t f, df, du = 0, un = 0, tol;
+		bool newton;
+
+		if (bezier) {
+			bezier_frame(sv->c, u, &f, &df);
+		} else {
+			f = poly_eval(s->fc, u);
+			df = poly_deriv(s->fc, u);
+		}
+		f -= sv->d;
+		if (f == 0)
+			return u;
+		if (f < 0) {
+			lo = u;
+			lo_known = true;
+		} else {
+			hi = u;
+			hi_known = true;
+		}
+		if (lo >= hi) /* the root lies beyond an end of the piece */
+			return u;
+		newton = df > 0 && ratio62(f, df, &du);
+		if (newton) {
+			/* rtsafe's progress test: |du| at most half the step before last */
+			if (du > dxold / 2 || du < -(dxold / 2))
+				newton = false;
+			un = u - du;
+			if (un <= lo) {
+				newton = newton && !lo_known;
+				un = lo;
+			} else if (un >= hi) {
+				newton = newton && !hi_known;
+				un = hi;
+			}
+		}
+		dxold = dx;
+		if (newton) {
+			dx = u - un;
+			if (dx < 0)
+				dx = -dx;
+			tol = NEWTON_TOL;
+		} else {
+			dx = (hi - lo) / 2;
+			un = lo + dx;
+			tol = BISECT_TOL;
+		}
+		if (dx <= tol)
+			return un;
+		u = un;
+	}
+	return u;
+}
+
+/* Value of an approximating curve at a (warped) frame strictly inside the
+ * span; *iters: the Newton iterations it took. */
+static mot_q32 approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f,
+			   int *iters, uint32_t *sat)
+{
+	const struct mot_curve_seg *s;
+	struct solve sv;
+	int64_t u;
+
+	sv.c = c;
+	if (c->kind == MOT_INTERP_BEZIER) {
+		s = &c->seg[0];
+	} else {
+		s = &c->seg[locate_seg(c, cur, f)];
+	}
+	sv.s = s;
+	sv.d = round_shift(f - s->fref, -s->fsh, NULL);
+	u = frac62(f - s->f0, &s->inv_w);
+	if (s->start == START_CUBE0)
+		u = cbrt62(u);
+	else if (s->start == START_CUBE1)
+		u = ONE62 - cbrt62(ONE62 - u);
+	u = solve_u(&sv, u);
+	*iters = sv.it;
+	if (c->kind == MOT_INTERP_BEZIER)
+		return bezier_value(c, u, sat);
+	return mot_add_sat(s->vref, round_shift(poly_eval(s->c, u), s->vsh, sat), sat);
+}
+
+/* ---- evaluation -------------------------------------------------------------- */
+
+/* The strand-wide time warp: a frame strictly inside the span to its eased
+ * frame, in [span_f0, span_f1]. */
+static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
+{
+	int64_t s = frac62(f - c->span_f0, &c->span_inv);
+
+	s = mot_ease_apply62(&c->span, s);
+	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
+}
+
+static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+		    int *iters, uint32_t *sat)
+{
+	const struct mot_key *k;
+	const struct mot_curve_seg *s;
+	uint32_t n;
+	int64_t u;
+
+	if (!c || c->nkeys == 0) {
+		if (sat)
+			*sat |= MOT_SAT_DOMAIN;
+		return 0;
+	}
+	k = c->keys;
+	n = c->nkeys;
+	if (frame <= k[0].frame)
+		return k[0].value;
+	if (frame >= k[n - 1].frame)
+		return k[n - 1].value;
+	if (c->span_ease) {
+		frame = span_warp(c, frame);
+		if (frame <= k[0].frame)
+			return k[0].value;
+		if (frame >= k[n - 1].frame)
+			return k[n - 1].value;
+	}
+	if (c->kind >= MOT_INTERP_BSPLINE) {
+		if (c->seg_ease) {
+			/* the key interval's warp, in frames, before the solve */
+			uint32_t i = locate_key(c, cur, frame);
+
+			s = &c->seg[i];
+			if (!mot_ease_is_identity(&s->ease)) {
+				int64_t h = k[i + 1].frame - k[i].frame;
+
+				u = frac62(frame - k[i].frame, &s->inv_h);
+				u = mot_ease_apply62(&s->ease, u);
+				frame = k[i].frame + mot_acc_round(mot_acc_mul(u, h), 62, NULL);
+				if (frame <= k[0].frame)
+					return k[0].value;
+				if (frame >= k[n - 1].frame)
+					return k[n - 1].value;
+			}
+		}
+		return approx_eval(c, cur, frame, iters, sat);
+	}
+	s = &c->seg[locate_seg(c, cur, frame)];
+	if (c->kind == MOT_INTERP_STEP)
+		return s->vref;
+	u = frac62(frame - s->f0, &s->inv_w);
+	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
+		u = mot_ease_apply62(&s->ease, u);
+	return mot_add_sat(s->vref, round_shift(poly_eval(s->c, u), s->vsh, sat), sat);
+}
+
+mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+		       uint32_t *sat)
+{
+	int iters;
+
+	return eval(c, cur, frame, &iters, sat);
+}
+
+int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)
+{
+	int iters = 0;
+
+	eval(c, NULL, frame, &iters, NULL);
+	return iters;
+}
+
+/* ---- integral -------------------------------------------------------------------- */
+
+/*
+ * Integral over [f0, f0 + e] of interpolating piece s, 0 <= e <= f1 - f0, in
+ * value x frames, Q64.64 (FORMULAS section 8). With s = e / h:
+ *   step:     e v0                                  exact
+ *   linear:   e v0 + dv e^2 / (2h)                  exact but for one rounding:
+ *             e^2 / h = q + r / h and dv r / h = q2 + r2 / h, two exact divisions
+ *   hermite:  e (v0 + sum c_p s^p / (p + 1))        the mean value in the block
+ *             scale of c (~2^-59 of sum |c_p|), times e in 128 bits
+ */
+static mot_acc seg_integral(const struct mot_curve *c, uint32_t i, int64_t e, int64_t s62)
+{
+	const struct mot_curve_seg *s = &c->seg[i];
+	mot_acc a = mot_acc_mul(e, s->vref);
+
+	if (c->kind == MOT_INTERP_LINEAR) {
+		/* |dv| < 2^63 and 0 <= e <= h < 2^63 (curve.h limits), so every
+		 * quotient below fits 63 bits */
+		int64_t h = s->f1 - s->f0, dv = c->keys[i + 1].value - s->vref;
+		int64_t adv = dv < 0 ? -dv : dv;
+		uint64_t r, r2, q, q2;
+		mot_acc t;
+
+		q = mot_acc_udiv(mot_acc_mul(e, e), (uint64_t)h, &r, NULL);
+		q2 = mot_acc_udiv(mot_acc_mul(adv, (int64_t)r), (uint64_t)h, &r2, NULL);
+		t = mot_acc_add(mot_acc_mul(adv, (int64_t)q), mot_acc_from((int64_t)q2, 0));
+		/* half of t + r2/h, rounded to nearest, ties toward +infinity */
+		if (dv >= 0)
+			t = acc_sar(mot_acc_add(t, mot_acc_from(1, 0)), 1);
+		else
+			t = mot_acc_neg(acc_sar(mot_acc_add(t, mot_acc_from(r2 != 0, 0)), 1));
+		return mot_acc_add(a, t);
+	}
+	if (c->kind == MOT_INTERP_HERMITE)
+		a = mot_acc_add(a, acc_round_shift(mot_acc_mul(e, poly_eval(s->ic, s62)), s->vsh));
+	return a;
+}
+
+int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_cursor *cur,
+		       mot_q32 frame, uint32_t *sat)
+{
+	const struct mot_key *k;
+	uint32_t n, i;
+	mot_acc a;
+
+	if (!out)
+		return MOT_E_INVAL;
+	*out = mot_acc_zero();
+	if (!c || !c->integral || c->nkeys == 0)
+		return MOT_E_INVAL;
+	k = c->keys;
+	n = c->nkeys;
+	/* Held ends: the integral grows linearly, exactly (two 128-bit products). */
+	if (frame < k[0].frame) {
+		a = mot_acc_sub(mot_acc_mul(k[0].value, frame), mot_acc_mul(k[0].value, k[0].frame));
+		*out = mot_acc_add(c->area_first, a);
+		return MOT_OK;
+	}
+	if (frame >= k[n - 1].frame) {
+		a = mot_acc_sub(mot_acc_mul(k[n - 1].value, frame),
+				mot_acc_mul(k[n - 1].value, k[n - 1].frame));
+		*out = mot_acc_add(c->area_last, a);
+		return MOT_OK;
+	}
+	i = locate_seg(c, cur, frame);
+	a = seg_integral(c, i, frame - c->seg[i].f0, frac62(frame - c->seg[i].f0, &c->seg[i].inv_w));
+	*out = mot_acc_add(c->seg[i].area, a);
+	return MOT_OK;
+}
+
+/* ---- preparation ------------------------------------------------------------------- */
+
+uint32_t mot_curve_seg_count(enum mot_interp kind, uint32_t nkeys)
+{
+	if (nkeys == 0)
+		return 0;
+	switch (kind) {
+	case MOT_INTERP_STEP:
+	case MOT_INTERP_LINEAR:
+	case MOT_INTERP_HERMITE:
+	case MOT_INTERP_BEZIER:
+		/* one per key interval (bezier: the key intervals carry the ease) */
+		return nkeys > 1 ? nkeys - 1 : 1;
+	case MOT_INTERP_BSPLINE:
+	case MOT_INTERP_BETA:
+		/* n + 4 control points with the ends tripled: n + 1 cubics */
+		return nkeys == 1 ? 1 : nkeys < UINT32_MAX ? nkeys + 1 : 0;
+	}
+	return 0;
+}
+
+/* Linear and Hermite piece i: c[] in powers of s relative to v(i). The
+ * Catmull-Rom tangent terms h m(i) = dv h / D with D the width of the
+ * tangent's chord (FORMULAS section 6) are formed as dv * round(h / D * 2^60),
+ * a 2^-61 relative rounding, so the numerators live at scale 2^60. */
+static int prep_hermite(const struct mot_curve *c, uint32_t i, mot_acc num[4], uint64_t *den)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, j, t;
+	int64_t h = k[i + 1].frame - k[i].frame, dv = k[i + 1].value - k[i].value;
+	mot_acc tm[2], d60 = mot_acc_from(dv, 60);
+
+	for (t = 0; t < 2; t++) {
+		uint32_t a, b;
+
+		j = i + t;
+		a = j == 0 ? 0 : j - 1;
+		b = j == n - 1 ? j : j + 1;
+		tm[t] = mot_acc_mul(k[b].value - k[a].value,
+				    mot_muldiv(h, (int64_t)1 << 60, k[b].frame - k[a].frame, NULL));
+	}
+	num[0] = mot_acc_zero();
+	num[1] = tm[0];
+	/* 3 dv - 2 h m(i) - h m(i+1) and -2 dv + h m(i) + h m(i+1) */
+	num[2] = mot_acc_sub(mot_acc_add(mot_acc_add(d60, d60), d60),
+			     mot_acc_add(mot_acc_add(tm[0], tm[0]), tm[1]));
+	num[3] = mot_acc_sub(mot_acc_add(tm[0], tm[1]), mot_acc_add(d60, d60));
+	*den = (uint64_t)1 << 60;
+	return MOT_OK;
+}
+
+/*
+ * The cubic basis of the uniform B-spline and of Barsky's Beta-spline
+ * (FORMULAS section 6), as the power-form weights N[k][p] of control points
+ * V(i-1+k) on u^p, over a common denominator den: all in Q32.32. Expanding
+ * the section's b(-1)..b(2) with T3 = 2 beta1^3, T2 = 2 beta1^2, T1 = 2 beta1:
+ *   b(-1) = T3 (1 - 3u + 3u^2 - u^3)
+ *   b(0)  = (2 T2 + 2 T1 + beta2) + 3 (T3 - T1) u - 3 (T3 + T2 + beta2) u^2
+ *           + (T3 + T2 + T1 + 2 beta2) u^3
+ *   b(1)  = 2 + 3 T1 u + 3 (T2 + beta2) u^2 - (T2 + T1 + 2 beta2 + 2) u^3
+ *   b(2)  = 2 u^3,        den = delta = T3 + 2 T2 + 2 T1 + beta2 + 2.
+ * The powers of beta1 are rounded once; every column of N then still sums to
+ * den (u^0) or 0 exactly, so the curve keeps its partition of unity and
+ * starts and ends exactly on the tripled keys. beta1 = 1, beta2 = 0 gives
+ * N = 2 x the B-spline's and den = 12 = 2 x 6.
+ */
+static void basis(const struct mot_curve *c, int64_t nb[4][4], uint64_t *den)
+{
+	static const int8_t bsp[4][4] = {
+		{ 1, -3, 3, -1 }, { 4, 0, -6, 3 }, { 1, 3, 3, -3 }, { 0, 0, 0, 1 },
+	};
+	int64_t t1, t2, t3, b2, two = 2 * MOT_Q32_ONE;
+	unsigned k, p;
+
+	if (c->kind == MOT_INTERP_BSPLINE) {
+		for (k = 0; k < 4; k++)
+			for (p = 0; p < 4; p++)
+				nb[k][p] = bsp[k][p] * MOT_Q32_ONE;
+		*den = 6 * (uint64_t)MOT_Q32_ONE;
+		return;
+	}
+	t2 = mot_mul(c->beta1, c->beta1, NULL);
+	t3 = 2 * mot_mul(t2, c->beta1, NULL);
+	t2 *= 2;
+	t1 = 2 * c->beta1;
+	b2 = c->beta2;
+	nb[0][0] = t3;
+	nb[0][1] = -3 * t3;
+	nb[0][2] = 3 * t3;
+	nb[0][3] = -t3;
+	nb[1][0] = 2 * t2 + 2 * t1 + b2;
+	nb[1][1] = 3 * (t3 - t1);
+	nb[1][2] = -3 * (t3 + t2 + b2);
+	nb[1][3] = t3 + t2 + t1 + 2 * b2;
+	nb[2][0] = two;
+	nb[2][1] = 3 * t1;
+	nb[2][2] = 3 * (t2 + b2);
+	nb[2][3] = -(t2 + t1 + 2 * b2 + two);
+	nb[3][0] = nb[3][1] = nb[3][2] = 0;
+	nb[3][3] = two;
+	*den = (uint64_t)(t3 + 2 * t2 + 2 * t1 + b2 + two);
+}
+
+/* Spline piece j on the extended control points E(j)..E(j+3), E(m) = key
+ * clamp(m - 2, 0, n - 1): both polynomials relative to E(j+1), their frame
+ * interval [f0, ...) and the Newton start rule. */
+static int prep_spline(struct mot_curve *c, uint32_t j, int64_t nb[4][4], uint64_t den)
+{
+	const struct mot_key *k = c->keys;
+	struct mot_curve_seg *s = &c->seg[j];
+	int64_t n1 = (int64_t)c->nkeys - 1, df[4], dv[4], f0;
+	mot_acc nf[4], nv[4];
+	unsigned p, m;
+	int err;
+
+	for (m = 0; m < 4; m++) {
+		int64_t e = (int64_t)j + m - 2;
+		const struct mot_key *km = &k[e < 0 ? 0 : e > n1 ? n1 : e];
+
+		if (m == 0) {
+			/* the reference point E(j+1) */
+			const struct mot_key *kr = &k[e + 1 < 0 ? 0 : e + 1 > n1 ? n1 : e + 1];
+
+			s->fref = kr->frame;
+			s->vref = kr->value;
+		}
+
+		df[m] = km->frame - s->fref;
+		dv[m] = km->value - s->vref;
+	}
+	for (p = 0; p < 4; p++) {
+		nf[p] = nv[p] = mot_acc_zero();
+		for (m = 0; m < 4; m++) {
+			nf[p] = mot_acc_mac(nf[p], nb[m][p], df[m]);
+			nv[p] = mot_acc_mac(nv[p], nb[m][p], dv[m]);
+		}
+	}
+	err = poly_prep(s->fc, &s->fsh, nf, den);
+	if (!err)
+		err = poly_prep(s->c, &s->vsh, nv, den);
+	if (err || !acc_div_round(&f0, nf[0], 0, den))
+		return MOT_E_RANGE;
+	s->f0 = s->fref + f0;
+	s->start = START_CHORD;
+	/* frame(u) - frame(0) = w u^3, or frame(1) - frame(u) = w (1 - u)^3, tested
+	 * on the exact numerators: the first and last piece (and every piece of a
+	 * beta spline with beta1 = 0, beta2 = 0). */
+	{
+		mot_acc n3 = mot_acc_add(mot_acc_add(nf[3], nf[3]), nf[3]);
+
+		if (acc_bitlen(nf[1]) == 0 && acc_bitlen(nf[2]) == 0)
+			s->start = START_CUBE0;
+		else if (acc_bitlen(mot_acc_sub(nf[1], n3)) == 0 &&
+			 acc_bitlen(mot_acc_add(nf[2], n3)) == 0)
+			s->start = START_CUBE1;
+	}
+	return MOT_OK;
+}
+
+/* Bezier: scales that keep the key offsets from the first key below 2^56
+ * (de Casteljau differences and (n - 1) * difference then fit int64). */
+static int bezier_shift(int64_t maxdiff)
+{
+	return maxdiff == 0 ? 0 : 56 - (int)bitlen64((uint64_t)maxdiff);
+}
+
+static int prep_bezier(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	struct mot_curve_seg *s = &c->seg[0];
+	int64_t dv = 0;
+	uint32_t i;
+
+	for (i = 1; i < c->nkeys; i++) {
+		int64_t d = k[i].value - k[0].value;
+
+		d = d < 0 ? -d : d;
+		dv = d > dv ? d : dv;
+	}
+	s->fsh = (int16_t)bezier_shift(k[c->nkeys - 1].frame - k[0].frame);
+	s->vsh = (int16_t)bezier_shift(dv);
+	s->fref = s->f0 = k[0].frame;
+	s->vref = k[0].value;
+	s->f1 = k[c->nkeys - 1].frame;
+	s->start = START_CHORD;
+	return mot_recip_init(&s->inv_w, s->f1 - s->f0);
+}
+
+static int prep_pieces(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, j, p;
+	int err = MOT_OK;
+
+	if (n == 1)
+		return MOT_OK;
+	if (c->kind == MOT_INTERP_BEZIER)
+		return prep_bezier(c);
+	if (c->kind >= MOT_INTERP_BSPLINE) {
+		int64_t nb[4][4];
+		uint64_t den;
+
+		basis(c, nb, &den);
+		for (j = 0; j < c->nseg && !err; j++)
+			err = prep_spline(c, j, nb, den);
+		for (j = 0; j < c->nseg && !err; j++) {
+			struct mot_curve_seg *s = &c->seg[j];
+
+			s->f1 = j + 1 < c->nseg ? c->seg[j + 1].f0 : k[n - 1].frame;
+			if (s->f1 > s->f0)
+				err = mot_recip_init(&s->inv_w, s->f1 - s->f0);
+		}
+		return err;
+	}
+	for (j = 0; j < n - 1 && !err; j++) {
+		struct mot_curve_seg *s = &c->seg[j];
+		mot_acc num[4];
+		uint64_t den = 1;
+
+		s->f0 = s->fref = k[j].frame;
+		s->f1 = k[j + 1].frame;
+		s->vref = k[j].value;
+		s->start = START_CHORD;
+		err = mot_recip_init(&s->inv_w, s->f1 - s->f0);
+		num[0] = num[1] = num[2] = num[3] = mot_acc_zero();
+		if (c->kind == MOT_INTERP_LINEAR)
+			num[1] = mot_acc_from(k[j + 1].value - k[j].value, 0);
+		else if (c->kind == MOT_INTERP_HERMITE)
+			err = err ? err : prep_hermite(c, j, num, &den);
+		err = err ? err : poly_prep(s->c, &s->vsh, num, den);
+		/* the mean-value polynomial for the integral, in the same scale */
+		s->ic[0] = 0;
+		for (p = 1; p < 4 && !err; p++)
+			if (!acc_div_round(&s->ic[p], num[p], s->vsh, den * (p + 1)))
+				err = MOT_E_RANGE;
+	}
+	return err;
+}
+
+/* Running integrals: area of piece j = integral from frame 0 to key j. Built
+ * from the first key with the same function the run time uses, then shifted
+ * so that the integral at frame 0 is 0 exactly. */
+static int prep_area(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, j;
+	mot_acc a = mot_acc_zero(), zero;
+
+	c->area_first = a;
+	for (j = 0; j + 1 < n; j++) {
+		c->seg[j].area = a;
+		a = mot_acc_add(a, seg_integral(c, j, k[j + 1].frame - k[j].frame, ONE62));
+		if (acc_bitlen(a) > 124)
+			return MOT_E_RANGE;
+	}
+	c->area_last = a;
+	mot_curve_integral(&zero, c, NULL, 0, NULL);
+	zero = mot_acc_neg(zero);
+	c->area_first = mot_acc_add(c->area_first, zero);
+	c->area_last = mot_acc_add(c->area_last, zero);
+	for (j = 0; j + 1 < n; j++)
+		c->seg[j].area = mot_acc_add(c->seg[j].area, zero);
+	if (acc_bitlen(c->area_first) > 124 || acc_bitlen(c->area_last) > 124)
+		return MOT_E_RANGE;
+	return MOT_OK;
+}
+
+static bool in_unit(mot_q32 x)
+{
+	return x >= 0 && x <= MOT_Q32_ONE;
+}
+
+/* The checks of curve.h, in its order of precedence. */
+static int check(const struct mot_curve *c, const struct mot_curve_opts *o, uint32_t nseg)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, i;
+
+	if (c->kind == MOT_INTERP_BEZIER && n > MOT_BEZIER_MAX_KEYS)
+		return MOT_E_CAPACITY;
+	if (!c->seg || nseg < mot_curve_seg_count(c->kind, n))
+		return MOT_E_CAPACITY;
+	for (i = 0; i < n; i++) {
+		if (mot_abs(k[i].frame) >= MOT_LEN_LIMIT || mot_abs(k[i].value) >= MOT_LEN_LIMIT)
+			return MOT_E_RANGE;
+		if (i > 0 && k[i].frame <= k[i - 1].frame)
+			return MOT_E_ORDER;
+	}
+	for (i = 0; i < n; i++) {
+		if (!in_unit(k[i].ease_in) || !in_unit(k[i].ease_out))
+			return MOT_E_INVAL;
+		if (i + 1 < n && k[i].ease_out > MOT_Q32_ONE - k[i + 1].ease_in)
+			return MOT_E_INVAL;
+	}
+	if (o->ease_in_frames < 0 || o->ease_out_frames < 0 ||
+	    o->ease_in_frames > k[n - 1].frame - k[0].frame ||
+	    o->ease_out_frames > k[n - 1].frame - k[0].frame - o->ease_in_frames)
+		return MOT_E_INVAL;
+	if (c->kind == MOT_INTERP_BETA &&
+	    (o->beta1 < 0 || o->beta1 > MOT_BETA1_MAX || o->beta2 < 0 || o->beta2 > MOT_BETA2_MAX))
+		return MOT_E_INVAL;
+	return MOT_OK;
+}
+
+int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_key *keys,
+		   uint32_t nkeys, const struct mot_curve_opts *opts, struct mot_curve_seg *seg,
+		   uint32_t nseg, uint32_t *sat)
+{
+	static const struct mot_curve_opts defaults = { MOT_Q32_ONE, 0, 0, 0, false };
+	uint32_t i;
+	int err;
+
+	if (!c)
+		return MOT_E_INVAL;
+	/* An unusable curve until the end: eval gives 0 and MOT_SAT_DOMAIN. */
+	c->nkeys = 0;
+	c->nseg = 0;
+	c->kind = (uint32_t)kind;
+	c->keys = keys;
+	c->seg = seg;
+	c->seg_ease = c->span_ease = c->integral = false;
+	if (!opts)
+		opts = &defaults;
+	if (mot_curve_seg_count(kind, 1) == 0 || (nkeys > 0 && !keys))
+		return MOT_E_INVAL;
+	if (nkeys == 0)
+		return MOT_E_NOKEYS;
+	c->nkeys = nkeys;
+	err = check(c, opts, nseg);
+	if (!err && opts->integral && kind >= MOT_INTERP_BSPLINE)
+		err = MOT_E_INVAL;
+	if (err)
+		goto fail;
+	c->nseg = mot_curve_seg_count(kind, nkeys);
+	c->beta1 = opts->beta1;
+	c->beta2 = opts->beta2;
+	c->span_f0 = keys[0].frame;
+	c->span_f1 = keys[nkeys - 1].frame;
+	c->span_ease = opts->ease_in_frames || opts->ease_out_frames;
+	for (i = 0; i < c->nseg; i++) {
+		struct mot_curve_seg *s = &c->seg[i];
+		bool interval = i + 1 < nkeys;
+
+		s->f0 = s->f1 = s->fref = keys[0].frame;
+		s->vref = keys[0].value;
+		s->c[0] = s->c[1] = s->c[2] = s->c[3] = 0;
+		s->fc[0] = s->fc[1] = s->fc[2] = s->fc[3] = 0;
+		s->vsh = s->fsh = 0;
+		s->start = START_CHORD;
+		s->inv_w.m = s->inv_h.m = 0;
+		s->inv_w.shift = s->inv_h.shift = 32;
+		s->area = mot_acc_zero();
+		err = mot_ease_init(&s->ease, interval ? keys[i].ease_out : 0,
+				    interval ? keys[i + 1].ease_in : 0, sat);
+		if (!err && interval)
+			err = mot_recip_init(&s->inv_h, keys[i + 1].frame - keys[i].frame);
+		if (err)
+			goto fail;
+		c->seg_ease = c->seg_ease || !mot_ease_is_identity(&s->ease);
+	}
+	if (opts->integral && (c->seg_ease || c->span_ease)) {
+		err = MOT_E_INVAL;
+		goto fail;
+	}
+	if (c->span_ease) {
+		int64_t span = c->span_f1 - c->span_f0;
+
+		err = mot_ease_init_ratio(&c->span, opts->ease_out_frames, opts->ease_in_frames,
+					  span, sat);
+		if (!err)
+			err = mot_recip_init(&c->span_inv, span);
+		if (err)
+			goto fail;
+	}
+	err = prep_pieces(c);
+	if (err)
+		goto fail;
+	c->integral = opts->integral;
+	if (c->integral) {
+		err = prep_area(c);
+		if (err)
+			goto fail;
+	}
+	return MOT_OK;
+fail:
+	c->nkeys = 0;
+	c->integral = false;
+	return err;
+}
