@@ -105,6 +105,28 @@ static int64_t round_shift(int64_t x, int sh, uint32_t *sat)
 	return x;
 }
 
+/* ref + round(p / 2^sh), saturating only when the sum does not fit: p / 2^sh
+ * alone may exceed int64 by a little where ref brings it back (a piece from
+ * -2^62 to 2^62). */
+static mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
+{
+	mot_acc a;
+	uint64_t lo;
+
+	if (sh > -64)
+		a = acc_round_shift(mot_acc_from(p, 0), sh);
+	else
+		a = p ? acc_shl(mot_acc_from(p, 0), 64) : mot_acc_zero();
+	a = mot_acc_add(a, mot_acc_from(ref, 0));
+	lo = mot_acc_lo(a);
+	if (mot_acc_hi(a) != ((int64_t)lo < 0 ? ~(uint64_t)0 : 0)) {
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return mot_acc_is_neg(a) ? MOT_Q32_MIN : MOT_Q32_MAX;
+	}
+	return (mot_q32)lo;
+}
+
 /*
  * round(num * 2^sh / den) for den > 0, as int64 in *out. False when the
  * shifted numerator or the quotient would not fit (the prepared scales keep
@@ -194,10 +216,14 @@ static inline int64_t poly_deriv(const int64_t c[4], int64_t u)
 }
 
 /* round(x * 2^62 / d) for the prepared reciprocal of d: the parameter in
- * Q2.62 of an offset x in [0, d]. */
+ * Q2.62 of an offset x in [0, d]. (Only d = 1 has a shift of 30.) */
 static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 {
-	int64_t s = mot_acc_round(mot_acc_mul(x, r->m), r->shift - 30, NULL);
+	int64_t s;
+
+	if (r->shift <= 30)
+		return x <= 0 ? 0 : ONE62;
+	s = mot_acc_round(mot_acc_mul(x, r->m), r->shift - 30, NULL);
 
 	return s < 0 ? 0 : s > ONE62 ? ONE62 : s;
 }
@@ -355,7 +381,7 @@ static int64_t bezier_value(const struct mot_curve *c, int64_t u, uint32_t *sat)
 	int64_t w[MOT_BEZIER_MAX_KEYS];
 
 	bezier_reduce(c, true, u, 1, w);
-	return mot_add_sat(c->keys[0].value, round_shift(w[0], c->seg[0].vsh, sat), sat);
+	return value_of(c->keys[0].value, w[0], c->seg[0].vsh, sat);
 }
 
 /*
@@ -462,7 +488,7 @@ static mot_q32 approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 	*iters = sv.it;
 	if (c->kind == MOT_INTERP_BEZIER)
 		return bezier_value(c, u, sat);
-	return mot_add_sat(s->vref, round_shift(poly_eval(s->c, u), s->vsh, sat), sat);
+	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 }
 
 /* ---- evaluation -------------------------------------------------------------- */
@@ -529,7 +555,7 @@ static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f
 	u = frac62(frame - s->f0, &s->inv_w);
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
 		u = mot_ease_apply62(&s->ease, u);
-	return mot_add_sat(s->vref, round_shift(poly_eval(s->c, u), s->vsh, sat), sat);
+	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 }
 
 mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
@@ -583,7 +609,7 @@ static mot_acc seg_integral(const struct mot_curve *c, uint32_t i, int64_t e, in
 		return mot_acc_add(a, t);
 	}
 	if (c->kind == MOT_INTERP_HERMITE)
-		a = mot_acc_add(a, acc_round_shift(mot_acc_mul(e, poly_eval(s->ic, s62)), s->vsh));
+		a = mot_acc_add(a, acc_round_shift(mot_acc_mul(e, poly_eval(s->ic, s62)), s->fsh));
 	return a;
 }
 
@@ -640,58 +666,89 @@ uint32_t mot_curve_seg_count(enum mot_interp kind, uint32_t nkeys)
 	return 0;
 }
 
-/* Linear and Hermite piece i: c[] in powers of s relative to v(i). The
- * Catmull-Rom tangent terms h m(i) = dv h / D with D the width of the
- * tangent's chord (FORMULAS section 6) are formed as dv * round(h / D * 2^60),
- * a 2^-61 relative rounding, so the numerators live at scale 2^60. */
-static int prep_hermite(const struct mot_curve *c, uint32_t i, mot_acc num[4], uint64_t *den)
+/* dv h / d at scale 2^58, rounded once (|dv| < 2^63, 0 < h <= d): a
+ * Catmull-Rom tangent term h m = h dv / d. The integer part is an exact
+ * division, the fraction a second one. */
+static mot_acc tangent58(int64_t dv, int64_t h, int64_t d)
+{
+	int64_t adv = dv < 0 ? -dv : dv, fr = 0;
+	uint64_t r, q = mot_acc_udiv(mot_acc_mul(adv, h), (uint64_t)d, &r, NULL);
+	mot_acc t = acc_shl(mot_acc_from((int64_t)q, 0), 58);
+
+	acc_div_round(&fr, mot_acc_from(dv < 0 ? -(int64_t)r : (int64_t)r, 0), 58, (uint64_t)d);
+	return mot_acc_add(dv < 0 ? mot_acc_neg(t) : t, mot_acc_from(fr, 0));
+}
+
+static mot_acc acc_times(mot_acc x, unsigned k)
+{
+	mot_acc r = mot_acc_zero();
+
+	while (k--)
+		r = mot_acc_add(r, x);
+	return r;
+}
+
+/* Hermite piece i: numerators of c[] in powers of s relative to v(i), at
+ * scale 2^58 (FORMULAS section 6): the tangent terms h m(i), h m(i+1) with
+ * the chord of each tangent (one-sided at the ends), then
+ *   c1 = h m(i), c2 = 3 dv - 2 h m(i) - h m(i+1), c3 = -2 dv + h m(i) + h m(i+1).
+ * Every term is below 2^121, every sum below 2^124. */
+static void prep_hermite(const struct mot_curve *c, uint32_t i, mot_acc num[4], uint64_t *den)
 {
 	const struct mot_key *k = c->keys;
-	uint32_t n = c->nkeys, j, t;
-	int64_t h = k[i + 1].frame - k[i].frame, dv = k[i + 1].value - k[i].value;
-	mot_acc tm[2], d60 = mot_acc_from(dv, 60);
+	uint32_t n = c->nkeys, t;
+	int64_t h = k[i + 1].frame - k[i].frame;
+	mot_acc tm[2], d58 = acc_shl(mot_acc_from(k[i + 1].value - k[i].value, 0), 58);
 
 	for (t = 0; t < 2; t++) {
-		uint32_t a, b;
+		uint32_t j = i + t, a = j == 0 ? 0 : j - 1, b = j == n - 1 ? j : j + 1;
 
-		j = i + t;
-		a = j == 0 ? 0 : j - 1;
-		b = j == n - 1 ? j : j + 1;
-		tm[t] = mot_acc_mul(k[b].value - k[a].value,
-				    mot_muldiv(h, (int64_t)1 << 60, k[b].frame - k[a].frame, NULL));
+		tm[t] = tangent58(k[b].value - k[a].value, h, k[b].frame - k[a].frame);
 	}
 	num[0] = mot_acc_zero();
 	num[1] = tm[0];
-	/* 3 dv - 2 h m(i) - h m(i+1) and -2 dv + h m(i) + h m(i+1) */
-	num[2] = mot_acc_sub(mot_acc_add(mot_acc_add(d60, d60), d60),
-			     mot_acc_add(mot_acc_add(tm[0], tm[0]), tm[1]));
-	num[3] = mot_acc_sub(mot_acc_add(tm[0], tm[1]), mot_acc_add(d60, d60));
-	*den = (uint64_t)1 << 60;
-	return MOT_OK;
+	num[2] = mot_acc_sub(acc_times(d58, 3), mot_acc_add(acc_times(tm[0], 2), tm[1]));
+	num[3] = mot_acc_sub(mot_acc_add(tm[0], tm[1]), acc_times(d58, 2));
+	*den = (uint64_t)1 << 58;
+}
+
+/* x * y for 0 <= x < 2^127, 0 <= y < 2^63, when the product fits 127 bits. */
+static mot_acc acc_mul_u(mot_acc x, int64_t y)
+{
+	uint64_t lo = mot_acc_lo(x);
+	mot_acc r = acc_shl(mot_acc_mul((int64_t)mot_acc_hi(x), y), 64);
+
+	r = mot_acc_add(r, acc_shl(mot_acc_mul((int64_t)(lo >> 32), y), 32));
+	return mot_acc_add(r, mot_acc_mul((int64_t)(lo & 0xffffffffu), y));
 }
 
 /*
  * The cubic basis of the uniform B-spline and of Barsky's Beta-spline
  * (FORMULAS section 6), as the power-form weights N[k][p] of control points
- * V(i-1+k) on u^p, over a common denominator den: all in Q32.32. Expanding
- * the section's b(-1)..b(2) with T3 = 2 beta1^3, T2 = 2 beta1^2, T1 = 2 beta1:
+ * V(i-1+k) on u^p over a common denominator den. Expanding the section's
+ * b(-1)..b(2) with T3 = 2 beta1^3, T2 = 2 beta1^2, T1 = 2 beta1:
  *   b(-1) = T3 (1 - 3u + 3u^2 - u^3)
  *   b(0)  = (2 T2 + 2 T1 + beta2) + 3 (T3 - T1) u - 3 (T3 + T2 + beta2) u^2
  *           + (T3 + T2 + T1 + 2 beta2) u^3
  *   b(1)  = 2 + 3 T1 u + 3 (T2 + beta2) u^2 - (T2 + T1 + 2 beta2 + 2) u^3
  *   b(2)  = 2 u^3,        den = delta = T3 + 2 T2 + 2 T1 + beta2 + 2.
- * The powers of beta1 are rounded once; every column of N then still sums to
- * den (u^0) or 0 exactly, so the curve keeps its partition of unity and
- * starts and ends exactly on the tripled keys. beta1 = 1, beta2 = 0 gives
- * N = 2 x the B-spline's and den = 12 = 2 x 6.
+ * For the Beta-spline everything is first formed exactly at scale 2^96 in
+ * 128 bits (beta1 in Q32.32 has a cube in Q32.96), then rounded once to a
+ * common scale that keeps the largest entry below 2^60: ~60 significant bits,
+ * where rounding beta1^3 to Q32.32 would change a curve by tens of LSB.
+ * Column u^0 must sum to den and the others to 0 for the curve to keep its
+ * partition of unity and start and end exactly on the tripled keys, so b(1)'s
+ * row is formed last as what the others leave; b(-1) stays T3 times
+ * (1, -3, 3, -1), so the last piece is an exact cube. beta1 = 1, beta2 = 0
+ * gives 2^k times the B-spline's integer matrix (den 6).
  */
 static void basis(const struct mot_curve *c, int64_t nb[4][4], uint64_t *den)
 {
 	static const int8_t bsp[4][4] = {
 		{ 1, -3, 3, -1 }, { 4, 0, -6, 3 }, { 1, 3, 3, -3 }, { 0, 0, 0, 1 },
 	};
-	int64_t t1, t2, t3, b2, two = 2 * MOT_Q32_ONE;
-	unsigned k, p;
+	mot_acc b1sq, t3, t2, t1, b2, two, d, r1[4];
+	unsigned k, p, sh;
 
 	if (c->kind == MOT_INTERP_BSPLINE) {
 		for (k = 0; k < 4; k++)
@@ -700,26 +757,35 @@ static void basis(const struct mot_curve *c, int64_t nb[4][4], uint64_t *den)
 		*den = 6 * (uint64_t)MOT_Q32_ONE;
 		return;
 	}
-	t2 = mot_mul(c->beta1, c->beta1, NULL);
-	t3 = 2 * mot_mul(t2, c->beta1, NULL);
-	t2 *= 2;
-	t1 = 2 * c->beta1;
-	b2 = c->beta2;
-	nb[0][0] = t3;
-	nb[0][1] = -3 * t3;
-	nb[0][2] = 3 * t3;
-	nb[0][3] = -t3;
-	nb[1][0] = 2 * t2 + 2 * t1 + b2;
-	nb[1][1] = 3 * (t3 - t1);
-	nb[1][2] = -3 * (t3 + t2 + b2);
-	nb[1][3] = t3 + t2 + t1 + 2 * b2;
-	nb[2][0] = two;
-	nb[2][1] = 3 * t1;
-	nb[2][2] = 3 * (t2 + b2);
-	nb[2][3] = -(t2 + t1 + 2 * b2 + two);
-	nb[3][0] = nb[3][1] = nb[3][2] = 0;
-	nb[3][3] = two;
-	*den = (uint64_t)(t3 + 2 * t2 + 2 * t1 + b2 + two);
+	/* beta1 <= 2^40 raw, beta2 <= 2^56 raw: every term below is < 2^124 */
+	b1sq = mot_acc_mul(c->beta1, c->beta1);
+	t3 = acc_shl(acc_mul_u(b1sq, c->beta1), 1);
+	t2 = acc_shl(b1sq, 33);
+	t1 = acc_shl(mot_acc_from(c->beta1, 0), 65);
+	b2 = acc_shl(mot_acc_from(c->beta2, 0), 64);
+	two = acc_shl(mot_acc_from(1, 0), 97);
+	/* den = T3 + 2 T2 + 2 T1 + beta2 + 2 */
+	d = mot_acc_add(mot_acc_add(t3, acc_shl(mot_acc_add(t2, t1), 1)), mot_acc_add(b2, two));
+	/* b(0): 2 T2 + 2 T1 + beta2, 3 (T3 - T1), -3 (T3 + T2 + beta2), T3 + T2 + T1 + 2 beta2 */
+	r1[0] = mot_acc_add(acc_shl(mot_acc_add(t2, t1), 1), b2);
+	r1[1] = mot_acc_sub(t3, t1);
+	r1[1] = mot_acc_add(acc_shl(r1[1], 1), r1[1]);
+	r1[2] = mot_acc_neg(mot_acc_add(mot_acc_add(t3, t2), b2));
+	r1[2] = mot_acc_add(acc_shl(r1[2], 1), r1[2]);
+	r1[3] = mot_acc_add(mot_acc_add(mot_acc_add(t3, t2), t1), acc_shl(b2, 1));
+	sh = acc_bitlen(d) > 60 ? acc_bitlen(d) - 60 : 0; /* den is the largest but for 3 x */
+	sh += 2;
+	nb[0][0] = (int64_t)mot_acc_lo(acc_round_shift(t3, (int)sh));
+	nb[0][1] = -3 * nb[0][0];
+	nb[0][2] = 3 * nb[0][0];
+	nb[0][3] = -nb[0][0];
+	for (p = 0; p < 4; p++) {
+		nb[1][p] = (int64_t)mot_acc_lo(acc_round_shift(r1[p], (int)sh));
+		nb[3][p] = p == 3 ? (int64_t)mot_acc_lo(acc_round_shift(two, (int)sh)) : 0;
+	}
+	*den = mot_acc_lo(acc_round_shift(d, (int)sh));
+	for (p = 0; p < 4; p++)
+		nb[2][p] = (p == 0 ? (int64_t)*den : 0) - nb[0][p] - nb[1][p] - nb[3][p];
 }
 
 /* Spline piece j on the extended control points E(j)..E(j+3), E(m) = key
@@ -847,13 +913,18 @@ static int prep_pieces(struct mot_curve *c)
 		if (c->kind == MOT_INTERP_LINEAR)
 			num[1] = mot_acc_from(k[j + 1].value - k[j].value, 0);
 		else if (c->kind == MOT_INTERP_HERMITE)
-			err = err ? err : prep_hermite(c, j, num, &den);
+			prep_hermite(c, j, num, &den);
 		err = err ? err : poly_prep(s->c, &s->vsh, num, den);
-		/* the mean-value polynomial for the integral, in the same scale */
-		s->ic[0] = 0;
-		for (p = 1; p < 4 && !err; p++)
-			if (!acc_div_round(&s->ic[p], num[p], s->vsh, den * (p + 1)))
-				err = MOT_E_RANGE;
+		if (!err && c->kind == MOT_INTERP_HERMITE) {
+			/* the mean value, c[p] / (p + 1), in its own block scale:
+			 * numerators 12 / (p + 1) times c's over 12 den (< 2^127) */
+			mot_acc im[4];
+
+			im[0] = mot_acc_zero();
+			for (p = 1; p < 4; p++)
+				im[p] = acc_times(num[p], 12 / (p + 1));
+			err = poly_prep(s->ic, &s->fsh, im, 12 * den);
+		}
 	}
 	return err;
 }

@@ -89,7 +89,7 @@ struct mot_curve_seg {
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
 	};
 	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
-	int16_t vsh, fsh;        /* scales of c[] and fc[] (may be negative) */
+	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
 	uint8_t start;           /* Newton start rule (curve.c) */
 	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
 	struct mot_ease ease;    /* slow-in/out of key interval j */

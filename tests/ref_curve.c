@@ -152,27 +152,59 @@ static ref_t approx(enum mot_interp kind, const struct mot_key *k, uint32_t n,
 	return pv;
 }
 
+/* The strand warp of f, inside the span (FORMULAS section 7). */
+static ref_t strand_warp(const struct mot_key *k, uint32_t n, const struct mot_curve_opts *o,
+			 ref_t f)
+{
+	ref_t f0 = kf(k, 0), span = kf(k, n - 1) - f0;
+
+	if (!o->ease_in_frames && !o->ease_out_frames)
+		return f;
+	return f0 + span * ref_ease(ref_q(o->ease_out_frames) / span,
+				    ref_q(o->ease_in_frames) / span, (f - f0) / span);
+}
+
+/* The key interval holding f (f inside the span). */
+static uint32_t interval(const struct mot_key *k, uint32_t n, ref_t f)
+{
+	uint32_t i;
+
+	for (i = 0; i + 2 < n && f >= kf(k, i + 1); i++)
+		;
+	return i;
+}
+
+ref_t ref_curve_warp(const struct mot_key *k, uint32_t n, const struct mot_curve_opts *o,
+		     ref_t f, bool keys_too)
+{
+	uint32_t i;
+	ref_t h;
+
+	if (n == 1 || f <= kf(k, 0) || f >= kf(k, n - 1))
+		return f;
+	f = strand_warp(k, n, o, f);
+	if (!keys_too || f >= kf(k, n - 1))
+		return f;
+	i = interval(k, n, f);
+	h = kf(k, i + 1) - kf(k, i);
+	return kf(k, i) + h * ref_ease(ref_q(k[i].ease_out), ref_q(k[i + 1].ease_in),
+				       (f - kf(k, i)) / h);
+}
+
 ref_t ref_curve_eval(enum mot_interp kind, const struct mot_key *k, uint32_t n,
 		     const struct mot_curve_opts *o, ref_t f)
 {
-	ref_t f0 = kf(k, 0), fn = kf(k, n - 1), s;
 	uint32_t i;
+	ref_t s;
 
-	if (n == 1 || f <= f0)
+	if (n == 1 || f <= kf(k, 0))
 		return kv(k, 0);
-	if (f >= fn)
+	if (f >= kf(k, n - 1))
 		return kv(k, n - 1);
-	if (o->ease_in_frames || o->ease_out_frames) {
-		ref_t span = fn - f0;
-
-		s = ref_ease(ref_q(o->ease_out_frames) / span, ref_q(o->ease_in_frames) / span,
-			     (f - f0) / span);
-		f = f0 + s * span;
-		if (f >= fn)
-			return kv(k, n - 1);
-	}
-	for (i = 0; i + 2 < n && f >= kf(k, i + 1); i++)
-		;
+	f = strand_warp(k, n, o, f);
+	if (f >= kf(k, n - 1))
+		return kv(k, n - 1);
+	i = interval(k, n, f);
 	s = (f - kf(k, i)) / (kf(k, i + 1) - kf(k, i));
 	s = ref_ease(ref_q(k[i].ease_out), ref_q(k[i + 1].ease_in), s);
 	if (kind <= MOT_INTERP_HERMITE)

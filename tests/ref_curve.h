@@ -30,6 +30,11 @@ ref_t ref_curve_eval(enum mot_interp kind, const struct mot_key *keys, uint32_t 
 ref_t ref_curve_slope(enum mot_interp kind, const struct mot_key *keys, uint32_t n,
 		      const struct mot_curve_opts *opts, ref_t f, ref_t df);
 
+/* The frame after the strand-wide warp, and with keys also after the key
+ * interval's warp: where an eased curve takes its value from the plain one. */
+ref_t ref_curve_warp(const struct mot_key *keys, uint32_t n, const struct mot_curve_opts *opts,
+		     ref_t f, bool keys_too);
+
 /* Integral from frame 0 to f (value x frames), step/linear/hermite only. */
 ref_t ref_curve_integral(enum mot_interp kind, const struct mot_key *keys, uint32_t n, ref_t f);
 
