@@ -159,10 +159,13 @@ static bool acc_div_round(int64_t *out, mot_acc num, int sh, uint64_t den)
 	return true;
 }
 
-/* a * u / 2^62, rounded: one Horner step with u in Q2.62. */
+/* a * u / 2^62, rounded, for |u| <= 2^62 (so the result fits without a
+ * saturation test): one Horner or de Casteljau step with u in Q2.62. */
 static inline int64_t mul62(int64_t a, int64_t u)
 {
-	return mot_acc_round(mot_acc_mul(a, u), 62, NULL);
+	mot_acc p = mot_acc_add(mot_acc_mul(a, u), mot_acc_make(0, (uint64_t)1 << 61));
+
+	return (int64_t)((mot_acc_lo(p) >> 62) | (mot_acc_hi(p) << 2));
 }
 
 /*
@@ -230,39 +233,45 @@ static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 
 /* ---- segment lookup -------------------------------------------------------- */
 
-/*
- * The last index j in [0, n) with at(j) <= f, for a non-decreasing array of
- * frames at(j) (a field of a struct array: base and stride) with at(0) <= f.
- * The hint (the cursor's last answer) is tried first, then its successor;
- * otherwise a binary search. A stale or foreign hint is only a slower search.
- */
-static uint32_t locate(const void *base, size_t stride, uint32_t n, uint32_t hint, mot_q32 f)
+/* The start frame of key interval j (keys) or of piece j. */
+static inline mot_q32 start_of(const struct mot_curve *c, bool keys, uint32_t j)
 {
-#define AT(j) (*(const mot_q32 *)((const char *)base + (size_t)(j) * stride))
+	return keys ? c->keys[j].frame : c->seg[j].f0;
+}
+
+/*
+ * The last index j in [0, n) whose start is at or before f, given a
+ * non-decreasing array of starts with start(0) <= f: the key intervals (n =
+ * nkeys - 1) or the pieces (n = nseg). The hint (the cursor's last answer)
+ * is tried first, then its successor; otherwise a binary search. A stale or
+ * foreign hint costs only the search. Empty pieces (equal starts) are never
+ * the answer.
+ */
+static uint32_t locate(const struct mot_curve *c, bool keys, uint32_t n, uint32_t hint, mot_q32 f)
+{
 	uint32_t lo = 0, hi = n;
 
-	if (hint < n && AT(hint) <= f) {
-		if (hint + 1 == n || f < AT(hint + 1))
+	if (hint < n && start_of(c, keys, hint) <= f) {
+		if (hint + 1 == n || f < start_of(c, keys, hint + 1))
 			return hint;
-		if (hint + 2 == n || f < AT(hint + 2))
+		if (hint + 2 == n || f < start_of(c, keys, hint + 2))
 			return hint + 1;
 		lo = hint + 2;
 	}
 	while (hi - lo > 1) {
 		uint32_t mid = lo + (hi - lo) / 2;
 
-		if (AT(mid) <= f)
+		if (start_of(c, keys, mid) <= f)
 			lo = mid;
 		else
 			hi = mid;
 	}
 	return lo;
-#undef AT
 }
 
 static uint32_t locate_seg(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
 {
-	uint32_t j = locate(&c->seg[0].f0, sizeof(c->seg[0]), c->nseg, cur ? cur->seg : 0, f);
+	uint32_t j = locate(c, false, c->nseg, cur ? cur->seg : 0, f);
 
 	if (cur)
 		cur->seg = j;
@@ -271,8 +280,7 @@ static uint32_t locate_seg(const struct mot_curve *c, struct mot_cursor *cur, mo
 
 static uint32_t locate_key(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
 {
-	uint32_t i = locate(&c->keys[0].frame, sizeof(c->keys[0]), c->nkeys - 1,
-			    cur ? cur->key : 0, f);
+	uint32_t i = locate(c, true, c->nkeys - 1, cur ? cur->key : 0, f);
 
 	if (cur)
 		cur->key = i;
@@ -301,10 +309,12 @@ static bool ratio62(int64_t r, int64_t d, int64_t *q)
 	mot_acc p;
 	int it;
 
+	/* e = 2^62 (1 - y z), |e| < 2^62 / 17: z e / 2^62 in two shifts (>> of a
+	 * negative int64 is arithmetic in gcc and clang, as fix.h relies on) */
 	for (it = 0; it < 3; it++) {
-		int64_t e = ((int64_t)1 << 62) - (int64_t)y * z; /* 2^62 (1 - y z) */
+		int64_t e = ((int64_t)1 << 62) - (int64_t)y * z;
 
-		z += (z * (e / ((int64_t)1 << 31))) / ((int64_t)1 << 31);
+		z += (z * (e >> 31)) >> 31;
 	}
 	/* r / d = r z 2^-62 2^(n - 33), so r / d in Q2.62 is r z 2^(n - 33) */
 	p = mot_acc_mul(r, z);
@@ -358,9 +368,12 @@ static void bezier_reduce(const struct mot_curve *c, bool value, int64_t u, uint
 	uint32_t n = c->nkeys, i, r;
 	int sh = value ? c->seg[0].vsh : c->seg[0].fsh;
 
-	for (i = 0; i < n; i++)
-		w[i] = round_shift(value ? k[i].value - k[0].value : k[i].frame - k[0].frame, -sh,
-				   NULL);
+	/* the offsets are below 2^(56 - sh) (bezier_shift): no overflow */
+	for (i = 0; i < n; i++) {
+		int64_t x = value ? k[i].value - k[0].value : k[i].frame - k[0].frame;
+
+		w[i] = sh >= 0 ? x * ((int64_t)1 << sh) : round_shift(x, -sh, NULL);
+	}
 	for (r = n - 1; r >= left; r--)
 		for (i = 0; i < r; i++)
 			w[i] += mul62(w[i + 1] - w[i], u);
