@@ -74,7 +74,8 @@ $(BUILD)/san/motion/%.o: motion/%.c $(MOTION_HDR) | $(BUILD)/.deps-build
 	$(Q)$(CC) $(CORE_CFLAGS) -g -O1 $(SAN) -c $< -o $@
 
 # ---- unit tests ------------------------------------------------------------------
-$(BUILD)/san/tests/%.o: tests/%.c $(MOTION_HDR) $(wildcard tests/*.h) | $(BUILD)/.deps-test
+# Test objects depend on the core sources too: tests/*_portable.c include them.
+$(BUILD)/san/tests/%.o: tests/%.c $(MOTION_HDR) $(MOTION_SRC) $(wildcard tests/*.h) | $(BUILD)/.deps-test
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
 
