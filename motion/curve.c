@@ -13,7 +13,7 @@
  * all done here at init; evaluation multiplies.
  *
  * Real time. mot_curve_eval() and mot_curve_integral() touch only the curve,
- * its keys and segments, and a small stack frame (bezier: 2 x 32 int64);
+ * its keys and segments, and a small stack frame (bezier: 32 int64);
  * they allocate nothing, take no lock and run in bounded time: a segment
  * lookup is O(1) for a cursor that moved to the same or next segment and
  * O(log n) otherwise; the Newton solve of the approximating kinds stops
@@ -368,7 +368,7 @@ static void bezier_reduce(const struct mot_curve *c, bool value, int64_t u, uint
 	uint32_t n = c->nkeys, i, r;
 	int sh = value ? c->seg[0].vsh : c->seg[0].fsh;
 
-	/* the offsets are below 2^(56 - sh) (bezier_shift): no overflow */
+	/* the offsets are below 2^(58 - sh) (bezier_shift): no overflow */
 	for (i = 0; i < n; i++) {
 		int64_t x = value ? k[i].value - k[0].value : k[i].frame - k[0].frame;
 
@@ -472,6 +472,7 @@ static int64_t solve_u(struct solve *sv, int64_t u)
 			return un;
 		u = un;
 	}
+	sv->it = NEWTON_MAX_IT;
 	return u;
 }
 
@@ -568,6 +569,8 @@ static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f
 	u = frac62(frame - s->f0, &s->inv_w);
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
 		u = mot_ease_apply62(&s->ease, u);
+	if (c->kind == MOT_INTERP_LINEAR)
+		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 }
 
@@ -840,6 +843,16 @@ static int prep_spline(struct mot_curve *c, uint32_t j, int64_t nb[4][4], uint64
 		err = poly_prep(s->c, &s->vsh, nv, den);
 	if (err || !acc_div_round(&f0, nf[0], 0, den))
 		return MOT_E_RANGE;
+	/* The piece starts at ceil(frame(0)): a frame f in [ceil(F(0)),
+	 * ceil(F(1))) has its root inside [0, 1), even when the piece is a few
+	 * LSB wide (rounding to nearest would put it up to half an LSB of frame
+	 * outside, and the solve would clamp). */
+	{
+		mot_acc rest = mot_acc_sub(nf[0], mot_acc_mul(f0, (int64_t)den)); /* F(0) - f0 */
+
+		if (!mot_acc_is_neg(rest) && acc_bitlen(rest) != 0)
+			f0++;
+	}
 	s->f0 = s->fref + f0;
 	s->start = START_CHORD;
 	/* frame(u) - frame(0) = w u^3, or frame(1) - frame(u) = w (1 - u)^3, tested
@@ -857,11 +870,12 @@ static int prep_spline(struct mot_curve *c, uint32_t j, int64_t nb[4][4], uint64
 	return MOT_OK;
 }
 
-/* Bezier: scales that keep the key offsets from the first key below 2^56
- * (de Casteljau differences and (n - 1) * difference then fit int64). */
+/* Bezier: scales that keep the key offsets from the first key within 2^58:
+ * de Casteljau differences are then within 2^59, and the frame derivative
+ * (n - 1) (w1 - w0) within 31 * 2^58 < 2^63. */
 static int bezier_shift(int64_t maxdiff)
 {
-	return maxdiff == 0 ? 0 : 56 - (int)bitlen64((uint64_t)maxdiff);
+	return maxdiff == 0 ? 0 : 58 - (int)bitlen64((uint64_t)maxdiff);
 }
 
 static int prep_bezier(struct mot_curve *c)

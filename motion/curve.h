@@ -24,7 +24,23 @@
  * interval they belong to; the strand-wide ease (opts) remaps the frame over
  * the span from the first to the last key. Both are applied as time warps
  * before evaluation: strand warp first, then the key interval's warp, for
- * every kind.
+ * every kind. A warped frame is a Q32.32 frame like any input: where it is
+ * rounded (the strand warp; the key warp of the approximating kinds) the
+ * result is the curve's value at that rounded frame.
+ *
+ * Accuracy, measured against a long double reference by tests/test_curve.c:
+ * step, linear and hermite are within 1/2 LSB (of Q32.32) of the exact value;
+ * the approximating kinds and every eased curve within 1/2 LSB plus 1/2 LSB
+ * of frame times the slope dv/df at the (warped) frame. Results are the same
+ * bits on every target (__int128 or not).
+ *
+ * Cost per evaluation, playing 10 keys at 1 kHz ticks with a cursor (x86_64,
+ * AMD EPYC, -O2; random access adds 10-30 ns): step 5 ns, linear 8 ns, hermite 10 ns, bspline 70-85 ns,
+ * beta 80-95 ns (about 3.5 Newton iterations), bezier O(n^2) per iteration:
+ * 130 ns for 4 keys, 400 ns for 10, 2.3 us for 32. Key intervals or Beta
+ * shapes far from uniform (gap ratios of 1e4 and more, beta1 < 0.01,
+ * beta2 > 100) flatten a piece's frame near its ends and take up to about
+ * 20 iterations; the solve never exceeds 64.
  */
 #ifndef MOT_CURVE_H
 #define MOT_CURVE_H
@@ -122,35 +138,46 @@ struct mot_cursor {
 };
 
 /* Segments that mot_curve_init() needs for nkeys keys of this kind (0 for an
- * invalid kind or nkeys == 0). */
+ * invalid kind or nkeys == 0): one per key interval for step, linear,
+ * hermite and bezier, nkeys + 1 for bspline and beta, at least 1. */
 uint32_t mot_curve_seg_count(enum mot_interp kind, uint32_t nkeys);
 
 /*
- * Validate and prepare. Errors: MOT_E_NOKEYS (nkeys == 0), MOT_E_ORDER (frames
- * not strictly increasing), MOT_E_INVAL (kind, ease fractions outside [0, 1]
- * or summing above 1 on an interval, strand ease longer than the span,
- * beta1 <= 0 or beta2 < 0, integral requested for an approximating kind or
- * with ease), MOT_E_CAPACITY (nseg too small, or a Bezier curve with more than
- * MOT_BEZIER_MAX_KEYS keys), MOT_E_RANGE (a value or frame outside the
- * representable range of the prepared coefficients). keys and seg must
- * outlive the curve. Init only.
+ * Validate and prepare. opts may be NULL (beta1 = 1, beta2 = 0, no ease, no
+ * integral). Errors, in this order of precedence: MOT_E_INVAL (c or keys
+ * NULL, kind), MOT_E_NOKEYS (nkeys == 0), MOT_E_CAPACITY (seg NULL or nseg
+ * below mot_curve_seg_count(), a Bezier curve with more than
+ * MOT_BEZIER_MAX_KEYS keys), then for the first offending key MOT_E_RANGE
+ * (|frame| or |value| of 2^30 or more: MOT_LEN_LIMIT) or MOT_E_ORDER (frame
+ * not above the previous one), then
+ * MOT_E_INVAL (ease fractions outside [0, 1] or summing above 1 on an
+ * interval, strand ease negative or longer than the span, beta1 or beta2
+ * outside [0, MOT_BETA1_MAX] / [0, MOT_BETA2_MAX] for a Beta-spline,
+ * integral requested for an approximating kind or with any ease). On error
+ * the curve evaluates to 0 and sets MOT_SAT_DOMAIN. keys and seg must
+ * outlive the curve. Init only (divides; O(nkeys)).
  */
 int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_key *keys,
 		   uint32_t nkeys, const struct mot_curve_opts *opts, struct mot_curve_seg *seg,
 		   uint32_t nseg, uint32_t *sat);
 
 /* Value at a frame (Q32.32 frames). cur may be NULL (random access, binary
- * search); the result is the same either way. Real-time safe. */
+ * search); the result is the same either way. Real-time safe: no allocation,
+ * bounded time (see Cost above). MOT_SAT_OVERFLOW only where a Hermite
+ * overshoot leaves Q32.32, which keys within MOT_LEN_LIMIT cannot do. */
 mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
 		       uint32_t *sat);
 
 /*
  * Integral of the curve from frame 0 to `frame`, in value x frames, as a
  * Q64.64 number in *out (negative for frames before 0). Closed form: a step
- * or linear curve is exact up to one rounding of the partial segment, a
- * hermite curve to 2^-60 relative; nothing accumulates from tick to tick, so
- * the result after a day is as good as after a second. Only for curves
- * prepared with opts->integral. Real-time safe.
+ * or linear curve is exact up to one rounding of the partial segment (half a
+ * unit of 2^-64); a hermite curve's partial segment is within about 2^-57 of
+ * (frame - key) x its largest value (measured 7.5 x 2^-60 of the terms);
+ * the held ends are exact, and nothing accumulates from tick to tick, so the
+ * result after a day is as good as after a second. Only for curves prepared
+ * with opts->integral (else MOT_E_INVAL and *out = 0). Real-time safe (two
+ * 128/64 divisions for linear, none for the others).
  */
 int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_cursor *cur,
 		       mot_q32 frame, uint32_t *sat);

@@ -247,6 +247,55 @@ static void test_bezier_max(void **state)
 	printf("INFO curve.bezier32 newton iterations: max %d of 64\n", maxit);
 }
 
+/*
+ * Adversarial pieces for the Newton solve: key gaps log-uniform over 12
+ * decades (1e-6 to 1e6 frames next to each other) and Beta-spline shapes at
+ * their extremes (beta1 in {0, 1e-6, 0.01, 1, 5, 256}, beta2 in {0, 1e-6,
+ * 1, 100, 2^24}), which flatten a piece's frame near one or both ends. The
+ * solve must stay accurate and never run into its iteration cap (64).
+ */
+static void test_newton_adversarial(void **state)
+{
+	static const double b1s[6] = { 0, 1e-6, 0.01, 1, 5, 256 };
+	static const double b2s[5] = { 0, 1e-6, 1, 100, 16777216 };
+	static struct keyset ks;
+	struct tu_rng rng;
+	struct tu_worst w = { 0, 0 }, it = { 0, 0 };
+	int set, i;
+
+	tu_seed(&rng, 145);
+	for (set = 0; set < 1200; set++) {
+		enum mot_interp kind = (enum mot_interp)(MOT_INTERP_BSPLINE + set % 3);
+		double f = tu_uniform(&rng, -1e5, 1e5);
+		uint32_t j;
+
+		ks.n = 2 + (uint32_t)(tu_u64(&rng) % (kind == MOT_INTERP_BEZIER ? 10 : 14));
+		for (j = 0; j < ks.n; j++) {
+			ks.k[j] = (struct mot_key){ d2q(f), d2q(tu_uniform(&rng, -1000, 1000)), 0, 0 };
+			f += log_uniform(&rng, 1e-6, 1e6);
+		}
+		ks.o = (struct mot_curve_opts){ d2q(b1s[tu_u64(&rng) % 6]), d2q(b2s[tu_u64(&rng) % 5]),
+						0, 0, false };
+		init_ok(&ks, kind);
+		for (i = 0; i < 100; i++) {
+			mot_q32 x = i % 3 ? sample(&rng, &ks)
+					  : ks.k[tu_u64(&rng) % ks.n].frame +
+						    (mot_q32)(tu_u64(&rng) % 2001) - 1000;
+			ref_t err = (ref_q(mot_curve_eval(&ks.c, NULL, x, NULL)) -
+				     ref_curve_eval(kind, ks.k, ks.n, &ks.o, ref_q(x))) *
+				    LSB;
+
+			if (fabsl(err) > 0.5L)
+				err /= 1 + ref_curve_slope(kind, ks.k, ks.n, &ks.o, ref_q(x),
+							   1.0L / (1 << 24));
+			tu_worst_add(&w, (double)err, (double)ref_q(x));
+			tu_worst_add(&it, mot_curve_newton_iterations(&ks.c, x), kind);
+		}
+	}
+	tu_bound("curve.adversarial_vs_ref", &w, 1, "LSB per (1 + |dv/df|)");
+	tu_bound("curve.adversarial_newton_iterations", &it, 48, "iterations (cap 64)");
+}
+
 /* Interpolating kinds hit every key exactly; every kind starts on the first
  * key and ends on the last, and holds them outside. */
 static void test_through_keys(void **state)
@@ -852,6 +901,7 @@ int main(void)
 		cmocka_unit_test(test_beta),
 		cmocka_unit_test(test_bezier),
 		cmocka_unit_test(test_bezier_max),
+		cmocka_unit_test(test_newton_adversarial),
 		cmocka_unit_test(test_through_keys),
 		cmocka_unit_test(test_convex_hull),
 		cmocka_unit_test(test_hermite_overshoot),
