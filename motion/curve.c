@@ -645,7 +645,8 @@ int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_curso
 	n = c->nkeys;
 	/* Held ends: the integral grows linearly, exactly (two 128-bit products). */
 	if (frame < k[0].frame) {
-		a = mot_acc_sub(mot_acc_mul(k[0].value, frame), mot_acc_mul(k[0].value, k[0].frame));
+		a = mot_acc_sub(mot_acc_mul(k[0].value, frame),
+				mot_acc_mul(k[0].value, k[0].frame));
 		*out = mot_acc_add(c->area_first, a);
 		return MOT_OK;
 	}
@@ -656,7 +657,8 @@ int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_curso
 		return MOT_OK;
 	}
 	i = locate_seg(c, cur, frame);
-	a = seg_integral(c, i, frame - c->seg[i].f0, frac62(frame - c->seg[i].f0, &c->seg[i].inv_w));
+	a = seg_integral(c, i, frame - c->seg[i].f0,
+			 frac62(frame - c->seg[i].f0, &c->seg[i].inv_w));
 	*out = mot_acc_add(c->seg[i].area, a);
 	return MOT_OK;
 }

@@ -35,12 +35,13 @@
  * bits on every target (__int128 or not).
  *
  * Cost per evaluation, playing 10 keys at 1 kHz ticks with a cursor (x86_64,
- * AMD EPYC, -O2; random access adds 10-30 ns): step 5 ns, linear 8 ns, hermite 10 ns, bspline 70-85 ns,
- * beta 80-95 ns (about 3.5 Newton iterations), bezier O(n^2) per iteration:
- * 130 ns for 4 keys, 400 ns for 10, 2.3 us for 32. Key intervals or Beta
- * shapes far from uniform (gap ratios of 1e4 and more, beta1 < 0.01,
- * beta2 > 100) flatten a piece's frame near its ends and take up to about
- * 20 iterations; the solve never exceeds 64.
+ * AMD EPYC, -O2; random access adds 10-30 ns): step 5 ns, linear 8 ns,
+ * hermite 10 ns, bspline 70-85 ns, beta 80-95 ns (about 3.5 Newton
+ * iterations), bezier O(n^2) per iteration: 130 ns for 4 keys, 400 ns for
+ * 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
+ * ratios of 1e4 and more, beta1 < 0.01, beta2 > 100) flatten a piece's frame
+ * near its ends and take up to about 20 iterations; the solve never exceeds
+ * 64 (NEWTON_MAX_IT in curve.c).
  */
 #ifndef MOT_CURVE_H
 #define MOT_CURVE_H

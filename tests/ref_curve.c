@@ -69,11 +69,12 @@ static void weights(enum mot_interp kind, ref_t b1, ref_t b2, ref_t u, ref_t w[4
 	}
 	d = 2 * b1 * b1 * b1 + 4 * b1 * b1 + 4 * b1 + b2 + 2;
 	w[0] = 2 * b1 * b1 * b1 * (1 - u) * (1 - u) * (1 - u) / d;
-	w[1] = (2 * b1 * b1 * b1 * u * (u * u - 3 * u + 3) + 2 * b1 * b1 * (u * u * u - 3 * u * u + 2) +
-		2 * b1 * (u * u * u - 3 * u + 2) + b2 * (2 * u * u * u - 3 * u * u + 1)) /
+	w[1] = (2 * b1 * b1 * b1 * u * (u * u - 3 * u + 3) +
+		2 * b1 * b1 * (u * u * u - 3 * u * u + 2) + 2 * b1 * (u * u * u - 3 * u + 2) +
+		b2 * (2 * u * u * u - 3 * u * u + 1)) /
 	       d;
-	w[2] = (2 * b1 * b1 * u * u * (3 - u) + 2 * b1 * u * (3 - u * u) + b2 * u * u * (3 - 2 * u) +
-		2 * (1 - u * u * u)) /
+	w[2] = (2 * b1 * b1 * u * u * (3 - u) + 2 * b1 * u * (3 - u * u) +
+		b2 * u * u * (3 - 2 * u) + 2 * (1 - u * u * u)) /
 	       d;
 	w[3] = 2 * u * u * u / d;
 }
@@ -237,9 +238,10 @@ static ref_t interval_integral(enum mot_interp kind, const struct mot_key *k, ui
 	/* integral of the Hermite basis from 0 to s, times h */
 	m0 = h * tangent(k, n, i);
 	m1 = h * tangent(k, n, i + 1);
-	return h * (v0 * (s * s * s * s / 2 - s * s * s + s) +
-		    m0 * (s * s * s * s / 4 - 2 * s * s * s / 3 + s * s / 2) +
-		    v1 * (-s * s * s * s / 2 + s * s * s) + m1 * (s * s * s * s / 4 - s * s * s / 3));
+	return h *
+	       (v0 * (s * s * s * s / 2 - s * s * s + s) +
+		m0 * (s * s * s * s / 4 - 2 * s * s * s / 3 + s * s / 2) +
+		v1 * (-s * s * s * s / 2 + s * s * s) + m1 * (s * s * s * s / 4 - s * s * s / 3));
 }
 
 /* Integral from the first key to f. */

@@ -86,8 +86,9 @@ static void init_ok(struct keyset *ks, enum mot_interp kind)
 	uint32_t sat = 0;
 
 	assert_true(mot_curve_seg_count(kind, ks->n) <= MAXK + 2);
-	assert_int_equal(mot_curve_init(&ks->c, kind, ks->k, ks->n, &ks->o, ks->seg, MAXK + 2, &sat),
-			 MOT_OK);
+	assert_int_equal(
+		mot_curve_init(&ks->c, kind, ks->k, ks->n, &ks->o, ks->seg, MAXK + 2, &sat),
+		MOT_OK);
 	assert_int_equal(sat, 0);
 }
 
@@ -271,11 +272,12 @@ static void test_newton_adversarial(void **state)
 
 		ks.n = 2 + (uint32_t)(tu_u64(&rng) % (kind == MOT_INTERP_BEZIER ? 10 : 14));
 		for (j = 0; j < ks.n; j++) {
-			ks.k[j] = (struct mot_key){ d2q(f), d2q(tu_uniform(&rng, -1000, 1000)), 0, 0 };
+			ks.k[j] = (struct mot_key){ d2q(f), d2q(tu_uniform(&rng, -1000, 1000)), 0,
+						    0 };
 			f += log_uniform(&rng, 1e-6, 1e6);
 		}
-		ks.o = (struct mot_curve_opts){ d2q(b1s[tu_u64(&rng) % 6]), d2q(b2s[tu_u64(&rng) % 5]),
-						0, 0, false };
+		ks.o = (struct mot_curve_opts){ d2q(b1s[tu_u64(&rng) % 6]),
+						d2q(b2s[tu_u64(&rng) % 5]), 0, 0, false };
 		init_ok(&ks, kind);
 		for (i = 0; i < 100; i++) {
 			mot_q32 x = i % 3 ? sample(&rng, &ks)
@@ -320,14 +322,18 @@ static void test_through_keys(void **state)
 			fn = ks.k[ks.n - 1].frame;
 			if (kind <= MOT_INTERP_HERMITE)
 				for (i = 0; i < ks.n; i++) {
-					assert_int_equal(mot_curve_eval(&ks.c, NULL, ks.k[i].frame, NULL),
-							 ks.k[i].value);
-					assert_int_equal(mot_curve_eval(&ks.c, &cur, ks.k[i].frame, NULL),
-							 ks.k[i].value);
+					assert_int_equal(
+						mot_curve_eval(&ks.c, NULL, ks.k[i].frame, NULL),
+						ks.k[i].value);
+					assert_int_equal(
+						mot_curve_eval(&ks.c, &cur, ks.k[i].frame, NULL),
+						ks.k[i].value);
 				}
 			assert_int_equal(mot_curve_eval(&ks.c, NULL, f0, NULL), ks.k[0].value);
-			assert_int_equal(mot_curve_eval(&ks.c, NULL, fn, NULL), ks.k[ks.n - 1].value);
-			assert_int_equal(mot_curve_eval(&ks.c, NULL, MOT_Q32_MIN, NULL), ks.k[0].value);
+			assert_int_equal(mot_curve_eval(&ks.c, NULL, fn, NULL),
+					 ks.k[ks.n - 1].value);
+			assert_int_equal(mot_curve_eval(&ks.c, NULL, MOT_Q32_MIN, NULL),
+					 ks.k[0].value);
 			assert_int_equal(mot_curve_eval(&ks.c, NULL, MOT_Q32_MAX, NULL),
 					 ks.k[ks.n - 1].value);
 			/* continuity into the held ends: one LSB inside, within the slope */
@@ -339,10 +345,13 @@ static void test_through_keys(void **state)
 				ref_t s1 = ref_curve_slope((enum mot_interp)kind, ks.k, ks.n, &ks.o,
 							   ref_q(fn - 1), 1.0L / (1 << 20));
 
-				tu_worst_add(&w, (double)(fabsl((ref_t)(in0 - ks.k[0].value)) / (1 + s0)),
-					     kind);
+				tu_worst_add(
+					&w,
+					(double)(fabsl((ref_t)(in0 - ks.k[0].value)) / (1 + s0)),
+					kind);
 				tu_worst_add(&w,
-					     (double)(fabsl((ref_t)(in1 - ks.k[ks.n - 1].value)) / (1 + s1)),
+					     (double)(fabsl((ref_t)(in1 - ks.k[ks.n - 1].value)) /
+						      (1 + s1)),
 					     kind);
 			}
 		}
@@ -379,7 +388,10 @@ static void test_convex_hull(void **state)
 			for (i = 0; i < 100; i++) {
 				mot_q32 v = mot_curve_eval(&ks.c, NULL, sample(&rng, &ks), NULL);
 
-				tu_worst_add(&w, v < lo ? (double)(lo - v) : v > hi ? (double)(v - hi) : 0,
+				tu_worst_add(&w,
+					     v < lo   ? (double)(lo - v)
+					     : v > hi ? (double)(v - hi)
+						      : 0,
 					     kind);
 			}
 		}
@@ -544,7 +556,8 @@ static void test_portable(void **state)
 			for (i = 0; i < 64; i++) {
 				mot_acc a;
 
-				assert_int_equal(mot_curve_integral(&a, &ks.c, NULL, f[i], NULL), MOT_OK);
+				assert_int_equal(mot_curve_integral(&a, &ks.c, NULL, f[i], NULL),
+						 MOT_OK);
 				differ += hi[i] != mot_acc_hi(a) || lo[i] != mot_acc_lo(a);
 			}
 		}
@@ -598,13 +611,15 @@ static void test_integral_vs_ref(void **state)
 
 				if (i % 3 == 0)
 					f = (mot_q32)((double)f * tu_uniform(&rng, -2, 2));
-				want = ref_curve_integral((enum mot_interp)kind, ks.k, ks.n, ref_q(f));
-				assert_int_equal(mot_curve_integral(&a, &ks.c, i % 2 ? &cur : NULL, f,
-								    NULL),
-						 MOT_OK);
+				want = ref_curve_integral((enum mot_interp)kind, ks.k, ks.n,
+							  ref_q(f));
+				assert_int_equal(
+					mot_curve_integral(&a, &ks.c, i % 2 ? &cur : NULL, f, NULL),
+					MOT_OK);
 				size = (fabsl(ref_q(f)) + fabsl(ref_q(ks.k[0].frame)) +
 					fabsl(ref_q(ks.k[ks.n - 1].frame))) * vmax;
-				tu_worst_add(&w[kind], (double)((acc_to_ref(a) - want) / size * 0x1p60L),
+				tu_worst_add(&w[kind],
+					     (double)((acc_to_ref(a) - want) / size * 0x1p60L),
 					     (double)ref_q(f));
 			}
 		}
@@ -636,8 +651,9 @@ static void test_integral_exact(void **state)
 
 			ks.n = 2 + (uint32_t)(tu_u64(&rng) % 8);
 			for (j = 0; j < ks.n; j++) {
-				ks.k[j].frame = (j ? ks.k[j - 1].frame : -(mot_q32)(tu_u64(&rng) >> 30)) +
-						1 + (mot_q32)(tu_u64(&rng) >> 34);
+				ks.k[j].frame =
+					(j ? ks.k[j - 1].frame : -(mot_q32)(tu_u64(&rng) >> 30)) +
+					1 + (mot_q32)(tu_u64(&rng) >> 34);
 				ks.k[j].value = (mot_q32)(tu_u64(&rng) >> 22) - ((mot_q32)1 << 41);
 				ks.k[j].ease_in = ks.k[j].ease_out = 0;
 			}
@@ -653,10 +669,12 @@ static void test_integral_exact(void **state)
 				v = ks.k[j].value;
 				dv = ks.k[j + 1].value - ks.k[j].value;
 				assert_int_equal(mot_curve_integral(&a, &ks.c, NULL,
-								    ks.k[j].frame + (mot_q32)e, NULL),
+								    ks.k[j].frame + (mot_q32)e,
+								    NULL),
 						 MOT_OK);
-				assert_int_equal(mot_curve_integral(&b, &ks.c, NULL, ks.k[j].frame, NULL),
-						 MOT_OK);
+				assert_int_equal(
+					mot_curve_integral(&b, &ks.c, NULL, ks.k[j].frame, NULL),
+					MOT_OK);
 				p = acc_to_i128(a) - acc_to_i128(b);
 				if (kind == MOT_INTERP_STEP) {
 					assert_true(p == e * v);
@@ -707,7 +725,8 @@ static void test_integral_day(void **state)
 		{
 			mot_acc b;
 
-			assert_int_equal(mot_curve_integral(&b, &c, &cur, k[2].frame, NULL), MOT_OK);
+			assert_int_equal(mot_curve_integral(&b, &c, &cur, k[2].frame, NULL),
+					 MOT_OK);
 			assert_true(acc_to_i128(a) - acc_to_i128(b) ==
 				    (__int128)1200 * (24 * 3600 * 60 - 700) << 64);
 		}

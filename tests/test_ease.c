@@ -62,10 +62,11 @@ static void test_ease_vs_ref(void **state)
 			s = MOT_Q62_ONE - e.b + (int64_t)(tu_u64(&rng) % 2001) - 1000;
 		s = s < 0 ? 0 : s > MOT_Q62_ONE ? MOT_Q62_ONE : s;
 		got = mot_ease_apply62(&e, s);
-		tu_worst_add(&w,
-			     (double)((q62_to_ref(got) - ref_ease(ref_q(a), ref_q(b), q62_to_ref(s))) *
-				      Q62),
-			     (double)i);
+		tu_worst_add(
+			&w,
+			(double)((q62_to_ref(got) - ref_ease(ref_q(a), ref_q(b), q62_to_ref(s))) *
+				 Q62),
+			(double)i);
 	}
 	tu_bound("ease.apply62_vs_ref", &w, 3.0, "units of 2^-62");
 }
@@ -262,7 +263,8 @@ static void test_ease_errors(void **state)
 	assert_int_equal(mot_ease_apply(&e, MOT_Q32_MAX, &sat), MOT_Q32_ONE);
 	assert_true(sat & MOT_SAT_DOMAIN);
 	sat = 0;
-	assert_int_equal(mot_ease_apply(&e, MOT_Q32_HALF, &sat), mot_ease_apply(&e, MOT_Q32_HALF, NULL));
+	assert_int_equal(mot_ease_apply(&e, MOT_Q32_HALF, &sat),
+			 mot_ease_apply(&e, MOT_Q32_HALF, NULL));
 	assert_int_equal(sat, 0);
 	assert_int_equal(mot_ease_apply62(&e, -5), 0);
 	assert_int_equal(mot_ease_apply62(&e, INT64_MAX), MOT_Q62_ONE);
