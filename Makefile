@@ -32,7 +32,7 @@ SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fram
 TEST_CFLAGS := -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror -ffp-contract=off \
                $(SAN) -Imotion -Itests -Ifirmware \
                $(shell pkg-config --cflags cmocka 2>/dev/null)
-TEST_LIBS   := $(shell pkg-config --libs cmocka 2>/dev/null) $(FW_LIBS)
+TEST_LIBS    = $(shell pkg-config --libs cmocka 2>/dev/null) $(FW_LIBS)
 
 MOTION_SRC := $(wildcard motion/*.c)
 MOTION_HDR := $(wildcard motion/*.h)
