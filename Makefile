@@ -1,7 +1,8 @@
 # strand - top-level Makefile. Plain make; objects under $(BUILD)/.
 #
 #   make          build the core library, the program and the tests
-#   make test     build and run every test (unit, freestanding, cross-arch)
+#   make test     build and run every test (unit, freestanding, cross-arch,
+#                 Cortex-M4) and print a summary
 #   make bench    build and run the benchmarks (prints BENCH lines)
 #   make clean    remove $(BUILD)/
 #
@@ -29,7 +30,9 @@ GCC_INC := $(shell $(CC) -print-file-name=include)
 CORE_CFLAGS := -std=c11 -ffreestanding -nostdinc -isystem $(GCC_INC) -fno-builtin \
                $(WARN) -Werror
 SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-TEST_CFLAGS := -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror -ffp-contract=off \
+# '=': pkg-config is asked when a recipe runs, after mk/deps.sh has
+# installed cmocka (on a fresh machine it is not there when make starts).
+TEST_CFLAGS  = -std=gnu11 -g -O1 $(filter-out -Wpedantic,$(WARN)) -Werror -ffp-contract=off \
                $(SAN) -Imotion -Itests -Ifirmware \
                $(shell pkg-config --cflags cmocka 2>/dev/null)
 TEST_LIBS    = $(shell pkg-config --libs cmocka 2>/dev/null) $(FW_LIBS)
@@ -42,9 +45,9 @@ MOTION_SAN_OBJ := $(MOTION_SRC:%.c=$(BUILD)/san/%.o)
 # firmware/: the strand program; everything but main.c is also linked into tests
 # No fused multiply-add contraction: the loader's double arithmetic must round
 # the same way on x86_64, aarch64 and armhf.
-FW_CFLAGS  := -std=gnu11 $(WARN) -Werror -ffp-contract=off -Imotion -Ifirmware -Ihal -Isim \
+FW_CFLAGS   = -std=gnu11 $(WARN) -Werror -ffp-contract=off -Imotion -Ifirmware -Ihal -Isim \
               $(shell pkg-config --cflags yaml-0.1 2>/dev/null)
-FW_LIBS    := $(shell pkg-config --libs yaml-0.1 2>/dev/null) -lm -lpthread
+FW_LIBS     = $(shell pkg-config --libs yaml-0.1 2>/dev/null) -lm -lpthread
 FW_SRC     := $(wildcard firmware/*.c)
 FW_LIB_SRC := $(filter-out firmware/main.c,$(FW_SRC))
 FW_HDR     := $(wildcard firmware/*.h)
@@ -119,7 +122,7 @@ unit: $(TEST_BIN)
 		else echo "PASS $$(basename $$t)  $$(grep -h '^BOUND' $$t.log | wc -l) bounds checked"; fi; \
 	done; exit $$fail
 
-test: unit
+# test: unit and the checks of mk/*.mk, with a summary (mk/test.mk)
 
 # ---- benchmarks ---------------------------------------------------------------------
 bench:

@@ -1,0 +1,61 @@
+# mk/cross.mk - the same bits on every target.
+#
+#   make check-cross   build tests/digest/digest.c with the motion core for
+#                      each variant below, run them (the foreign ones under
+#                      qemu-user) and require one DIGEST from all
+#
+# A variant is a compiler, extra flags for the core and the program, link
+# flags and a runner. The core is compiled as everywhere else (CORE_CFLAGS,
+# the compiler's own freestanding headers); the digest program is hosted.
+
+.PHONY: check-cross
+
+CROSS_VARIANTS := native noint128 sanitized aarch64 armhf
+
+cross_cc.native    := $(CC)
+cross_cc.noint128  := $(CC)
+cross_cc.sanitized := $(CC)
+cross_cc.aarch64   := aarch64-linux-gnu-gcc
+cross_cc.armhf     := arm-linux-gnueabihf-gcc
+# the portable two-word path of fix.h on a 64-bit host
+cross_def.noint128 := -DMOT_NO_INT128
+# undefined behaviour is what would make targets disagree: look for it
+cross_def.sanitized := $(SAN)
+cross_ld.sanitized := $(SAN)
+cross_ld.aarch64   := -static
+cross_ld.armhf     := -static
+cross_run.aarch64  := qemu-aarch64
+cross_run.armhf    := qemu-arm
+
+# -DHAVE_MOT_<NAME> for each motion/<name>.c: the digest adds its workload.
+DIGEST_DEFS := $(addprefix -DHAVE_MOT_,$(shell echo $(basename $(notdir $(MOTION_SRC))) | tr a-z A-Z))
+DIGEST_CFLAGS := -std=c11 -O2 $(WARN) -Werror -Imotion $(DIGEST_DEFS)
+
+# The core's flags for variant $(1). '=' and $(shell) at recipe time: a cross
+# compiler is asked for its include directory after mk/deps.sh installed it.
+cross_core_cflags = $(filter-out -isystem $(GCC_INC),$(CORE_CFLAGS)) \
+                    -isystem $(shell $(cross_cc.$(1)) -print-file-name=include) \
+                    -O2 $(cross_def.$(1))
+
+# The list of core sources, rewritten only when it changes: a digest program
+# is relinked when a motion/*.c goes away (another branch), not only when
+# one is added or edited.
+CROSS_SOURCES := $(BUILD)/cross/sources
+$(shell mkdir -p $(BUILD)/cross && { echo '$(MOTION_SRC)' | cmp -s - $(CROSS_SOURCES) || \
+	echo '$(MOTION_SRC)' >$(CROSS_SOURCES); })
+
+define cross_variant
+$(BUILD)/cross/$(1)/motion/%.o: motion/%.c $(MOTION_HDR) | $(BUILD)/.deps-cross
+	@mkdir -p $$(@D)
+	$$(Q)$$(cross_cc.$(1)) $$(call cross_core_cflags,$(1)) -c $$< -o $$@
+
+$(BUILD)/cross/$(1)/digest: tests/digest/digest.c $(MOTION_SRC:%.c=$(BUILD)/cross/$(1)/%.o) \
+		$(MOTION_HDR) $(CROSS_SOURCES) | $(BUILD)/.deps-cross
+	$$(Q)$$(cross_cc.$(1)) $$(DIGEST_CFLAGS) $$(cross_def.$(1)) $$< \
+		$$(filter %.o,$$^) $$(cross_ld.$(1)) -o $$@
+endef
+$(foreach v,$(CROSS_VARIANTS),$(eval $(call cross_variant,$(v))))
+
+check-cross: $(CROSS_VARIANTS:%=$(BUILD)/cross/%/digest) | $(BUILD)/.deps-cross
+	$(Q)sh mk/check-cross.sh $(foreach v,$(CROSS_VARIANTS),\
+		'$(v)=$(strip $(cross_run.$(v)) $(BUILD)/cross/$(v)/digest)')

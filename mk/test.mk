@@ -1,0 +1,11 @@
+# mk/test.mk - `make test`: every check, one after the other, and a summary.
+#
+# Each step runs in a make of its own and a failing step does not stop the
+# others, so one run (one CI run) reports everything. Add a check by naming
+# its target in TEST_STEPS.
+
+
+TEST_STEPS := unit check-freestanding check-cross check-cortexm
+
+test:
+	$(Q)sh mk/run-steps.sh '$(MAKE)' $(BUILD)/test-logs $(TEST_STEPS)
