@@ -131,3 +131,7 @@ clean:
 	rm -rf $(BUILD)
 
 -include mk/*.mk
+
+# Test-side copies of core sources compiled on the portable path.
+$(BUILD)/san/tests/fix_portable.o: motion/fix.c
+$(BUILD)/san/tests/trig_portable.o: motion/trig.c

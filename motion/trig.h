@@ -5,10 +5,12 @@
  * Angles are in turns (fix.h). Every function is a pure function of its
  * arguments: same bits in, same bits out, on every target. Worst errors are
  * measured by tests/test_trig.c against libm in double precision and quoted
- * in each comment; they are a few LSB of Q32.32 (1 LSB = 2.3e-10).
+ * in each comment; none is above about half an LSB of Q32.32 (1 LSB = 2.3e-10).
  *
  * All functions here are safe in the real-time loop (bounded time, no
- * memory access outside their const tables).
+ * memory access outside their const tables, no division). Times are ns per
+ * call on the x86_64 build machine at -O2 (tools/trig_bench.c), independent
+ * calls / one call's latency.
  */
 #ifndef MOT_TRIG_H
 #define MOT_TRIG_H
@@ -19,33 +21,46 @@
 #define MOT_TURN_PER_RAD_Q32 ((mot_q32)683565276)    /* 1/(2 pi) * 2^32 */
 #define MOT_TWO_PI_Q32 ((mot_q32)26986075409LL)        /* 2 pi * 2^32 */
 
-/* sin and cos of an angle in turns, any number of turns. Exact (0, +-1) at
- * multiples of a quarter turn; |sin|, |cos| <= 1 always. */
+/* sin and cos of an angle in turns, any number of turns (only the phase
+ * within the turn matters). Exact (0, +-1) at multiples of a quarter turn;
+ * |sin|, |cos| <= 1 always. Worst error 0.52 LSB. *s and *c must not alias.
+ * About 5 ns / 8 ns; mot_sin and mot_cos cost nearly the same. */
 void mot_sincos(mot_q32 turns, mot_q32 *s, mot_q32 *c);
 mot_q32 mot_sin(mot_q32 turns);
 mot_q32 mot_cos(mot_q32 turns);
 
 /* Angle of the vector (x, y) in turns, in (-1/2, +1/2]; atan2(0, 0) = 0.
  * Exact at the axes and diagonals of equal magnitude. Works for any
- * magnitudes (the ratio matters, not the scale). */
+ * magnitudes (the ratio matters, not the scale: (2^k y, 2^k x) gives the same
+ * bits). atan2(-y, x) = -atan2(y, x), except that an angle that rounds to
+ * -1/2 is returned as +1/2. Worst error 0.50 LSB (1.2e-10 turn).
+ * About 11 ns / 25 ns. */
 mot_q32 mot_atan2(mot_q32 y, mot_q32 x);
 
 /* acos in turns, in [0, 1/2]. |x| > 1 (rounding of a dot product of unit
- * vectors) is taken as +-1 and flagged MOT_SAT_DOMAIN. */
+ * vectors) is taken as +-1 and flagged MOT_SAT_DOMAIN. Exact at -1, 0, 1;
+ * worst error 0.50 LSB (1.2e-10 turn) for the given x, also next to +-1
+ * where acos is steep. About 30 ns / 46 ns. */
 mot_q32 mot_acos(mot_q32 x, uint32_t *sat);
 
-/* sqrt(x), correctly rounded to nearest. x < 0 gives 0 and MOT_SAT_DOMAIN. */
+/* sqrt(x), correctly rounded to nearest (0.5 LSB). x < 0 gives 0 and
+ * MOT_SAT_DOMAIN. About 12 ns / 23 ns. */
 mot_q32 mot_sqrt(mot_q32 x, uint32_t *sat);
 
-/* 1/sqrt(x). x <= 0 gives MOT_Q32_MAX and MOT_SAT_DOMAIN. */
+/* 1/sqrt(x), worst error 0.50 LSB (not always the nearest: within 2^-10 LSB
+ * of it). x <= 0 gives MOT_Q32_MAX and MOT_SAT_DOMAIN. About 10 ns / 19 ns. */
 mot_q32 mot_rsqrt(mot_q32 x, uint32_t *sat);
 
 /* Square root of a non-negative 128-bit integer, rounded to nearest. With a
  * sum of squares of Q32.32 values (a Q64.64 number) this is the Euclidean norm
- * in Q32.32 with a single rounding. Negative x gives 0 and MOT_SAT_DOMAIN. */
+ * in Q32.32 with a single rounding. Negative x gives 0 and MOT_SAT_DOMAIN.
+ * Exact for every x (tested against __int128). About 20 ns / 30 ns. */
 uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat);
 
-/* |v| for a 3-vector, one rounding. */
+/* |v| for a 3-vector: the root of the exact 128-bit sum of squares, rounded
+ * once to nearest (0.5 LSB). A norm above MOT_Q32_MAX (possible only with
+ * components beyond 2^62 raw) saturates and sets MOT_SAT_OVERFLOW.
+ * About 16 ns / 26 ns. */
 mot_q32 mot_norm3(const mot_q32 v[3], uint32_t *sat);
 
 #endif /* MOT_TRIG_H */
