@@ -105,8 +105,8 @@ int cli_options(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FIL
 	char spec[64];
 	int c, rc;
 
-	/* '+': stop at the first operand; ':': report a missing argument as ':' */
-	snprintf(spec, sizeof(spec), "+:%s", shortopts);
+	/* ':': report a missing argument as ':'; options may follow operands */
+	snprintf(spec, sizeof(spec), ":%s", shortopts);
 	optind = 0; /* glibc: a full reset, so that a second call parses afresh */
 	opterr = 0;
 	while ((c = getopt_long(argc, argv, spec, longopts, NULL)) != -1) {

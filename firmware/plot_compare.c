@@ -121,11 +121,12 @@ static void draw(FILE *f, const struct scene_file *sf, uint32_t node, struct met
 
 		snprintf(label, sizeof(label), "%s%s", method_name[i],
 			 runs[i].ok ? "" : " (refused by the core)");
-		svg_legend(f, 70 + i * 170, 670, svg_color(i), label, NULL);
+		/* step dashed: its path jumps from key to key, over linear's */
+		svg_legend(f, 70 + i * 170, 670, svg_color(i), label, i ? NULL : "6,4");
 		if (runs[i].ok)
 			chart_line(f, &c, path ? plot_series(&runs[i].ps, xc) : runs[i].ps.frame,
 				   plot_series(&runs[i].ps, yc), runs[i].ps.n, svg_color(i), 2,
-				   NULL);
+				   i ? NULL : "6,4");
 	}
 	for (i = 0; i < st->nkeys; i++)
 		chart_mark(f, &c, key_x[i], key_y[i], "#000");
