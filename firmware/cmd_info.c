@@ -171,6 +171,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	rc = cli_scene_args(cmd, argc, argv, out, err, opts, NULL, NULL, &path, &sf, &b);
 	if (rc >= 0)
 		return rc;
+	rc = STRAND_EXIT_OK;
 	d = &sf.desc;
 	fprintf(out, "scene %s (%s)\n", d->name[0] ? d->name : "(unnamed)", path);
 	fprintf(out, "timing: %u", d->rate_num);
