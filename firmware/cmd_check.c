@@ -24,7 +24,9 @@ static void print_violation(void *ctx, const struct lim_violation *v)
 	const char *unit = rev ? "deg" : "units";
 	const char *per = v->kind == LIM_VEL ? "/s" : v->kind == LIM_ACC ? "/s^2" : "";
 
-	fprintf(r->out, "%s.%s: %s %.10g %s%s beyond limit %.10g %s%s, frames %.10g to %.10g\n",
+	/* 7 digits: a velocity or acceleration is a difference of quantised
+	 * values, and more digits would print only that noise (limits.h) */
+	fprintf(r->out, "%s.%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
 		n->name, rev ? "angle" : "position", lim_kind_name(v->kind), v->worst, unit, per,
 		v->limit, unit, per, v->frame_first, v->frame_last);
 }
