@@ -139,3 +139,29 @@ mot_q32 mot_div(mot_q32 a, mot_q32 b, uint32_t *sat)
 	}
 	return mot_muldiv(a, MOT_Q32_ONE, b, sat);
 }
+
+mot_q32 mot_sum_prod_wide(const mot_q32 *a, const mot_q32 *b, unsigned n, uint32_t *sat)
+{
+	/* The true sum is acc + wraps * 2^128: each addition that carries out of
+	 * the signed range is counted. Every term is below 2^126 in magnitude, so
+	 * a nonzero count means the sum is far beyond what a Q32.32 can hold. */
+	mot_acc acc = mot_acc_zero();
+	long wraps = 0;
+	unsigned i;
+
+	for (i = 0; i < n; i++) {
+		mot_acc p = mot_acc_mul(a[i], b[i]);
+		mot_acc s = mot_acc_add(acc, p);
+		bool np = mot_acc_is_neg(p);
+
+		if (np == mot_acc_is_neg(acc) && np != mot_acc_is_neg(s))
+			wraps += np ? -1 : 1;
+		acc = s;
+	}
+	if (wraps != 0) {
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return wraps > 0 ? MOT_Q32_MAX : MOT_Q32_MIN;
+	}
+	return mot_acc_round(acc, MOT_Q32_FRAC, sat);
+}

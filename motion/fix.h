@@ -307,6 +307,47 @@ static inline mot_q32 mot_dot3(const mot_q32 a[3], const mot_q32 b[3], uint32_t 
 	return mot_acc_round(acc, MOT_Q32_FRAC, sat);
 }
 
+/*
+ * round(sum of a[i] * b[i], i < n) in Q32.32, rounded once, for any inputs.
+ * An addend c joins as the pair (c, MOT_Q32_ONE). When no factor reaches
+ * 2^62 in magnitude (every real use: lengths are below 2^30 units), the
+ * products stay below 2^124 and up to eight of them are summed inline in 128
+ * bits. Otherwise mot_sum_prod_wide() watches the sum for wrap-around, so a
+ * sum that cannot fit saturates with its true sign (a plain 128-bit sum of
+ * extreme products can wrap, and saturate with the wrong one).
+ */
+mot_q32 mot_sum_prod_wide(const mot_q32 *a, const mot_q32 *b, unsigned n, uint32_t *sat);
+
+static inline mot_q32 mot_sum_prod(const mot_q32 *a, const mot_q32 *b, unsigned n, uint32_t *sat)
+{
+	const mot_q32 lim = (mot_q32)1 << 62;
+	mot_acc acc = mot_acc_zero();
+	bool small = n <= 8;
+	unsigned i;
+
+	for (i = 0; i < n; i++)
+		small = small && a[i] < lim && a[i] > -lim && b[i] < lim && b[i] > -lim;
+	if (!small)
+		return mot_sum_prod_wide(a, b, n, sat);
+	for (i = 0; i < n; i++)
+		acc = mot_acc_mac(acc, a[i], b[i]);
+	return mot_acc_round(acc, MOT_Q32_FRAC, sat);
+}
+
+/* p * q for |p|, |q| <= 1 rounded to Q2.62, not Q32.32, so that a third
+ * factor can follow without a second rounding at Q32.32 resolution
+ * (products of sines and cosines). */
+static inline int64_t mot_mul_q62(mot_q32 p, mot_q32 q)
+{
+	return mot_acc_round(mot_acc_mul(p, q), 2, NULL);
+}
+
+/* round(p * c + q * d) to Q32.32, for p, q in Q2.62 and |c|, |d| <= 1. */
+static inline mot_q32 mot_sum2_q62(int64_t p, mot_q32 c, int64_t q, mot_q32 d)
+{
+	return mot_acc_round(mot_acc_mac(mot_acc_mul(p, c), q, d), 62, NULL);
+}
+
 static inline mot_q32 mot_add_sat(mot_q32 a, mot_q32 b, uint32_t *sat)
 {
 	mot_q32 r;

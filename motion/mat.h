@@ -49,18 +49,26 @@ void mot_mat_rot_axis(struct mot_mat *out, const mot_q32 axis[3], mot_q32 turns,
 /* Euler angles in turns: Rx(e[0]) . Ry(e[1]) . Rz(e[2]) (x first). */
 void mot_mat_euler(struct mot_mat *out, const mot_q32 e[3], uint32_t *sat);
 
-/* out = a . b (apply a, then b). */
+/* out = a . b (apply a, then b). Each entry is the exact sum of its three
+ * products (plus b's translation in row 3) rounded once; a sum that does not
+ * fit saturates with its true sign. The hot path of the hierarchy: 36 exact
+ * 64x64->128 products, about 24 ns on the 1.8 GHz x86_64 build machine. */
 void mot_mat_mul(struct mot_mat *out, const struct mot_mat *a, const struct mot_mat *b,
 		 uint32_t *sat);
 
-/* out = inverse of the affine matrix a. MOT_E_SINGULAR when the linear part
- * has a determinant of (near) zero; out is then left untouched. */
+/* out = inverse of the affine matrix a: adjugate over the exact determinant,
+ * each linear entry within 1 LSB of the true inverse of a (any scale). The
+ * translation row is -t . inverse, rounded once. MOT_E_SINGULAR when the
+ * determinant is zero or so near it that an entry of the inverse's linear
+ * part would reach 2^30 in magnitude (fix.h's length limit); out is then left
+ * untouched. About 110 ns (tools/mat_bench.c): prepare, do not call per tick. */
 int mot_mat_inverse(struct mot_mat *out, const struct mot_mat *a, uint32_t *sat);
 
-/* Determinant of the linear part, rounded to Q32.32. */
+/* Determinant of the linear part, exact (192 bits) and rounded once to
+ * Q32.32, saturating. */
 mot_q32 mot_mat_det(const struct mot_mat *a, uint32_t *sat);
 
-/* out = (p, 1) . m: transform a point. */
+/* out = (p, 1) . m: transform a point, each coordinate rounded once. */
 void mot_mat_apply(mot_q32 out[3], const mot_q32 p[3], const struct mot_mat *m, uint32_t *sat);
 
 /* out = (v, 0) . m: transform a direction (no translation). */

@@ -7,6 +7,7 @@
 #define mot_muldiv fixp_muldiv_
 #define mot_div fixp_div_
 #define mot_recip_init fixp_recip_init_
+#define mot_sum_prod_wide fixp_sum_prod_wide_
 #include "../motion/fix.c"
 #include "fix_portable.h"
 

@@ -1,0 +1,462 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * quat.c - unit quaternions for rotation keys (see quat.h).
+ *
+ * Sums of products go through mot_sum_prod(): one rounding per component,
+ * and a true saturation for absurd inputs. Angles inside are in turns like
+ * everywhere in the core, including the vector part of log() and the
+ * argument of exp() (a constant factor that cancels in squad).
+ */
+#include "quat.h"
+#include "trig.h"
+
+#define ONE MOT_Q32_ONE
+
+/* Below this sin of the arc (about 0.056 degrees of quaternion arc) slerp
+ * is replaced by normalised linear interpolation: its deviation from the
+ * great arc, at most theta^3 / 60, is then under a tenth of an LSB. */
+#define SLERP_NLERP_SIN ((mot_q32)1 << 22)
+
+void mot_quat_identity(struct mot_quat *out)
+{
+	*out = (struct mot_quat){ ONE, 0, 0, 0 };
+}
+
+/*
+ * sin and cos of an angle held with 64 fractional bits of a turn (a Q64.64
+ * mot_acc): mot_sincos() of the Q32.32 part, then the remaining fraction d of
+ * an LSB (below 1.5e-9 rad) to first order, sin(a + d) = sin a + d cos a,
+ * whose error d^2/2 is nine orders below an LSB. Half angles and t * theta
+ * then cost no rounding of the angle (the turn LSB is 1.46e-9 rad, several
+ * quaternion LSB).
+ */
+static void sincos_fine(mot_acc turns, mot_q32 *s, mot_q32 *c)
+{
+	mot_q32 a = (mot_q32)((mot_acc_hi(turns) << 32) | (mot_acc_lo(turns) >> 32));
+	int64_t d = (int64_t)(mot_acc_lo(turns) & 0xffffffffu); /* 2^-64 turn */
+	mot_q32 s0, c0;
+
+	mot_sincos(a, &s0, &c0);
+	d = mot_acc_round(mot_acc_mul(d, MOT_TWO_PI_Q32), MOT_Q32_FRAC, NULL); /* 2^-64 rad */
+	*s = s0 + mot_acc_round(mot_acc_mul(c0, d), 64, NULL);
+	*c = c0 - mot_acc_round(mot_acc_mul(s0, d), 64, NULL);
+}
+
+/* sin and cos of turns / 2, exactly halved */
+static void sincos_half(mot_q32 turns, mot_q32 *s, mot_q32 *c)
+{
+	sincos_fine(mot_acc_from(turns, 31), s, c);
+}
+
+static mot_q32 neg(mot_q32 a, uint32_t *sat)
+{
+	return mot_sub_sat(0, a, sat);
+}
+
+void mot_quat_from_axis_angle(struct mot_quat *out, const mot_q32 axis[3], mot_q32 turns,
+			      uint32_t *sat)
+{
+	mot_q32 s, c;
+
+	sincos_half(turns, &s, &c);
+	*out = (struct mot_quat){ c, mot_mul(axis[0], s, sat), mot_mul(axis[1], s, sat),
+				  mot_mul(axis[2], s, sat) };
+}
+
+void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat)
+{
+	/* qz * qy * qx with half angles a, b, c about x, y, z, multiplied out. */
+	mot_q32 sa, ca, sb, cb, sc, cc;
+	int64_t cacb, sasb, sacb, casb;
+
+	sincos_half(e[0], &sa, &ca);
+	sincos_half(e[1], &sb, &cb);
+	sincos_half(e[2], &sc, &cc);
+	cacb = mot_mul_q62(ca, cb);
+	sasb = mot_mul_q62(sa, sb);
+	sacb = mot_mul_q62(sa, cb);
+	casb = mot_mul_q62(ca, sb);
+	out->w = mot_sum2_q62(cacb, cc, sasb, sc);
+	out->x = mot_sum2_q62(sacb, cc, -casb, sc);
+	out->y = mot_sum2_q62(casb, cc, sacb, sc);
+	out->z = mot_sum2_q62(cacb, sc, -sasb, cc);
+}
+
+/*
+ * R(q) of FORMULAS section 4 as exact Q64.64 sums, when every component is
+ * below 2^62 in magnitude (then nothing can wrap); false otherwise.
+ */
+static bool rot_exact(mot_acc e[3][3], const struct mot_quat *q)
+{
+	const mot_q32 lim = (mot_q32)1 << 62;
+	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
+	mot_acc xx, yy, zz, xy, xz, yz, wx, wy, wz, one;
+
+	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
+	    z >= lim || z <= -lim)
+		return false;
+	xx = mot_acc_mul(x, x), yy = mot_acc_mul(y, y), zz = mot_acc_mul(z, z);
+	xy = mot_acc_mul(x, y), xz = mot_acc_mul(x, z), yz = mot_acc_mul(y, z);
+	wx = mot_acc_mul(w, x), wy = mot_acc_mul(w, y), wz = mot_acc_mul(w, z);
+	one = mot_acc_from(MOT_Q32_ONE, MOT_Q32_FRAC);
+#define TWICE(v) mot_acc_add((v), (v))
+	e[0][0] = mot_acc_sub(one, TWICE(mot_acc_add(yy, zz)));
+	e[0][1] = TWICE(mot_acc_add(xy, wz));
+	e[0][2] = TWICE(mot_acc_sub(xz, wy));
+	e[1][0] = TWICE(mot_acc_sub(xy, wz));
+	e[1][1] = mot_acc_sub(one, TWICE(mot_acc_add(xx, zz)));
+	e[1][2] = TWICE(mot_acc_add(yz, wx));
+	e[2][0] = TWICE(mot_acc_add(xz, wy));
+	e[2][1] = TWICE(mot_acc_sub(yz, wx));
+	e[2][2] = mot_acc_sub(one, TWICE(mot_acc_add(xx, yy)));
+#undef TWICE
+	return true;
+}
+
+void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sat)
+{
+	/* FORMULAS section 4, each entry rounded once. Components beyond 2^62
+	 * (not a rotation at all) take the wrap-aware sums, with pairs that
+	 * spell out the factor 2. */
+	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
+	struct mot_mat r = { { { 0 } } };
+	mot_acc e[3][3];
+	int i;
+
+	if (rot_exact(e, q)) {
+		for (i = 0; i < 9; i++)
+			r.m[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], MOT_Q32_FRAC, sat);
+	} else {
+		const mot_q32 nx = neg(x, sat), ny = neg(y, sat), nz = neg(z, sat);
+		const mot_q32 nw = neg(w, sat);
+		const mot_q32 pairs[9][10] = {
+			{ ONE, ONE, y, ny, y, ny, z, nz, z, nz }, { x, y, x, y, w, z, w, z, 0, 0 },
+			{ x, z, x, z, nw, y, nw, y, 0, 0 },       { x, y, x, y, nw, z, nw, z, 0, 0 },
+			{ ONE, ONE, x, nx, x, nx, z, nz, z, nz }, { y, z, y, z, w, x, w, x, 0, 0 },
+			{ x, z, x, z, w, y, w, y, 0, 0 },         { y, z, y, z, nw, x, nw, x, 0, 0 },
+			{ ONE, ONE, x, nx, x, nx, y, ny, y, ny },
+		};
+
+		for (i = 0; i < 9; i++) {
+			const mot_q32 *p = pairs[i];
+			mot_q32 a[5] = { p[0], p[2], p[4], p[6], p[8] };
+			mot_q32 b[5] = { p[1], p[3], p[5], p[7], p[9] };
+
+			r.m[i / 3][i % 3] = mot_sum_prod(a, b, 5, sat);
+		}
+	}
+	*out = r;
+}
+
+int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
+{
+	mot_acc e[3][3];
+	int i;
+
+	if (!rot_exact(e, q))
+		return MOT_E_RANGE;
+	for (i = 0; i < 9; i++)
+		r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
+	return MOT_OK;
+}
+
+/* Hamilton product terms: component k of a * b is sum a[i] * sign * b[j]. */
+void mot_quat_mul(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
+		  uint32_t *sat)
+{
+	const mot_q32 l[4] = { a->w, a->x, a->y, a->z };
+	const mot_q32 nbx = neg(b->x, sat), nby = neg(b->y, sat), nbz = neg(b->z, sat);
+	const mot_q32 rw[4] = { b->w, nbx, nby, nbz };
+	const mot_q32 rx[4] = { b->x, b->w, b->z, nby };
+	const mot_q32 ry[4] = { b->y, nbz, b->w, b->x };
+	const mot_q32 rz[4] = { b->z, b->y, nbx, b->w };
+
+	*out = (struct mot_quat){ mot_sum_prod(l, rw, 4, sat), mot_sum_prod(l, rx, 4, sat),
+				  mot_sum_prod(l, ry, 4, sat), mot_sum_prod(l, rz, 4, sat) };
+}
+
+mot_q32 mot_quat_dot(const struct mot_quat *a, const struct mot_quat *b, uint32_t *sat)
+{
+	const mot_q32 l[4] = { a->w, a->x, a->y, a->z }, r[4] = { b->w, b->x, b->y, b->z };
+
+	return mot_sum_prod(l, r, 4, sat);
+}
+
+int mot_quat_normalize(struct mot_quat *out, const struct mot_quat *q, uint32_t *sat)
+{
+	/*
+	 * Scale by a power of two so that the largest component is in [1, 2]
+	 * (exact unless it was above 2), take the reciprocal square root of
+	 * the sum of squares, then one Newton step on the result itself,
+	 * u' = u (3 - |u|^2) / 2, with |u|^2 exact in 128 bits: it squares the
+	 * error of rsqrt and of the rounded sum, leaving the rounding of u'.
+	 */
+	mot_q32 v[4] = { q->w, q->x, q->y, q->z };
+	uint64_t big = 0;
+	mot_acc s = mot_acc_zero(), e;
+	mot_q32 r;
+	int64_t e63;
+	int sh, i;
+
+	for (i = 0; i < 4; i++)
+		big |= v[i] < 0 ? (uint64_t)0 - (uint64_t)v[i] : (uint64_t)v[i];
+	if (big == 0)
+		return MOT_E_INVAL;
+	sh = 32 - (63 - (int)mot_clz64(big));
+	for (i = 0; i < 4; i++) {
+		if (sh >= 0)
+			v[i] = (mot_q32)((uint64_t)v[i] << sh);
+		else
+			v[i] = mot_acc_round(mot_acc_from(v[i], 0), (unsigned)-sh, NULL);
+		s = mot_acc_mac(s, v[i], v[i]);
+	}
+	r = mot_rsqrt(mot_acc_round(s, MOT_Q32_FRAC, NULL), sat);
+	s = mot_acc_zero();
+	for (i = 0; i < 4; i++) {
+		v[i] = mot_mul(v[i], r, NULL);
+		s = mot_acc_mac(s, v[i], v[i]);
+	}
+	e = mot_acc_sub(mot_acc_from(ONE, MOT_Q32_FRAC), s); /* 1 - |u|^2, Q64.64 */
+	e63 = mot_acc_round(e, 1, NULL);
+	for (i = 0; i < 4; i++)
+		v[i] += mot_acc_round(mot_acc_mul(v[i], e63), 64, NULL);
+	*out = (struct mot_quat){ v[0], v[1], v[2], v[3] };
+	return MOT_OK;
+}
+
+void mot_quat_from_mat(struct mot_quat *out, const struct mot_mat *mat, uint32_t *sat)
+{
+	/*
+	 * Shoemake, "Animating rotation with quaternion curves" (SIGGRAPH 85)
+	 * and Graphics Gems IV "Euler angle conversion": with the trace positive
+	 * w is large and 4w^2 = 1 + trace; otherwise the largest diagonal entry
+	 * names the largest of x, y, z, e.g. 4x^2 = 1 + m00 - m11 - m22. The
+	 * other components follow from sums and differences of symmetric
+	 * off-diagonal pairs (m12 - m21 = 4wx, m01 + m10 = 4xy, ...), so 4q_i q
+	 * is known without a square root, and one normalisation replaces both
+	 * the square root and the division by 4q_i. The chosen entry, 4q_i^2,
+	 * is at least 1, so the vector is never near zero.
+	 */
+	const mot_q32(*m)[3] = mat->m;
+	mot_q32 d0 = m[0][0], d1 = m[1][1], d2 = m[2][2];
+	mot_q32 tr = mot_add_sat(mot_add_sat(d0, d1, sat), d2, sat);
+	mot_q32 wx = mot_sub_sat(m[1][2], m[2][1], sat), xy = mot_add_sat(m[0][1], m[1][0], sat);
+	mot_q32 wy = mot_sub_sat(m[2][0], m[0][2], sat), xz = mot_add_sat(m[0][2], m[2][0], sat);
+	mot_q32 wz = mot_sub_sat(m[0][1], m[1][0], sat), yz = mot_add_sat(m[1][2], m[2][1], sat);
+	struct mot_quat q;
+
+	if (tr > 0) {
+		q = (struct mot_quat){ mot_add_sat(ONE, tr, sat), wx, wy, wz };
+	} else if (d0 >= d1 && d0 >= d2) {
+		mot_q32 k = mot_sub_sat(mot_sub_sat(mot_add_sat(ONE, d0, sat), d1, sat), d2, sat);
+
+		q = (struct mot_quat){ wx, k, xy, xz };
+	} else if (d1 >= d2) {
+		mot_q32 k = mot_sub_sat(mot_sub_sat(mot_add_sat(ONE, d1, sat), d2, sat), d0, sat);
+
+		q = (struct mot_quat){ wy, xy, k, yz };
+	} else {
+		mot_q32 k = mot_sub_sat(mot_sub_sat(mot_add_sat(ONE, d2, sat), d0, sat), d1, sat);
+
+		q = (struct mot_quat){ wz, xz, yz, k };
+	}
+	if (q.w < 0)
+		q = (struct mot_quat){ neg(q.w, sat), neg(q.x, sat), neg(q.y, sat), neg(q.z, sat) };
+	mot_quat_normalize(out, &q, sat);
+}
+
+/* ---- slerp -------------------------------------------------------------------- */
+
+/*
+ * Slerp (Shoemake 1985) as a rotation in the plane of a and b: with c the
+ * unit vector of that plane orthogonal to a (Gram-Schmidt of b against a),
+ *     slerp(t) = a cos(t theta) + c sin(t theta),
+ * which equals the textbook a sin((1-t)theta)/sin(theta) + b sin(t theta)/
+ * sin(theta) but divides by nothing at evaluation: the textbook form
+ * multiplies the absolute error of the sines by 1/sin(theta), hundreds of
+ * LSB for arcs of a few tenths of a degree. The arc angle comes from
+ * atan2(|b - (a.b)a|, a.b), well conditioned at every angle, where
+ * acos(a.b) loses half the digits near 0. Results are unit within the
+ * rounding of the products (|a| = |c| = 1 and a.c = 0 within 1 LSB).
+ */
+
+static void quat_lerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
+		      mot_q32 t, uint32_t *sat)
+{
+	const mot_q32 u = ONE - t;
+	const mot_q32 l[8] = { a->w, b->w, a->x, b->x, a->y, b->y, a->z, b->z };
+	const mot_q32 r[2] = { u, t };
+	struct mot_quat q;
+
+	q.w = mot_sum_prod(l, r, 2, sat);
+	q.x = mot_sum_prod(l + 2, r, 2, sat);
+	q.y = mot_sum_prod(l + 4, r, 2, sat);
+	q.z = mot_sum_prod(l + 6, r, 2, sat);
+	if (mot_quat_normalize(out, &q, sat) != MOT_OK)
+		*out = *a;
+}
+
+void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const struct mot_quat *b,
+		       uint32_t *sat)
+{
+	struct mot_quat bb = *b, u;
+	mot_q32 d, k, len;
+	mot_acc n;
+	int pass;
+
+	d = mot_quat_dot(a, &bb, sat);
+	if (d < 0) {
+		bb = (struct mot_quat){ neg(bb.w, sat), neg(bb.x, sat), neg(bb.y, sat),
+					neg(bb.z, sat) };
+		d = neg(d, sat);
+	}
+	/* u = b - d a, then once more with k = a.u: the second pass removes
+	 * what the rounding of d and of a's norm left along a. */
+	u = bb;
+	k = d;
+	for (pass = 0; pass < 2; pass++) {
+		const mot_q32 l[8] = { u.w, a->w, u.x, a->x, u.y, a->y, u.z, a->z };
+		const mot_q32 r[2] = { ONE, neg(k, sat) };
+
+		u.w = mot_sum_prod(l, r, 2, sat);
+		u.x = mot_sum_prod(l + 2, r, 2, sat);
+		u.y = mot_sum_prod(l + 4, r, 2, sat);
+		u.z = mot_sum_prod(l + 6, r, 2, sat);
+		if (pass == 0) {
+			k = mot_quat_dot(a, &u, sat);
+			d = mot_add_sat(d, k, sat);
+		}
+	}
+	n = mot_acc_mul(u.w, u.w);
+	n = mot_acc_mac(n, u.x, u.x);
+	n = mot_acc_mac(n, u.y, u.y);
+	n = mot_acc_mac(n, u.z, u.z);
+	len = (mot_q32)mot_isqrt_acc(n, sat);
+	s->a = *a;
+	s->b = bb;
+	s->theta = mot_atan2(len, d);
+	s->nlerp = len < SLERP_NLERP_SIN;
+	if (s->nlerp || mot_quat_normalize(&s->c, &u, sat) != MOT_OK)
+		s->c = (struct mot_quat){ 0, 0, 0, 0 };
+}
+
+void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
+{
+	mot_q32 sn, cs;
+
+	if (t <= 0 || t >= ONE) {
+		if ((t < 0 || t > ONE) && sat)
+			*sat |= MOT_SAT_DOMAIN;
+		*out = t <= 0 ? s->a : s->b;
+		return;
+	}
+	if (s->nlerp) {
+		quat_lerp(out, &s->a, &s->b, t, sat);
+		return;
+	}
+	sincos_fine(mot_acc_mul(t, s->theta), &sn, &cs);
+	{
+		const mot_q32 l[8] = { s->a.w, s->c.w, s->a.x, s->c.x,
+				       s->a.y, s->c.y, s->a.z, s->c.z };
+		const mot_q32 r[2] = { cs, sn };
+
+		*out = (struct mot_quat){ mot_sum_prod(l, r, 2, sat), mot_sum_prod(l + 2, r, 2, sat),
+					  mot_sum_prod(l + 4, r, 2, sat),
+					  mot_sum_prod(l + 6, r, 2, sat) };
+	}
+}
+
+void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
+		    mot_q32 t, uint32_t *sat)
+{
+	struct mot_slerp s;
+
+	mot_slerp_prepare(&s, a, b, sat);
+	mot_slerp_eval(out, &s, t, sat);
+}
+
+/* ---- squad -------------------------------------------------------------------- */
+
+/* log of a unit quaternion with w >= 0: (0, v/|v| phi), phi = atan2(|v|, w)
+ * in turns, at most 1/4. */
+static void quat_log(mot_q32 out[3], const struct mot_quat *q, uint32_t *sat)
+{
+	const mot_q32 v[3] = { q->x, q->y, q->z };
+	mot_q32 len = mot_norm3(v, sat), phi;
+	int i;
+
+	if (len == 0) {
+		out[0] = out[1] = out[2] = 0;
+		return;
+	}
+	phi = mot_atan2(len, q->w);
+	for (i = 0; i < 3; i++)
+		out[i] = mot_muldiv(v[i], phi, len, sat);
+}
+
+/* exp of (0, l), |l| in turns: (cos |l|, l/|l| sin |l|). */
+static void quat_exp(struct mot_quat *out, const mot_q32 l[3], uint32_t *sat)
+{
+	mot_q32 len = mot_norm3(l, sat), s, c;
+
+	if (len == 0) {
+		mot_quat_identity(out);
+		return;
+	}
+	mot_sincos(len, &s, &c);
+	*out = (struct mot_quat){ c, mot_muldiv(l[0], s, len, sat), mot_muldiv(l[1], s, len, sat),
+				  mot_muldiv(l[2], s, len, sat) };
+}
+
+/* log(cur^-1 * other) on the shorter arc. */
+static void rel_log(mot_q32 out[3], const struct mot_quat *cur, const struct mot_quat *other,
+		    uint32_t *sat)
+{
+	struct mot_quat inv = { cur->w, neg(cur->x, sat), neg(cur->y, sat), neg(cur->z, sat) }, r;
+
+	mot_quat_mul(&r, &inv, other, sat);
+	if (r.w < 0)
+		r = (struct mot_quat){ neg(r.w, sat), neg(r.x, sat), neg(r.y, sat), neg(r.z, sat) };
+	quat_log(out, &r, sat);
+}
+
+void mot_squad_inner(struct mot_quat *out, const struct mot_quat *prev,
+		     const struct mot_quat *cur, const struct mot_quat *next, uint32_t *sat)
+{
+	/*
+	 * Shoemake's inner control point (quat.h): the average of the log
+	 * tangents toward both neighbours, negated and quartered, so that the
+	 * Bezier-like squad curve leaves q(i) with the same angular velocity
+	 * on both sides (Shoemake, "Quaternion calculus and fast animation",
+	 * SIGGRAPH 87 course notes).
+	 */
+	mot_q32 ln[3], lp[3], l[3];
+	struct mot_quat e, s;
+	int i;
+
+	rel_log(ln, cur, next, sat);
+	rel_log(lp, cur, prev, sat);
+	for (i = 0; i < 3; i++)
+		l[i] = mot_acc_round(mot_acc_from(-(ln[i] + lp[i]), 0), 2, NULL);
+	quat_exp(&e, l, sat);
+	mot_quat_mul(&s, cur, &e, sat);
+	if (mot_quat_normalize(out, &s, sat) != MOT_OK)
+		*out = *cur;
+}
+
+void mot_quat_squad(struct mot_quat *out, const struct mot_quat *q0, const struct mot_quat *q1,
+		    const struct mot_quat *s0, const struct mot_quat *s1, mot_q32 t, uint32_t *sat)
+{
+	/* squad(t) = slerp(slerp(q0, q1, t), slerp(s0, s1, t), 2t(1-t)). When
+	 * q1 is on the far side of q0 its inner point s1 goes with it. */
+	struct mot_quat b = *q1, sb = *s1, p, r;
+
+	if (mot_quat_dot(q0, q1, sat) < 0) {
+		b = (struct mot_quat){ neg(b.w, sat), neg(b.x, sat), neg(b.y, sat), neg(b.z, sat) };
+		sb = (struct mot_quat){ neg(sb.w, sat), neg(sb.x, sat), neg(sb.y, sat),
+					neg(sb.z, sat) };
+	}
+	mot_quat_slerp(&p, q0, &b, t, sat);
+	mot_quat_slerp(&r, s0, &sb, t, sat);
+	mot_quat_slerp(out, &p, &r, mot_acc_round(mot_acc_mul(t, ONE - t), 31, NULL), sat);
+}
