@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * cmd_check.c - `strand check SCENE`: validate a scene file, then every
- * joint limit over the whole timeline at tick resolution (limits.c).
+ * joint limit over the whole timeline at tick resolution (limit_check.c).
  */
 #include <getopt.h>
 #include <string.h>
@@ -9,7 +9,7 @@
 #include "channel.h"
 #include "cli.h"
 #include "exitcode.h"
-#include "limits.h"
+#include "limit_check.h"
 
 struct report {
 	FILE *out;
@@ -25,7 +25,7 @@ static void print_violation(void *ctx, const struct lim_violation *v)
 	const char *per = v->kind == LIM_VEL ? "/s" : v->kind == LIM_ACC ? "/s^2" : "";
 
 	/* 7 digits: a velocity or acceleration is a difference of quantised
-	 * values, and more digits would print only that noise (limits.h) */
+	 * values, and more digits would print only that noise (limit_check.h) */
 	fprintf(r->out, "%s.%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
 		n->name, rev ? "angle" : "position", lim_kind_name(v->kind), v->worst, unit, per,
 		v->limit, unit, per, v->frame_first, v->frame_last);

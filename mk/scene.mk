@@ -26,6 +26,9 @@ deps: $(BUILD)/.deps-fuzz $(BUILD)/.deps-render
 # ---- render test: chromium and libpng ------------------------------------------
 $(BUILD)/tests/test_render: TEST_LIBS += $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 $(BUILD)/san/tests/test_render.o: | $(BUILD)/.deps-render
+# png.h includes <time.h>, which motion/time.h shadows under -Imotion: this
+# test finds the project's own headers through -iquote only.
+$(BUILD)/san/tests/test_render.o: TEST_CFLAGS := $(patsubst -I%,-iquote %,$(TEST_CFLAGS))
 
 # ---- libFuzzer ------------------------------------------------------------------
 FUZZ_SECONDS       ?= 300

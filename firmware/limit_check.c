@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* limits.c - joint limits over a timeline at tick resolution (see limits.h). */
-#include "limits.h"
+/* limit_check.c - joint limits over a timeline at tick resolution (see limit_check.h). */
+#include "limit_check.h"
 
 #include <errno.h>
 #include <math.h>

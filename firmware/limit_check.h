@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * limits.h - joint limits over a whole timeline, at tick resolution (the
+ * limit_check.h - joint limits over a whole timeline, at tick resolution (the
  * work of `strand check`).
  *
  * Every tick of the span is evaluated, exactly as playback will, and each
@@ -16,8 +16,8 @@
  * noise (4 steps per difference), which at 1 kHz is 3.4e-4 deg/s and
  * 0.34 deg/s^2 - far below any servo's limits.
  */
-#ifndef STRAND_LIMITS_H
-#define STRAND_LIMITS_H
+#ifndef STRAND_LIMIT_CHECK_H
+#define STRAND_LIMIT_CHECK_H
 
 #include <stdint.h>
 
@@ -54,4 +54,4 @@ int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t fr
 /* "min", "max", "velocity", "acceleration" */
 const char *lim_kind_name(enum lim_kind k);
 
-#endif /* STRAND_LIMITS_H */
+#endif /* STRAND_LIMIT_CHECK_H */

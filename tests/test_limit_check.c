@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * test_limits.c - `strand check`'s limit verification (firmware/limits.c):
+ * test_limit_check.c - `strand check`'s limit verification (firmware/limit_check.c):
  * a scene that breaks each kind of limit, caught at the right ticks, with
  * the worst values and the report lines of the command.
  *
@@ -15,7 +15,7 @@
 
 #include "cli.h"
 #include "exitcode.h"
-#include "limits.h"
+#include "limit_check.h"
 #include "testutil.h"
 
 static const char scene[] =
