@@ -147,15 +147,23 @@ static int view(struct page *p, double x, double y, uint32_t vaxis, const char *
 	return 0;
 }
 
+/* Key marks: points in data coordinates. */
+struct marks {
+	double *x, *y;
+	uint32_t n;
+};
+
 /* The key marks of one channel: its keys' values where the file gives
- * them, else the evaluated value at each key frame. */
-static int channel_keys(struct page *p, const struct chart *c, uint32_t chan, const char *color)
+ * them (an approximating curve need not pass through them), else the
+ * evaluated value at each key frame. */
+static int channel_keys(struct page *p, uint32_t chan, struct marks *m)
 {
 	const struct scene_desc *d = &p->sf->desc;
 	const struct chan *ch = &p->ch->c[chan];
 	const struct sd_curve *curve = NULL;
 	const double *frames = NULL;
-	uint32_t nframes = 0, k;
+	uint32_t n = 0, k;
+	bool given = true;
 
 	switch (ch->kind) {
 	case CHAN_VALUE:
@@ -169,58 +177,79 @@ static int channel_keys(struct page *p, const struct chart *c, uint32_t chan, co
 		break;
 	case CHAN_CAMERA:
 		curve = &d->camera.ch[ch->comp < 3 ? ch->comp : 0];
+		given = ch->comp < 3; /* pan, tilt, roll: evaluated at the camera's keys */
 		break;
 	case CHAN_POS:
 		if (p->sf->strand[ch->index].present) {
 			frames = p->sf->strand[ch->index].key_frames;
-			nframes = p->sf->strand[ch->index].nkeys;
+			n = p->sf->strand[ch->index].nkeys;
 		}
+		given = false;
 		break;
 	default:
 		break;
 	}
-	if (curve && (ch->kind != CHAN_CAMERA || ch->comp < 3)) {
-		for (k = 0; k < curve->nkeys; k++)
-			chart_mark(p->f, c, curve->keys[k].frame, curve->keys[k].value, color);
-		return 0;
-	}
-	if (curve) { /* camera angles: evaluated at the camera's key frames */
-		for (k = 0; k < curve->nkeys; k++) {
-			if (plot_eval_at(p->at_key, p->sc, p->ch, curve->keys[k].frame))
+	if (curve)
+		n = curve->nkeys;
+	m->n = 0;
+	m->x = calloc(n ? n : 1, sizeof(*m->x));
+	m->y = calloc(n ? n : 1, sizeof(*m->y));
+	if (!m->x || !m->y)
+		return -ENOMEM;
+	for (k = 0; k < n; k++) {
+		m->x[k] = curve ? curve->keys[k].frame : frames[k];
+		if (given) {
+			m->y[k] = curve->keys[k].value;
+		} else {
+			if (plot_eval_at(p->at_key, p->sc, p->ch, m->x[k]))
 				return -ENOMEM;
-			chart_mark(p->f, c, curve->keys[k].frame, p->at_key[chan], color);
+			m->y[k] = p->at_key[chan];
 		}
-		return 0;
 	}
-	for (k = 0; k < nframes; k++) {
-		if (plot_eval_at(p->at_key, p->sc, p->ch, frames[k]))
-			return -ENOMEM;
-		chart_mark(p->f, c, frames[k], p->at_key[chan], color);
-	}
+	m->n = n;
 	return 0;
 }
 
-/* One chart of `count` consecutive channels from `chan`. */
+static void marks_free(struct marks *m, uint32_t count)
+{
+	uint32_t i;
+
+	for (i = 0; i < count; i++) {
+		free(m[i].x);
+		free(m[i].y);
+	}
+}
+
+/* One chart of `count` (at most 3) consecutive channels from `chan`; the
+ * range holds the lines and the key marks. */
 static int channel_chart(struct page *p, double x, double y, uint32_t chan, uint32_t count,
 			 const char *title)
 {
 	const struct plot_samples *ps = p->ps;
 	struct chart c = { x, y, CHART_W, CHART_H, 0, 0, 0, 0, false, p->next_id++ };
 	double lo = INFINITY, hi = -INFINITY, lx = x + CHART_W - 10;
-	uint32_t i;
-	int err;
+	struct marks m[3];
+	uint32_t i, k;
+	int err = 0;
 
-	for (i = 0; i < count; i++)
+	memset(m, 0, sizeof(m));
+	for (i = 0; i < count && !err; i++) {
 		range_of(plot_series(ps, chan + i), ps->n, &lo, &hi);
+		err = channel_keys(p, chan + i, &m[i]);
+		range_of(m[i].y, m[i].n, &lo, &hi);
+	}
+	if (err) {
+		marks_free(m, count);
+		return err;
+	}
 	chart_fit(&c, ps->frame[0], ps->frame[ps->n - 1], lo, hi);
 	chart_axes(p->f, &c, title, "frame", p->ch->c[chan].unit);
 	for (i = 0; i < count; i++) {
 		const char *color = svg_color(count == 1 ? chan : i);
 
 		chart_line(p->f, &c, ps->frame, plot_series(ps, chan + i), ps->n, color, 1.8, NULL);
-		err = channel_keys(p, &c, chan + i, color);
-		if (err)
-			return err;
+		for (k = 0; k < m[i].n; k++)
+			chart_mark(p->f, &c, m[i].x[k], m[i].y[k], color);
 		if (count > 1) {
 			const char *dot = strrchr(p->ch->c[chan + i].name, '.');
 
@@ -228,6 +257,7 @@ static int channel_chart(struct page *p, double x, double y, uint32_t chan, uint
 				   NULL);
 		}
 	}
+	marks_free(m, count);
 	return 0;
 }
 
