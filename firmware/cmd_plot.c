@@ -19,7 +19,7 @@
 #define VIEW_H 360
 #define CHART_W 540
 #define CHART_H 150
-#define PAGE_W 1240
+#define PAGE_W 1300
 #define LEFT 70
 #define GAP_X 90
 #define GAP_Y 70

@@ -77,7 +77,7 @@ static void test_render(void **state)
 			 "timeout 120 chromium --headless --no-sandbox --disable-gpu "
 			 "--disable-background-networking --disable-component-update --disable-sync "
 			 "--no-first-run --user-data-dir=%s/profile --hide-scrollbars "
-			 "--window-size=1240,1000 --screenshot=%s file://%s >>%s 2>&1",
+			 "--window-size=1300,1000 --screenshot=%s file://%s >>%s 2>&1",
 			 dir, png, svg, log);
 		if (system(cmd) != 0 || access(png, R_OK) != 0)
 			fail_msg("chromium did not render %s (log: %s)", svg, log);
