@@ -44,9 +44,11 @@ $(FUZZ_DIR)/fuzz_load: $(FUZZ_SRC) $(MOTION_HDR) $(FW_HDR) | $(BUILD)/.deps-fuzz
 	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags yaml-0.1) $(FUZZ_SRC) \
 		$(FW_LIBS) -o $@
 
-# The seed corpus: the examples and the golden error cases of the loader tests.
-$(FUZZ_DIR)/seed: $(BUILD)/tests/test_load_errors $(wildcard examples/*.yaml)
+# The seed corpus: the examples, the test scenes and the golden error cases
+# of the loader tests.
+$(FUZZ_DIR)/seed: $(BUILD)/tests/test_load_errors $(wildcard examples/*.yaml tests/scenes/*.yaml)
 	$(Q)rm -rf $@ && mkdir -p $@ && cp examples/*.yaml $@/ && \
+		for f in tests/scenes/*.yaml; do cp $$f $@/scene-$$(basename $$f); done && \
 		$(BUILD)/tests/test_load_errors --write-corpus $@
 
 # libFuzzer writes what it finds to the first directory: a scratch copy, so
