@@ -231,6 +231,17 @@ static void test_export(void **state)
 	run_free(&r);
 }
 
+/* Saturated arithmetic is reported, never passed off as a result. */
+static void test_saturation(void **state)
+{
+	expect("check tests/scenes/saturates.yaml", STRAND_EXIT_INTERNAL,
+	       "tests/scenes/saturates.yaml: the core's arithmetic saturated at frame 0: "
+	       "values too large for its Q32.32 format\n");
+	expect("export tests/scenes/saturates.yaml", STRAND_EXIT_INTERNAL,
+	       "tests/scenes/saturates.yaml: the core's arithmetic saturated: "
+	       "values too large for its Q32.32 format\n");
+}
+
 /* Rows depend only on their sample time: every 7th frame exported alone
  * equals the same rows of the full export (the core's cursors make
  * sequential playback fast, never different), for a scene with every kind
@@ -270,6 +281,7 @@ int main(void)
 		cmocka_unit_test(test_version_help), cmocka_unit_test(test_usage),
 		cmocka_unit_test(test_scene_error),  cmocka_unit_test(test_examples),
 		cmocka_unit_test(test_export),	     cmocka_unit_test(test_export_random_access),
+		cmocka_unit_test(test_saturation),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
