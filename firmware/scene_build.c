@@ -17,20 +17,6 @@
 
 #include "arena.h"
 
-bool sd_to_q32(double v, mot_q32 *out)
-{
-	/* |v| < 2^30 keeps sums of a few terms inside Q32.32 (fix.h) */
-	if (!isfinite(v) || fabs(v) >= 1073741824.0)
-		return false;
-	*out = (mot_q32)llround(v * 4294967296.0);
-	return true;
-}
-
-bool sd_deg_to_turns(double deg, mot_q32 *out)
-{
-	return sd_to_q32(deg / 360.0, out);
-}
-
 /* Where the layout pass puts things; filled on the real pass. */
 struct layout {
 	struct mot_arena *a;
@@ -177,12 +163,12 @@ static int set_err(struct scene_build_err *e, int code, int node, const char *wh
 	return code;
 }
 
-static const char *const free_names[MOT_FREE_NCHANNELS] = {
+const char *const sd_free_names[MOT_FREE_NCHANNELS] = {
 	"translate.x", "translate.y", "translate.z", "scale.x",  "scale.y",
 	"scale.z",     "shear.hxy",   "shear.hxz",   "shear.hyz",
 };
 
-static const char *const cam_names[MOT_CAM_NCHANNELS] = {
+const char *const sd_cam_names[MOT_CAM_NCHANNELS] = {
 	"camera.eye.x",     "camera.eye.y",     "camera.eye.z", "camera.look_at.x",
 	"camera.look_at.y", "camera.look_at.z", "camera.twist",
 };
@@ -274,7 +260,7 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 				err = build_curve(l, fill ? &l->curves[ci] : NULL, &sf->ch[k], 1.0,
 						  false, &bad);
 				if (err)
-					return set_err(e, err, (int)i, free_names[k], bad);
+					return set_err(e, err, (int)i, sd_free_names[k], bad);
 				if (fs)
 					fs->channel[k] = (int32_t)ci;
 				ci++;
@@ -313,7 +299,7 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 			err = build_curve(l, fill ? &l->curves[ci] : NULL, &d->camera.ch[k], scale,
 					  false, &bad);
 			if (err)
-				return set_err(e, err, -1, cam_names[k], bad);
+				return set_err(e, err, -1, sd_cam_names[k], bad);
 			if (fill)
 				l->camera->ch[k] = (int32_t)ci;
 			ci++;

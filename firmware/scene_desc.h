@@ -109,6 +109,11 @@ struct scene_built {
 	size_t block_size; /* bytes the scene needs in the core */
 };
 
+/* The names scene_build_err.what gives the channels of a free strand and of
+ * the camera. */
+extern const char *const sd_free_names[MOT_FREE_NCHANNELS];
+extern const char *const sd_cam_names[MOT_CAM_NCHANNELS];
+
 /* Where a build failed, for the message at the edge. */
 struct scene_build_err {
 	int code;         /* MOT_E_* */

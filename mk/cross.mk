@@ -27,9 +27,9 @@ cross_ld.armhf     := -static
 cross_run.aarch64  := qemu-aarch64
 cross_run.armhf    := qemu-arm
 
-# -DHAVE_MOT_<NAME> for each motion/<name>.c: the digest adds its workload.
-DIGEST_DEFS := $(addprefix -DHAVE_MOT_,$(shell echo $(basename $(notdir $(MOTION_SRC))) | tr a-z A-Z))
-DIGEST_CFLAGS := -std=c11 -O2 $(WARN) -Werror -Imotion $(DIGEST_DEFS)
+# The scene workloads build scenes in code through the firmware's builder.
+DIGEST_SRC := tests/digest/digest.c tests/synth.c firmware/scene_build.c firmware/scene_desc.c
+DIGEST_CFLAGS := -std=gnu11 -O2 $(WARN) -Werror -ffp-contract=off -Imotion -Ifirmware -Itests
 
 # The core's flags for variant $(1). '=' and $(shell) at recipe time: a cross
 # compiler is asked for its include directory after mk/deps.sh installed it.
@@ -49,10 +49,10 @@ $(BUILD)/cross/$(1)/motion/%.o: motion/%.c $(MOTION_HDR) | $(BUILD)/.deps-cross
 	@mkdir -p $$(@D)
 	$$(Q)$$(cross_cc.$(1)) $$(call cross_core_cflags,$(1)) -c $$< -o $$@
 
-$(BUILD)/cross/$(1)/digest: tests/digest/digest.c $(MOTION_SRC:%.c=$(BUILD)/cross/$(1)/%.o) \
-		$(MOTION_HDR) $(CROSS_SOURCES) | $(BUILD)/.deps-cross
-	$$(Q)$$(cross_cc.$(1)) $$(DIGEST_CFLAGS) $$(cross_def.$(1)) $$< \
-		$$(filter %.o,$$^) $$(cross_ld.$(1)) -o $$@
+$(BUILD)/cross/$(1)/digest: $(DIGEST_SRC) $(MOTION_SRC:%.c=$(BUILD)/cross/$(1)/%.o) \
+		$(MOTION_HDR) $(FW_HDR) tests/synth.h $(CROSS_SOURCES) | $(BUILD)/.deps-cross
+	$$(Q)$$(cross_cc.$(1)) $$(DIGEST_CFLAGS) $$(cross_def.$(1)) $(DIGEST_SRC) \
+		$$(filter %.o,$$^) $$(cross_ld.$(1)) -lm -o $$@
 endef
 $(foreach v,$(CROSS_VARIANTS),$(eval $(call cross_variant,$(v))))
 

@@ -24,7 +24,24 @@
  * interval they belong to; the strand-wide ease (opts) remaps the frame over
  * the span from the first to the last key. Both are applied as time warps
  * before evaluation: strand warp first, then the key interval's warp, for
- * every kind.
+ * every kind. A warped frame is a Q32.32 frame like any input: where it is
+ * rounded (the strand warp; the key warp of the approximating kinds) the
+ * result is the curve's value at that rounded frame.
+ *
+ * Accuracy, measured against a long double reference by tests/test_curve.c:
+ * step, linear and hermite are within 1/2 LSB (of Q32.32) of the exact value;
+ * the approximating kinds and every eased curve within 1/2 LSB plus 1/2 LSB
+ * of frame times the slope dv/df at the (warped) frame. Results are the same
+ * bits on every target (__int128 or not).
+ *
+ * Cost per evaluation, playing 10 keys at 1 kHz ticks with a cursor (x86_64,
+ * AMD EPYC, -O2; random access adds 10-30 ns): step 5 ns, linear 8 ns,
+ * hermite 10 ns, bspline 70-85 ns, beta 80-95 ns (about 3.5 Newton
+ * iterations), bezier O(n^2) per iteration: 130 ns for 4 keys, 400 ns for
+ * 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
+ * ratios of 1e4 and more, beta1 < 0.01, beta2 > 100) flatten a piece's frame
+ * near its ends and take up to about 20 iterations; the solve never exceeds
+ * 64 (NEWTON_MAX_IT in curve.c).
  */
 #ifndef MOT_CURVE_H
 #define MOT_CURVE_H
@@ -46,45 +63,71 @@ enum mot_interp {
 #define MOT_BEZIER_MAX_KEYS 32
 
 struct mot_key {
-	mot_q32 frame;    /* strictly increasing along the array */
-	mot_q32 value;
+	mot_q32 frame;    /* strictly increasing along the array, |frame| <= 2^30 */
+	mot_q32 value;    /* |value| <= 2^30 (MOT_LEN_LIMIT) */
 	mot_q32 ease_in;  /* fraction of the interval arriving here, [0, 1] */
 	mot_q32 ease_out; /* fraction of the interval leaving here, [0, 1] */
 };
 
+/* Beta-spline shape limits: beta1 in [0, MOT_BETA1_MAX], beta2 in
+ * [0, MOT_BETA2_MAX]; the curve is already within a few LSB of its limit
+ * shape there, and the basis fits 64 bits. */
+#define MOT_BETA1_MAX MOT_Q32_INT(256)
+#define MOT_BETA2_MAX MOT_Q32_INT(1 << 24)
+
 struct mot_curve_opts {
-	mot_q32 beta1, beta2;   /* Beta-spline bias (> 0 ... ) and tension (>= 0) */
+	mot_q32 beta1, beta2;    /* Beta-spline bias (>= 0) and tension (>= 0) */
 	mot_q32 ease_in_frames;  /* strand-wide slow-in, frames (0 = none) */
 	mot_q32 ease_out_frames; /* strand-wide slow-out, frames (0 = none) */
 	bool integral;           /* prepare running integrals (rpm strands) */
 };
 
-/* Prepared data of one segment; the fields used depend on the kind. */
+/*
+ * Prepared data; entry j of the array holds two things.
+ *
+ * Piece j of the curve: for step/linear/hermite the key interval j; for
+ * bspline/beta the cubic on extended control points j..j+3; for bezier only
+ * entry 0 (the whole curve). A polynomial P is kept as int64 coefficients of
+ * powers of a parameter u in Q2.62, scaled by 2^sh so that their magnitudes
+ * add up to at most 2^61 (block floating point: ~60 significant bits however
+ * small or large the segment):
+ *     value(u) = vref + P(u) / 2^vsh        (Q32.32 value)
+ *     frame(u) = fref + F(u) / 2^fsh        (Q32.32 frame; approximating kinds)
+ *
+ * Key interval j (j < nkeys - 1), for every kind: its slow-in/out and, for
+ * the approximating kinds, the reciprocal of its width.
+ */
 struct mot_curve_seg {
-	mot_q32 f0, f1;         /* frames covered: [f0, f1) */
-	mot_q32 c[4];           /* value polynomial in the segment parameter */
-	mot_q32 fc[4];          /* frame polynomial (approximating kinds) */
-	uint64_t inv_w_m;       /* 1/(f1 - f0) as m / 2^inv_w_shift */
-	uint32_t inv_w_shift;
-	uint32_t key;           /* index of the key interval it starts in */
-	struct mot_ease ease;   /* interval slow-in/out (interpolating kinds) */
-	mot_acc area;           /* integral of the curve from frame 0 to f0 */
+	mot_q32 f0, f1;          /* frames covered by piece j: [f0, f1) */
+	mot_q32 vref, fref;      /* reference value and frame of the polynomials */
+	int64_t c[4];            /* value polynomial P */
+	union {
+		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
+		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
+	};
+	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
+	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
+	uint8_t start;           /* Newton start rule (curve.c) */
+	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
+	struct mot_ease ease;    /* slow-in/out of key interval j */
+	mot_acc area;            /* integral from frame 0 to key j, value x frames, Q64.64 */
 };
 
 struct mot_curve {
 	uint32_t kind;          /* enum mot_interp */
 	uint32_t nkeys;
-	uint32_t nseg;
-	bool seg_ease;          /* some key has a non-zero ease fraction */
+	uint32_t nseg;          /* entries of seg[] in use */
+	bool seg_ease;          /* some key interval has a non-zero ease fraction */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
 	mot_q32 beta1, beta2;
-	mot_q32 span_f0, span_f1;
+	mot_q32 span_f0, span_f1;    /* first and last key frame */
+	struct mot_recip span_inv;   /* 1 / (span_f1 - span_f0) */
 	struct mot_ease span;
-	uint64_t span_inv_m;
-	uint32_t span_inv_shift;
+	mot_acc area_first;          /* integral from frame 0 to the first key */
+	mot_acc area_last;           /* integral from frame 0 to the last key */
 };
 
 /* Cursor for sequential playback: remembers the segment of the last sample so
@@ -96,37 +139,53 @@ struct mot_cursor {
 };
 
 /* Segments that mot_curve_init() needs for nkeys keys of this kind (0 for an
- * invalid kind or nkeys == 0). */
+ * invalid kind or nkeys == 0): one per key interval for step, linear,
+ * hermite and bezier, nkeys + 1 for bspline and beta, at least 1. */
 uint32_t mot_curve_seg_count(enum mot_interp kind, uint32_t nkeys);
 
 /*
- * Validate and prepare. Errors: MOT_E_NOKEYS (nkeys == 0), MOT_E_ORDER (frames
- * not strictly increasing), MOT_E_INVAL (kind, ease fractions outside [0, 1]
- * or summing above 1 on an interval, strand ease longer than the span,
- * beta1 <= 0 or beta2 < 0, integral requested for an approximating kind or
- * with ease), MOT_E_CAPACITY (nseg too small, or a Bezier curve with more than
- * MOT_BEZIER_MAX_KEYS keys), MOT_E_RANGE (a value or frame outside the
- * representable range of the prepared coefficients). keys and seg must
- * outlive the curve. Init only.
+ * Validate and prepare. opts may be NULL (beta1 = 1, beta2 = 0, no ease, no
+ * integral). Errors, in this order of precedence: MOT_E_INVAL (c or keys
+ * NULL, kind), MOT_E_NOKEYS (nkeys == 0), MOT_E_CAPACITY (seg NULL or nseg
+ * below mot_curve_seg_count(), a Bezier curve with more than
+ * MOT_BEZIER_MAX_KEYS keys), then for the first offending key MOT_E_RANGE
+ * (|frame| or |value| of 2^30 or more: MOT_LEN_LIMIT) or MOT_E_ORDER (frame
+ * not above the previous one), then
+ * MOT_E_INVAL (ease fractions outside [0, 1] or summing above 1 on an
+ * interval, strand ease negative or longer than the span, beta1 or beta2
+ * outside [0, MOT_BETA1_MAX] / [0, MOT_BETA2_MAX] for a Beta-spline,
+ * integral requested for an approximating kind or with any ease). On error
+ * the curve evaluates to 0 and sets MOT_SAT_DOMAIN. keys and seg must
+ * outlive the curve. Init only (divides; O(nkeys)).
  */
 int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_key *keys,
 		   uint32_t nkeys, const struct mot_curve_opts *opts, struct mot_curve_seg *seg,
 		   uint32_t nseg, uint32_t *sat);
 
 /* Value at a frame (Q32.32 frames). cur may be NULL (random access, binary
- * search); the result is the same either way. Real-time safe. */
+ * search); the result is the same either way. Real-time safe: no allocation,
+ * bounded time (see Cost above). MOT_SAT_OVERFLOW only where a Hermite
+ * overshoot leaves Q32.32, which keys within MOT_LEN_LIMIT cannot do. */
 mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
 		       uint32_t *sat);
 
 /*
  * Integral of the curve from frame 0 to `frame`, in value x frames, as a
  * Q64.64 number in *out (negative for frames before 0). Closed form: a step
- * or linear curve is exact up to one rounding of the partial segment, a
- * hermite curve to 2^-60 relative; nothing accumulates from tick to tick, so
- * the result after a day is as good as after a second. Only for curves
- * prepared with opts->integral. Real-time safe.
+ * or linear curve is exact up to one rounding of the partial segment (half a
+ * unit of 2^-64); a hermite curve's partial segment is within about 2^-57 of
+ * (frame - key) x its largest value (measured 7.5 x 2^-60 of the terms);
+ * the held ends are exact, and nothing accumulates from tick to tick, so the
+ * result after a day is as good as after a second. Only for curves prepared
+ * with opts->integral (else MOT_E_INVAL and *out = 0). Real-time safe (two
+ * 128/64 divisions for linear, none for the others).
  */
 int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_cursor *cur,
 		       mot_q32 frame, uint32_t *sat);
+
+/* Diagnostics for tests and benchmarks: the Newton iterations that
+ * mot_curve_eval() takes at this frame (0 where it solves nothing: the
+ * interpolating kinds, the held ends). Real-time safe. */
+int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame);
 
 #endif /* MOT_CURVE_H */

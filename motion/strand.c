@@ -164,11 +164,8 @@ int mot_warp_init(struct mot_warp *w, mot_q32 f0, mot_q32 f1, mot_q32 ease_out_f
 		return MOT_OK;
 	if (span <= 0 || ease_out_frames > span || ease_in_frames > span - ease_out_frames)
 		return MOT_E_INVAL;
-	err = mot_ease_init(&w->ease, mot_div(ease_out_frames, span, sat),
-			    mot_div(ease_in_frames, span, sat), sat);
-	if (err)
-		return err;
-	err = mot_recip_init(&w->inv_span, span);
+	/* the fractions exactly, frames over frames */
+	err = mot_ease_init_ratio(&w->ease, ease_out_frames, ease_in_frames, span, sat);
 	if (err)
 		return err;
 	w->on = true;
@@ -177,13 +174,16 @@ int mot_warp_init(struct mot_warp *w, mot_q32 f0, mot_q32 f1, mot_q32 ease_out_f
 
 mot_q32 mot_warp_apply(const struct mot_warp *w, mot_q32 frame, uint32_t *sat)
 {
-	mot_q32 s;
+	int64_t s;
+	mot_q32 span = w->f1 - w->f0;
 
 	if (!w->on || frame <= w->f0 || frame >= w->f1)
 		return frame;
-	s = mot_recip_ratio(frame - w->f0, &w->inv_span, sat);
-	s = mot_ease_apply(&w->ease, s, sat);
-	return w->f0 + mot_mul(s, w->f1 - w->f0, sat);
+	/* s and s' in Q2.62: a span of millions of frames keeps its resolution
+	 * until the warped frame is rounded once, back to Q32.32 */
+	s = mot_muldiv(frame - w->f0, MOT_Q62_ONE, span, sat);
+	s = mot_ease_apply62(&w->ease, s);
+	return w->f0 + mot_acc_round(mot_acc_mul(s, span), 62, sat);
 }
 
 /* ---- spin ----------------------------------------------------------------------- */

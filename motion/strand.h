@@ -63,7 +63,6 @@ struct mot_warp {
 	bool on;
 	mot_q32 f0, f1;
 	struct mot_ease ease;
-	struct mot_recip inv_span;
 };
 
 /* ease_out_frames leaving f0, ease_in_frames arriving at f1; both 0 turns the

@@ -23,40 +23,28 @@
  *      dg_i64() / dg_u64() / dg_range(), call the core, dg_put() every
  *      result. Keep it to a few hundred thousand calls: it runs under qemu.
  *   2. Add it to workloads[] at the end of the file.
- *   3. When it needs motion/<name>.c, put the function and its table entry
- *      inside #ifdef HAVE_MOT_<NAME>: the Makefile defines HAVE_MOT_<NAME>
- *      for each motion/<name>.c that exists (HAVE_MOT_TRIG for trig.c), so
- *      the program builds on any branch.
- * A scene workload should load a small scene built in code (no files: the
- * program also runs on targets without them), play it over many ticks with
- * the cursors a real loop uses, and put every pose and the status words.
+ * The scene workloads build scenes in code (tests/synth.c through
+ * firmware/scene_build.c, no files: the program also runs where there are
+ * none), play them over many ticks with the cursors a real loop uses, and
+ * put every pose and the status words. They cover the loader's conversion
+ * from doubles too, which is why firmware/ is built with -ffp-contract=off.
  */
 #include <inttypes.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fix.h"
-#ifdef HAVE_MOT_TRIG
+#include "scene_desc.h"
+#include "synth.h"
 #include "trig.h"
-#endif
-#ifdef HAVE_MOT_EASE
 #include "ease.h"
-#endif
-#if defined(HAVE_MOT_MAT) || defined(HAVE_MOT_QUAT) || defined(HAVE_MOT_DECOMP)
-#define DG_GEOMETRY
 #include "mat.h"
-#endif
-#ifdef HAVE_MOT_QUAT
 #include "quat.h"
-#endif
-#ifdef HAVE_MOT_DECOMP
 #include "decomp.h"
-#endif
-#ifdef HAVE_MOT_CURVE
 #include "curve.h"
-#endif
 
 #define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -237,7 +225,6 @@ static void wl_fix_recip(struct dg *d)
 
 /* ---- trig.c -------------------------------------------------------------- */
 
-#ifdef HAVE_MOT_TRIG
 #define N_TRIG (1 << 16)
 
 static void wl_trig(struct dg *d)
@@ -269,11 +256,9 @@ static void wl_trig(struct dg *d)
 		dg_put(d, sat);
 	}
 }
-#endif
 
 /* ---- ease.c -------------------------------------------------------------- */
 
-#ifdef HAVE_MOT_EASE
 #define N_EASE (1 << 14)
 
 static void wl_ease(struct dg *d)
@@ -302,11 +287,9 @@ static void wl_ease(struct dg *d)
 		dg_put(d, sat);
 	}
 }
-#endif
 
 /* ---- helpers of the geometry workloads (mat, quat, decomp) ------------------ */
 
-#ifdef DG_GEOMETRY
 /* An angle for them: +-1000 turns. (trig's own workload covers the whole
  * int64 range.) */
 #define DG_TURNS MOT_Q32_INT(1000)
@@ -334,11 +317,9 @@ static inline void dg_vec(struct dg *d, mot_q32 v[3], mot_q32 lim)
 		v[k] = dg_range(d, -lim, lim);
 }
 
-#endif
 
 /* ---- mat.c --------------------------------------------------------------- */
 
-#ifdef HAVE_MOT_MAT
 #define N_MAT (1 << 13)
 
 /* A random affine matrix: Euler rotation, scale 0.1 to 10, translation. */
@@ -399,11 +380,9 @@ static void wl_mat(struct dg *d)
 		dg_put(d, sat);
 	}
 }
-#endif
 
 /* ---- quat.c -------------------------------------------------------------- */
 
-#ifdef HAVE_MOT_QUAT
 #define N_QUAT (1 << 13)
 
 static void dg_put_quat(struct dg *d, const struct mot_quat *q)
@@ -475,11 +454,9 @@ static void wl_quat(struct dg *d)
 		dg_put(d, sat);
 	}
 }
-#endif
 
 /* ---- decomp.c ------------------------------------------------------------ */
 
-#if defined(HAVE_MOT_DECOMP) && defined(HAVE_MOT_QUAT)
 #define N_DECOMP (1 << 13)
 
 static void wl_decomp(struct dg *d)
@@ -521,11 +498,9 @@ static void wl_decomp(struct dg *d)
 		dg_put(d, sat);
 	}
 }
-#endif
 
 /* ---- curve.c ------------------------------------------------------------- */
 
-#ifdef HAVE_MOT_CURVE
 #define N_CURVE 192
 #define CURVE_KEYS 12
 #define CURVE_SEGS 64
@@ -594,7 +569,85 @@ static void wl_curve(struct dg *d)
 		dg_put(d, sat);
 	}
 }
-#endif
+
+/* ---- whole scenes ----------------------------------------------------------- */
+
+static void put_pose(struct dg *d, const struct mot_scene *sc, const struct mot_pose *p)
+{
+	uint32_t i, r, c;
+
+	for (i = 0; i < sc->nnodes; i++) {
+		for (r = 0; r < 4; r++)
+			for (c = 0; c < 3; c++)
+				dg_put(d, (uint64_t)p->world[i].m[r][c]);
+		for (c = 0; c < 3; c++)
+			dg_put(d, (uint64_t)p->pos[i][c]);
+		dg_put(d, (uint64_t)p->value[i]);
+		dg_put(d, (uint64_t)p->rpm[i]);
+	}
+	if (sc->camera) {
+		dg_put(d, (uint64_t)p->cam.pan);
+		dg_put(d, (uint64_t)p->cam.tilt);
+		dg_put(d, (uint64_t)p->cam.roll);
+		for (r = 0; r < 4; r++)
+			for (c = 0; c < 3; c++)
+				dg_put(d, (uint64_t)p->cam.m.m[r][c]);
+	}
+	for (i = 0; i < sc->ncycles; i++)
+		dg_put(d, (uint64_t)p->cycle[i]);
+	for (i = 0; i < sc->nattrs; i++)
+		dg_put(d, (uint64_t)p->attr[i]);
+}
+
+/* Play a described scene tick by tick from `from` for n ticks (every
+ * `step`), as the loop does. */
+static void play(struct dg *d, const struct scene_desc *desc, int64_t from, int64_t n, int64_t step)
+{
+	struct scene_built b;
+	struct scene_build_err e;
+	struct mot_eval ev;
+	struct mot_pose p;
+	int64_t k;
+	int err = scene_build(&b, desc, &e);
+
+	dg_put(d, (uint64_t)err);
+	if (err)
+		return;
+	if (scene_eval_new(&ev, &b.sc) || scene_pose_new(&p, &b.sc)) {
+		fprintf(stderr, "digest: out of memory\n");
+		exit(1);
+	}
+	for (k = from; k < from + n; k += step) {
+		mot_scene_eval(&b.sc, &ev, mot_timing_tick_frame(&b.sc.timing, k), &p);
+		put_pose(d, &b.sc, &p);
+	}
+	dg_put(d, ev.sat);
+	scene_pose_free(&p);
+	scene_eval_free(&ev);
+	scene_built_free(&b);
+}
+
+static void wl_scene_arm(struct dg *d)
+{
+	struct synth s;
+
+	synth_robot_arm(&s, 60.0, 240);
+	play(d, &s.d, -100, 10300, 1);
+	synth_free(&s);
+}
+
+static void wl_scene_random(struct dg *d)
+{
+	uint64_t seed;
+
+	for (seed = 1; seed <= 3; seed++) {
+		struct synth s;
+
+		synth_random(&s, seed, 150, 96);
+		play(d, &s.d, -300, 4300, 3);
+		synth_free(&s);
+	}
+}
 
 /* ---- the list -------------------------------------------------------------- */
 
@@ -609,24 +662,14 @@ static const struct workload workloads[] = {
 	{ "fix_udiv", wl_fix_udiv },
 	{ "fix_div", wl_fix_div },
 	{ "fix_recip", wl_fix_recip },
-#ifdef HAVE_MOT_TRIG
 	{ "trig", wl_trig },
-#endif
-#ifdef HAVE_MOT_EASE
 	{ "ease", wl_ease },
-#endif
-#ifdef HAVE_MOT_MAT
 	{ "mat", wl_mat },
-#endif
-#ifdef HAVE_MOT_QUAT
 	{ "quat", wl_quat },
-#endif
-#if defined(HAVE_MOT_DECOMP) && defined(HAVE_MOT_QUAT)
 	{ "decomp", wl_decomp },
-#endif
-#ifdef HAVE_MOT_CURVE
 	{ "curve", wl_curve },
-#endif
+	{ "scene_arm", wl_scene_arm },
+	{ "scene_random", wl_scene_random },
 };
 
 int main(int argc, char **argv)

@@ -1,0 +1,169 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * load_priv.h - what the parts of the scene file loader share: the walk
+ * state, the positions kept for the build's errors, and the typed readers of
+ * YAML nodes that report a wrong type, a missing field or an unknown key
+ * with its position. Not a public interface (see load.h).
+ */
+#ifndef STRAND_LOAD_PRIV_H
+#define STRAND_LOAD_PRIV_H
+
+#include <yaml.h>
+
+#include "load.h"
+
+/* Positions of one curve: its strand's mapping and each key (parallel to
+ * the sd_curve's keys). */
+struct sf_curve_marks {
+	struct ld_mark at;
+	struct ld_mark ease;
+	const struct ld_mark *key;
+};
+
+struct sf_node_marks {
+	struct ld_mark at, pivot, axis, rest;
+	struct ld_mark ease; /* the strand's ease (free strands) */
+	struct sf_curve_marks value, spin, ch[MOT_FREE_NCHANNELS], rot;
+};
+
+struct sf_marks {
+	struct ld_mark root, timing, nodes;
+	struct sf_node_marks *node;           /* nnodes */
+	struct ld_mark camera;
+	struct sf_curve_marks cam[MOT_CAM_NCHANNELS];
+	struct ld_mark *cycle;                /* ncycles */
+	struct sf_curve_marks *attr;          /* nattrs */
+};
+
+/* The walk: one per parse. */
+struct ld {
+	yaml_document_t *doc;
+	struct scene_file *sf;
+	struct scene_desc *d;
+	struct sf_marks *mk;
+	struct load_err *err;
+	struct pool *pool;
+	struct sd_node *nodes;     /* d->nodes, writable */
+	struct sf_strand *strand;  /* sf->strand, writable */
+	const char **node_names;   /* nnodes + 1, NULL-terminated, for suggestions */
+	uint32_t *by_name;         /* node indices sorted by name */
+};
+
+/* Index of the node called name (len bytes), or -1 (load_node.c). */
+int ld_find_node(const struct ld *l, const char *name, size_t len);
+
+/* ---- errors (load_yaml.c) ---------------------------------------------- */
+
+struct ld_mark ld_mark_of(const yaml_node_t *n);
+
+/* Record the error (the first one only: later ones are consequences) and
+ * return code. The message is formatted here, once. */
+int ld_fail_at(struct ld *l, struct ld_mark m, int code, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
+int ld_fail(struct ld *l, const yaml_node_t *at, int code, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
+int ld_nomem(struct ld *l);
+
+/* "a mapping", "a sequence", "'text'", "nothing": what a node is, for a
+ * wrong-type message. */
+const char *ld_describe(const yaml_node_t *n, char *buf, size_t size);
+
+/* The valid name closest to `word` by edit distance, or NULL when none is
+ * close enough to be a likely typo. */
+const char *ld_suggest(const char *word, const char *const *names);
+
+/* ---- typed readers (load_yaml.c) ----------------------------------------- */
+
+yaml_node_t *ld_node(struct ld *l, int index);
+
+/*
+ * Check that n is a mapping whose keys are all in `names` (NULL-terminated),
+ * each at most once, and store each key's value node in vals[] at the
+ * name's index (NULL when absent). `what` names the mapping in messages
+ * ("node", "key", ...).
+ */
+int ld_map(struct ld *l, yaml_node_t *n, const char *what, const char *const *names,
+	   yaml_node_t **vals);
+
+/* "missing field 'name' in <what>" at the mapping unless v is set. */
+int ld_require(struct ld *l, const yaml_node_t *map, const char *what, const yaml_node_t *v,
+	       const char *name);
+
+/* A sequence: its item count and items (document indices). */
+int ld_seq(struct ld *l, yaml_node_t *n, const char *what, yaml_node_item_t **items,
+	   size_t *count);
+
+/* A finite number in plain YAML notation (no quotes, no .inf/.nan). */
+int ld_num(struct ld *l, const yaml_node_t *n, double *out);
+
+/*
+ * A number that must fit the core once multiplied by `scale` (1/360 for
+ * degrees): |v * scale| < 2^30, as sd_to_q32() will check. `unit` names it
+ * in the message ("scene units", "degrees", "frames", ...).
+ */
+int ld_q32(struct ld *l, const yaml_node_t *n, double scale, const char *unit, double *out);
+
+/* A whole number in [min, max]. */
+int ld_int(struct ld *l, const yaml_node_t *n, long long min, long long max, long long *out);
+
+/* A sequence of exactly `count` numbers, each checked like ld_q32. */
+int ld_vec(struct ld *l, yaml_node_t *n, size_t count, double scale, const char *unit,
+	   double *out);
+
+/* A scalar's text, copied into the pool. */
+int ld_str(struct ld *l, const yaml_node_t *n, const char **out);
+
+/* A scalar that must be one of `names` (NULL-terminated): its index. */
+int ld_enum(struct ld *l, const yaml_node_t *n, const char *what, const char *const *names,
+	    int *out);
+
+/* A channel name: letters, digits, '_' and '-', starting with a letter or
+ * '_' (no '.': channels are `<name>.x`). */
+int ld_name(struct ld *l, const yaml_node_t *n, const char **out);
+
+/* ---- the parts of a scene file ---------------------------------------------- */
+
+/* Options shared by every curve: interpolation, ease, beta (load_curve.c). */
+struct ld_curve_opts {
+	yaml_node_t *interp, *ease, *beta;
+};
+int ld_curve_opts(struct ld *l, const struct ld_curve_opts *o, struct sd_curve *c,
+		  struct ld_mark *ease_mark);
+
+/* The frame, ease_in and ease_out of key i, checked against key i-1 (load_curve.c). */
+struct ld_key_common {
+	yaml_node_t *frame, *ease_in, *ease_out;
+};
+int ld_key_common(struct ld *l, yaml_node_t *map, const struct ld_key_common *k,
+		  const struct sd_key *prev, struct sd_key *out);
+
+/* The checks of a whole curve the core would refuse: ease fractions summing
+ * above 1, strand ease longer than the span, Bezier key count (load_curve.c). */
+int ld_curve_check(struct ld *l, const struct sd_curve *c, const struct sf_curve_marks *m);
+
+int ld_timing(struct ld *l, yaml_node_t *n);     /* load_timing.c */
+int ld_nodes(struct ld *l, yaml_node_t *n);      /* load_node.c */
+int ld_strands(struct ld *l, yaml_node_t *n);    /* load_strand.c */
+
+/* Fields of a strand key of any kind; which ones a node accepts depends on
+ * its kind (load_strand.c). */
+enum {
+	K_FRAME, K_EASE_IN, K_EASE_OUT, K_ANGLE, K_RPM, K_POSITION,
+	K_TRANSLATE, K_ROTATE, K_QUAT, K_SCALE, K_SHEAR, K_MATRIX, K_COUNT
+};
+extern const char *const ld_key_fields[];
+
+/* A strand key's fields (v[K_COUNT]), checked against the node's kind (no
+ * joint field on a free node and the other way round), with its frame and
+ * ease fractions read after key prev. */
+int ld_strand_key(struct ld *l, uint32_t node, yaml_node_t *map, yaml_node_t **v,
+		  const struct sd_key *prev, struct sd_key *out);
+
+/* The keys of a free node's strand (load_free.c). */
+int ld_free_strand(struct ld *l, uint32_t node, yaml_node_t *interp, yaml_node_t *ease,
+		   yaml_node_t *beta, yaml_node_t *rotation, yaml_node_t *keys);
+int ld_camera(struct ld *l, yaml_node_t *n);     /* load_camera.c */
+int ld_cycles(struct ld *l, yaml_node_t *n);     /* load_cycle.c */
+int ld_attributes(struct ld *l, yaml_node_t *n); /* load_attr.c */
+
+#endif /* STRAND_LOAD_PRIV_H */

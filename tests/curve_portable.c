@@ -1,0 +1,56 @@
+/* SPDX-License-Identifier: MIT */
+/* curve_portable.c - see curve_portable.h. */
+#define MOT_NO_INT128 1
+#define mot_acc_udiv cvp_acc_udiv_
+#define mot_floordiv cvp_floordiv_
+#define mot_muldiv cvp_muldiv_
+#define mot_div cvp_div_
+#define mot_recip_init cvp_recip_init_
+#define mot_sum_prod_wide cvp_sum_prod_wide_
+#define mot_ease_init cvp_ease_init_
+#define mot_ease_init_ratio cvp_ease_init_ratio_
+#define mot_ease_apply cvp_ease_apply_
+#define mot_ease_apply62 cvp_ease_apply62_
+#define mot_curve_seg_count cvp_curve_seg_count_
+#define mot_curve_init cvp_curve_init_
+#define mot_curve_eval cvp_curve_eval_
+#define mot_curve_integral cvp_curve_integral_
+#define mot_curve_newton_iterations cvp_curve_newton_iterations_
+#include "../motion/fix.c"
+#include "../motion/ease.c"
+#include "../motion/curve.c"
+#include "curve_portable.h"
+
+#define CVP_MAXSEG 64
+
+int cvp_eval(int kind, const struct mot_key *keys, uint32_t n, const struct mot_curve_opts *opts,
+	     const int64_t *frames, int64_t *out, size_t m)
+{
+	struct mot_curve_seg seg[CVP_MAXSEG];
+	struct mot_curve c;
+	size_t i;
+	int err = mot_curve_init(&c, (enum mot_interp)kind, keys, n, opts, seg, CVP_MAXSEG, NULL);
+
+	for (i = 0; i < m && !err; i++)
+		out[i] = mot_curve_eval(&c, NULL, frames[i], NULL);
+	return err;
+}
+
+int cvp_integral(int kind, const struct mot_key *keys, uint32_t n, const int64_t *frames,
+		 uint64_t *hi, uint64_t *lo, size_t m)
+{
+	struct mot_curve_opts o = { .integral = true };
+	struct mot_curve_seg seg[CVP_MAXSEG];
+	struct mot_curve c;
+	size_t i;
+	int err = mot_curve_init(&c, (enum mot_interp)kind, keys, n, &o, seg, CVP_MAXSEG, NULL);
+
+	for (i = 0; i < m && !err; i++) {
+		mot_acc a;
+
+		err = mot_curve_integral(&a, &c, NULL, frames[i], NULL);
+		hi[i] = mot_acc_hi(a);
+		lo[i] = mot_acc_lo(a);
+	}
+	return err;
+}
