@@ -1,10 +1,10 @@
 #!/bin/sh
-# bench-play.sh STRAND_PLAY SCENE OUTDIR - the loop's wake-up latency on the
+# bench-play.sh STRAND SCENE OUTDIR - the loop's wake-up latency on the
 # wall clock against cyclictest's, same period (1 ms), same priority, same
 # length, one after the other in this run; then the CPU time per tick of the
 # scene on the simulated rig. Prints BENCH lines.
 set -eu
-[ $# -eq 3 ] || { echo "usage: bench-play.sh STRAND_PLAY SCENE OUTDIR" >&2; exit 2; }
+[ $# -eq 3 ] || { echo "usage: bench-play.sh STRAND SCENE OUTDIR" >&2; exit 2; }
 play=$1
 scene=$2
 out=$3

@@ -26,5 +26,5 @@ DEB_BENCH_PLAY := rt-tests
 bench: bench-play
 $(BUILD)/.deps-bench-play: mk/deps.sh $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_BENCH_PLAY) && touch $@
-bench-play: $(BUILD)/strand-play | $(BUILD)/.deps-bench-play
-	$(Q)sh mk/bench-play.sh $(BUILD)/strand-play $(RUN_SCENE) $(BUILD)/bench-play
+bench-play: $(BUILD)/strand | $(BUILD)/.deps-bench-play
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play

@@ -29,25 +29,9 @@ $(FW_OBJ) $(FW_LIB_SAN_OBJ) $(TEST_COMMON_OBJ) $(TEST_BIN:$(BUILD)/tests/%=$(BUI
 $(BUILD)/san/libfw.a: $(HALSIM_SAN_OBJ)
 $(BUILD)/strand: $(HALSIM_OBJ)
 
-# ---- the player until the strand command's dispatcher is on main --------------
-# build/strand-play: `play` and `journal` with scenes built in code
-# (tools/strand_play.c); replaced by `strand play` once the loader lands.
-PLAY_TOOL_OBJ = $(filter-out $(BUILD)/firmware/main.o,$(FW_OBJ)) $(HALSIM_OBJ)
-
-$(BUILD)/tools/%.o: tools/%.c $(MOTION_HDR) $(FW_HDR) $(HALSIM_HDR) | $(BUILD)/.deps-build
-	@mkdir -p $(@D)
-	$(Q)$(CC) $(FW_CFLAGS) -Itests $(OPT) -g -c $< -o $@
-$(BUILD)/tools/synth.o: tests/synth.c tests/synth.h $(MOTION_HDR) $(FW_HDR) | $(BUILD)/.deps-build
-	@mkdir -p $(@D)
-	$(Q)$(CC) $(FW_CFLAGS) -Itests $(OPT) -g -c $< -o $@
-
-$(BUILD)/strand-play: $(BUILD)/tools/strand_play.o $(BUILD)/tools/synth.o $(PLAY_TOOL_OBJ) \
-		$(BUILD)/libmotion.a
-	$(Q)$(CC) $^ $(FW_LIBS) -o $@
-
-# make run: a scene played on the simulated rig in real time, with its
-# status line.
-RUN_SCENE ?= synth:robot_arm
+# make run: the robot arm played on the simulated rig in real time, with
+# its status line (RUN_SCENE and RUN_ARGS change what and how).
+RUN_SCENE ?= examples/robot_arm.yaml
 .PHONY: run
-run: $(BUILD)/strand-play
-	$(BUILD)/strand-play play $(RUN_SCENE) --sim --journal $(BUILD)/run.journal $(RUN_ARGS)
+run: $(BUILD)/strand
+	$(BUILD)/strand play $(RUN_SCENE) --sim --journal $(BUILD)/run.journal $(RUN_ARGS)
