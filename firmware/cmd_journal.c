@@ -41,6 +41,8 @@ const struct cli_cmd cmd_journal = {
 		"kill caught between its record and its edge), due_ns (when its tick was due),\n"
 		"mono_ns (CLOCK_MONOTONIC right after the edge went out), late_us, wall (UTC),\n"
 		"ferr and ferr_channel (the worst following error while the frame lasted), then\n"
-		"every output's setpoint in the scene file's units (degrees for angles).\n",
+		"every output's setpoint in the scene file's units (degrees for angles).\n"
+		"\n"
+		"exit codes: 0 ok, 3 usage, 4 the file cannot be read or is not a journal.\n",
 	.run = run,
 };

@@ -451,8 +451,10 @@ const struct cli_cmd cmd_play = {
 		"  --quiet               no status line, no summary\n"
 		"\n"
 		"SIGINT or SIGTERM: every axis comes to rest within its limits (exit 5); a second\n"
-		"SIGINT disables the drives at once. Exit codes: 0 done, 1 check rejects the scene,\n"
-		"2 scene, 3 usage, 4 file, 5 stopped, 6 e-stop, 7 device fault or following error,\n"
-		"8 internal.\n",
+		"SIGINT disables the drives at once.\n"
+		"\n"
+		"exit codes: 0 done, 1 strand check rejects the scene, 2 invalid scene or rig,\n"
+		"3 usage, 4 journal or file, 5 stopped by SIGINT/SIGTERM or a stop input, 6 e-stop,\n"
+		"7 device fault, following error or limit, 8 internal.\n",
 	.run = run,
 };

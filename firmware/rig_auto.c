@@ -43,25 +43,71 @@ static int measure(struct play_source *src, uint32_t idx, bool turns, double *vm
 	return 0;
 }
 
+/* One output for channel `name` on the simulated drive, axis n. */
+static int add(struct rig_auto *ra, const char *name, const struct sd_limits *lim, uint32_t n,
+	       struct play_source *src)
+{
+	struct rig_output_desc *o = &ra->out[n];
+	struct src_channel sc;
+	bool turns;
+	double v, a;
+	int idx = src_lookup(src, name, &sc), rc;
+
+	if (idx < 0)
+		return idx;
+	turns = sc.unit == SRC_UNIT_TURNS;
+	o->channel = name;
+	o->device = "sim";
+	o->axis = n;
+	o->counts_per_unit = turns ? 1000 : 1000000; /* millidegrees, micrometres */
+	if (lim)
+		o->limits = *lim;
+	/* a simulated rig stands where the scene begins: no long pre-roll */
+	{
+		uint32_t one = (uint32_t)idx, sat = 0;
+		mot_q32 v0;
+
+		rc = src_select(src, &one, 1);
+		if (rc)
+			return rc;
+		src_eval(src, src->frame_first * MOT_Q32_ONE, &v0, &sat);
+		o->home = (double)v0 / 4294967296.0 * (turns ? 360 : 1);
+	}
+	if (!o->limits.has_vel || !o->limits.has_acc) {
+		rc = measure(src, (uint32_t)idx, turns, &v, &a);
+		if (rc)
+			return rc;
+		if (!o->limits.has_vel) {
+			o->limits.has_vel = true;
+			o->limits.vel = fmax(v * RIG_AUTO_MARGIN, turns ? 1 : 1e-3);
+		}
+		if (!o->limits.has_acc) {
+			/* and it reaches its top speed within half a second: a
+			 * model turning at constant speed asks for no
+			 * acceleration, but its run-up does */
+			o->limits.has_acc = true;
+			o->limits.acc = fmax(a * RIG_AUTO_MARGIN, 2 * o->limits.vel);
+		}
+	}
+	return 0;
+}
+
 int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_source *src)
 {
+	static const char *const cam[] = { "camera.x",	 "camera.y",    "camera.z",
+					   "camera.pan", "camera.tilt", "camera.roll" };
 	uint32_t i, n = 0;
 	int rc = 0;
 
 	memset(ra, 0, sizeof(*ra));
-	ra->out = calloc(d->nnodes ? d->nnodes : 1, sizeof(*ra->out));
+	ra->out = calloc(d->nnodes + 6, sizeof(*ra->out));
 	ra->names = calloc(d->nnodes ? d->nnodes : 1, sizeof(*ra->names));
 	if (!ra->out || !ra->names) {
 		rig_auto_free(ra);
 		return -ENOMEM;
 	}
-	for (i = 0; i < d->nnodes; i++) {
+	for (i = 0; !rc && i < d->nnodes; i++) {
 		const struct sd_node *nd = &d->nodes[i];
-		struct rig_output_desc *o = &ra->out[n];
-		struct src_channel sc;
-		bool turns = nd->kind == MOT_NODE_REVOLUTE;
-		double v, a;
-		int idx;
 		char *name;
 
 		if (nd->kind == MOT_NODE_FREE)
@@ -71,37 +117,12 @@ int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_
 			rc = -ENOMEM;
 			break;
 		}
-		sprintf(name, "%s.%s", nd->name, turns ? "angle" : "position");
+		sprintf(name, "%s.%s", nd->name, nd->kind == MOT_NODE_REVOLUTE ? "angle" : "position");
 		ra->names[ra->nnames++] = name;
-		idx = src_lookup(src, name, &sc);
-		if (idx < 0) {
-			rc = idx;
-			break;
-		}
-		o->channel = name;
-		o->device = "sim";
-		o->axis = n;
-		o->counts_per_unit = turns ? 1000 : 1000000; /* millidegrees, micrometres */
-		o->limits = nd->limits;
-		if (!o->limits.has_vel || !o->limits.has_acc) {
-			rc = measure(src, (uint32_t)idx, turns, &v, &a);
-			if (rc)
-				break;
-			if (!o->limits.has_vel) {
-				o->limits.has_vel = true;
-				o->limits.vel = fmax(v * RIG_AUTO_MARGIN, turns ? 1 : 1e-3);
-			}
-			if (!o->limits.has_acc) {
-				o->limits.has_acc = true;
-				o->limits.acc = fmax(a * RIG_AUTO_MARGIN, turns ? 1 : 1e-3);
-			}
-		}
-		/* a simulated drive lags at speed: bound its following error
-		 * generously, at a hundredth of a second of full speed */
-		o->ferror = o->limits.vel / 100 + (turns ? 0.1 : 1e-4);
-		o->min_ferror = turns ? 0.05 : 5e-5;
-		n++;
+		rc = add(ra, name, &nd->limits, n++, src);
 	}
+	for (i = 0; !rc && d->has_camera && i < 6; i++)
+		rc = add(ra, cam[i], NULL, n++, src);
 	if (rc) {
 		rig_auto_free(ra);
 		return rc;
