@@ -12,9 +12,9 @@ secs=${BENCH_PLAY_SECONDS:-30}
 prio=${BENCH_PLAY_PRIORITY:-80}
 mkdir -p "$out"
 
-# The two take turns, in rounds of $chunk s each, so that what the host
+# The two take turns, in rounds of $chunk s each (3 by default), so that what the host
 # does meanwhile (this is a virtual machine) falls on both alike.
-chunk=${BENCH_PLAY_CHUNK:-5}
+chunk=${BENCH_PLAY_CHUNK:-3}
 rounds=$(((secs + chunk - 1) / chunk))
 : >"$out/strand.hist"
 : >"$out/cyclictest.hist"
