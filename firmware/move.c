@@ -104,8 +104,11 @@ bool move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double 
 			return true;
 		want = -copysign(fmin(vmax, sqrt(2 * amax * fabs(u))), u);
 		r = fmax(*v - dv, fmin(*v + dv, want));
-		if (fabs(u) <= fabs(r) * dt && (u == 0 || (r != 0 && copysign(1, r) != copysign(1, u)))) {
-			/* the last step lands on zero */
+		/* the last step lands on zero: when it would cross it, and when
+		 * what is left is within two Q32.32 steps (a smaller increment
+		 * would round to nothing and the value would never arrive) */
+		if (fabs(u) <= 2.0 / 4294967296.0 ||
+		    (fabs(u) <= fabs(r) * dt && r != 0 && copysign(1, r) != copysign(1, u))) {
 			*value = 0;
 			*v = 0;
 			return true;
