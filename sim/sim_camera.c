@@ -128,8 +128,8 @@ int sim_camera_ready(struct sim_camera *c, struct sim_gpio *g, uint32_t line)
 	return sim_gpio_schedule(g, line, INT64_MIN, true);
 }
 
-void sim_camera_on_exposure(struct sim_camera *c, void (*fn)(void *ctx, const struct sim_exposure *),
-			    void *ctx)
+void sim_camera_on_exposure(struct sim_camera *c,
+			    void (*fn)(void *ctx, const struct sim_exposure *), void *ctx)
 {
 	c->on_exposure = fn;
 	c->ctx = ctx;

@@ -56,8 +56,8 @@ void sim_camera_trigger(struct sim_camera *c, struct sim_gpio *g, uint32_t line)
 int sim_camera_ready(struct sim_camera *c, struct sim_gpio *g, uint32_t line);
 
 /* [init] Call fn at each exposure (tests look at the rig then). */
-void sim_camera_on_exposure(struct sim_camera *c, void (*fn)(void *ctx, const struct sim_exposure *),
-			    void *ctx);
+void sim_camera_on_exposure(struct sim_camera *c,
+			    void (*fn)(void *ctx, const struct sim_exposure *), void *ctx);
 
 uint64_t sim_camera_count(const struct sim_camera *c);
 uint64_t sim_camera_missed(const struct sim_camera *c);
