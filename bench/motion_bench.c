@@ -11,6 +11,7 @@
  * that makes the timings meaningful fails (the double twin must agree with
  * tests/ref_scene.c, or it would not be doing the same work).
  */
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -46,13 +47,24 @@ static void print_machine(void)
 	printf("# medians of %d interleaved repeats; ratios are fixed / double\n", BENCH_REPEATS);
 }
 
-int main(void)
+/* motion_bench [prim|pipe|scenes]...: the parts named, all by default */
+int main(int argc, char **argv)
 {
-	int bad = 0;
+	static const struct {
+		const char *name;
+		int (*run)(void);
+	} part[] = { { "prim", bench_primitives }, { "pipe", bench_pipeline },
+		     { "scenes", bench_scenes } };
+	int bad = 0, i, k;
 
 	print_machine();
-	bad |= bench_primitives();
-	bad |= bench_pipeline();
-	bad |= bench_scenes();
+	for (k = 0; k < 3; k++) {
+		bool on = argc < 2;
+
+		for (i = 1; i < argc; i++)
+			on = on || !strcmp(argv[i], part[k].name);
+		if (on)
+			bad |= part[k].run();
+	}
 	return bad ? 1 : 0;
 }
