@@ -156,13 +156,13 @@ static void frame_at(const struct dbl_curve *c, const struct dbl_seg *s, double 
 
 /* frame(u) = fref + d on piece s: curve.c's solve_u() (rtsafe), the same
  * bracket, safeguards and stopping rule, with a plain division for the step */
-static double solve_u(const struct dbl_curve *c, const struct dbl_seg *s, double d, double u)
+static double solve_u(const struct dbl_curve *c, const struct dbl_seg *s, double d, double u,
+		      int *it)
 {
 	bool lo_known = false, hi_known = false;
 	double lo = 0, hi = 1, dx = 1, dxold = 1;
-	int it;
 
-	for (it = 1; it <= NEWTON_MAX_IT; it++) {
+	for (*it = 1; *it <= NEWTON_MAX_IT; ++*it) {
 		double f, df, du = 0, un = 0, tol;
 		bool newton;
 
@@ -206,10 +206,11 @@ static double solve_u(const struct dbl_curve *c, const struct dbl_seg *s, double
 			return un;
 		u = un;
 	}
+	*it = NEWTON_MAX_IT;
 	return u;
 }
 
-static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
+static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, int *it)
 {
 	const struct dbl_seg *s;
 	double u, w[MOT_BEZIER_MAX_KEYS];
@@ -220,7 +221,7 @@ static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 		u = cbrt(u);
 	else if (s->start == START_CUBE1)
 		u = 1 - cbrt(1 - u);
-	u = solve_u(c, s, f - s->fref, u);
+	u = solve_u(c, s, f - s->fref, u, it);
 	if (c->kind != MOT_INTERP_BEZIER)
 		return s->vref + poly_eval(s->c, u);
 	bezier_reduce(c, c->value, u, 1, w);
@@ -229,7 +230,7 @@ static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 
 /* ---- evaluation (curve.c's eval()) ----------------------------------------------- */
 
-double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
+static double eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, int *it)
 {
 	const struct dbl_seg *s;
 	uint32_t n = c->nkeys;
@@ -261,7 +262,7 @@ double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double 
 					return c->value[n - 1];
 			}
 		}
-		return approx_eval(c, cur, f);
+		return approx_eval(c, cur, f, it);
 	}
 	s = &c->seg[locate_seg(c, cur, f)];
 	if (c->kind == MOT_INTERP_STEP)
@@ -272,6 +273,21 @@ double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double 
 	if (c->kind == MOT_INTERP_LINEAR)
 		return s->vref + s->c[1] * u;
 	return s->vref + poly_eval(s->c, u);
+}
+
+double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
+{
+	int it;
+
+	return eval(c, cur, f, &it);
+}
+
+int dbl_curve_newton_iterations(const struct dbl_curve *c, double f)
+{
+	int it = 0;
+
+	eval(c, NULL, f, &it);
+	return it;
 }
 
 /* Integral over [f0, f0 + e] of interpolating piece i at parameter s */

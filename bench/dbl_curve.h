@@ -62,6 +62,10 @@ int dbl_curve_init(struct dbl_curve *c, const struct sd_curve *sd, double scale,
 		   void *mem);
 
 double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f);
+/* The Newton iterations dbl_curve_eval() takes at f (0 where it solves
+ * nothing), as mot_curve_newton_iterations(): the two must be close for the
+ * twin to do the core's work. */
+int dbl_curve_newton_iterations(const struct dbl_curve *c, double f);
 /* Integral from frame 0 to f, value x frames (step, linear, hermite). */
 double dbl_curve_integral(const struct dbl_curve *c, struct dbl_cursor *cur, double f);
 
