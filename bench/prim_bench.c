@@ -227,7 +227,7 @@ static void fx_curve(void *ctx)
 
 	for (k = 0; k < c->n; k++)
 		acc += mot_curve_eval(cv, &c->cur, c->frame[k], NULL);
-	bench_sink += (uint64_t)acc;
+	bench_sink += (uint64_t)(int64_t)acc;
 }
 
 static void db_curve(void *ctx)
@@ -238,7 +238,7 @@ static void db_curve(void *ctx)
 
 	for (k = 0; k < c->n; k++)
 		acc += dbl_curve_eval(&c->dc, &c->dcur, c->dframe[k]);
-	bench_sink += (uint64_t)acc;
+	bench_sink += (uint64_t)(int64_t)acc;
 }
 
 static int bench_curve(enum mot_interp kind, const char *name)

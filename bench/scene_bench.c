@@ -107,7 +107,7 @@ static void play_double(void *ctx)
 
 	for (k = 0; k < r->nticks; k++)
 		dbl_scene_eval(&r->ds, &r->dev, r->dframe[k], &r->dp);
-	bench_sink += (uint64_t)r->dp.pos[r->ds.nnodes - 1][0];
+	bench_sink += (uint64_t)(int64_t)r->dp.pos[r->ds.nnodes - 1][0];
 }
 
 /* Time one scene; per_node: divide by the node count too. */
