@@ -738,7 +738,7 @@ static void triggers(struct loop *L, int64_t due)
 	}
 }
 
-static void status(struct loop *L, double ferr, int32_t ferr_out)
+static void status(struct loop *L)
 {
 	struct loop_status s;
 
@@ -801,12 +801,11 @@ bool loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_ns)
 	triggers(L, due_ns);
 	for (i = 0; i < L->n; i++) {
 		L->vel[i] = (move_q2d(L->val[i]) - move_q2d(L->prev[i])) * L->tm->tick_hz;
-		L->prev2[i] = L->prev[i];
 		L->prev[i] = L->val[i];
 	}
 out:
 	L->ticks_run = k + 1;
-	status(L, fe, fe_out);
+	status(L);
 	return L->state != LOOP_ENDED;
 }
 
@@ -876,7 +875,6 @@ int loop_init(struct loop *L, const struct loop_cfg *cfg, struct rig *rig,
 	L->n = n;
 	L->val = zalloc(n, sizeof(mot_q32), &ok);
 	L->prev = zalloc(n, sizeof(mot_q32), &ok);
-	L->prev2 = zalloc(n, sizeof(mot_q32), &ok);
 	L->target = zalloc(n, sizeof(mot_q32), &ok);
 	L->vel = zalloc(n, sizeof(double), &ok);
 	L->sent = zalloc(n, sizeof(int64_t), &ok);
@@ -923,7 +921,6 @@ int loop_init(struct loop *L, const struct loop_cfg *cfg, struct rig *rig,
 		if (!o->vel_mode && hal_axis_input(rig->axes[o->dev], -1) == 0 &&
 		    hal_axis_actual(rig->axes[o->dev], o->ch, &act))
 			L->prev[i] = move_d2q((double)(act - o->scale.offset) / o->scale.per_unit_d);
-		L->prev2[i] = L->prev[i];
 		L->val[i] = L->prev[i];
 		L->sent[i] = o->vel_mode ? 0 : hal_scale_counts(&o->scale, L->prev[i], NULL);
 	}
@@ -982,7 +979,6 @@ void loop_free(struct loop *L)
 {
 	free(L->val);
 	free(L->prev);
-	free(L->prev2);
 	free(L->target);
 	free(L->vel);
 	free(L->sent);

@@ -202,7 +202,7 @@ struct loop {
 	int64_t ns_whole, ns_frac; /* one tick: ns_whole + ns_frac / tick_hz ns */
 
 	/* per output */
-	mot_q32 *val, *prev, *prev2; /* setpoints: this tick, the last two */
+	mot_q32 *val, *prev;    /* setpoints: this tick, the last one */
 	double *vel;            /* speed of the last setpoints, units/s */
 	int64_t *sent;          /* counts sent last tick */
 	mot_q32 *target;        /* a pose (the next pass's first, a frame's) */
