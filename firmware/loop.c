@@ -542,6 +542,30 @@ static void limits(struct loop *L)
 
 /* ---- outputs and triggers ---- */
 
+/* This tick's setpoints in device counts; false when a scaling saturated
+ * (nothing is sent then). */
+static bool scale_outputs(struct loop *L)
+{
+	const struct rig *r = L->rig;
+	uint32_t i, sat = 0;
+
+	for (i = 0; i < L->n; i++) {
+		const struct rig_out *o = &r->out[i];
+		struct hal_setpoint *sp = &L->sp[i];
+		double v = (move_q2d(L->val[i]) - move_q2d(L->prev[i])) * L->tm->tick_hz;
+
+		if (o->vel_mode) {
+			sp->pos = 0;
+			sp->vel = hal_scale_counts(&o->scale, L->val[i], &sat);
+		} else {
+			sp->pos = hal_scale_counts(&o->scale, L->val[i], &sat);
+			sp->vel = hal_scale_rate(&o->scale, v);
+		}
+	}
+	L->sat |= sat;
+	return !sat;
+}
+
 static void outputs(struct loop *L)
 {
 	const struct rig *r = L->rig;
@@ -549,20 +573,11 @@ static void outputs(struct loop *L)
 
 	for (i = 0; i < L->n; i++) {
 		const struct rig_out *o = &r->out[i];
-		struct hal_setpoint sp;
-		double v = (move_q2d(L->val[i]) - move_q2d(L->prev[i])) * L->tm->tick_hz;
 
 		if (L->dev_off[o->dev])
 			continue;
-		if (o->vel_mode) {
-			sp.pos = 0;
-			sp.vel = hal_scale_counts(&o->scale, L->val[i], &L->sat);
-		} else {
-			sp.pos = hal_scale_counts(&o->scale, L->val[i], &L->sat);
-			sp.vel = hal_scale_rate(&o->scale, v);
-		}
-		hal_axis_set(r->axes[o->dev], o->ch, &sp);
-		L->sent[i] = sp.pos;
+		hal_axis_set(r->axes[o->dev], o->ch, &L->sp[i]);
+		L->sent[i] = L->sp[i].pos;
 	}
 	for (d = 0; d < r->naxes; d++) {
 		struct hal_fault f;
@@ -793,7 +808,7 @@ bool loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_ns)
 	}
 	sequence(L);
 	limits(L);
-	if (L->sat) {
+	if (!scale_outputs(L) || L->sat) {
 		halt(L, LOOP_END_INTERNAL, LOOP_CAUSE_SATURATION);
 		goto out;
 	}
@@ -878,6 +893,7 @@ int loop_init(struct loop *L, const struct loop_cfg *cfg, struct rig *rig,
 	L->target = zalloc(n, sizeof(mot_q32), &ok);
 	L->vel = zalloc(n, sizeof(double), &ok);
 	L->sent = zalloc(n, sizeof(int64_t), &ok);
+	L->sp = zalloc(n, sizeof(struct hal_setpoint), &ok);
 	L->vmax = zalloc(n, sizeof(double), &ok);
 	L->amax = zalloc(n, sizeof(double), &ok);
 	L->limited = zalloc(n, sizeof(int64_t), &ok);
@@ -982,6 +998,7 @@ void loop_free(struct loop *L)
 	free(L->target);
 	free(L->vel);
 	free(L->sent);
+	free(L->sp);
 	free(L->vmax);
 	free(L->amax);
 	free(L->limited);

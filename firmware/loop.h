@@ -205,6 +205,7 @@ struct loop {
 	mot_q32 *val, *prev;    /* setpoints: this tick, the last one */
 	double *vel;            /* speed of the last setpoints, units/s */
 	int64_t *sent;          /* counts sent last tick */
+	struct hal_setpoint *sp; /* this tick's, in counts */
 	mot_q32 *target;        /* a pose (the next pass's first, a frame's) */
 	double *vmax, *amax;
 	int64_t *limited;       /* ticks clamped under --force */
