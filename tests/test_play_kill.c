@@ -111,15 +111,21 @@ static void test_kill9(void **state)
 
 			assert_int_equal(atoll(c.cell[i][cf]), (long long)(i - 1));
 			if (!strcmp(c.cell[i][cs], "fired")) {
-				/* nothing invented: its exposure exists, at the same
-				 * tick; the journal reads the clock right after the
-				 * edge went out, the camera saw it during */
+				/* nothing invented: its edge reached the camera, at
+				 * the same tick; the journal reads the clock right
+				 * after the edge went out, the camera saw it during:
+				 * never before. (How long after depends on the
+				 * scheduler: the child plays at normal priority on a
+				 * shared machine, so a preemption can come between;
+				 * a second is only a sanity bound.) */
 				long long after;
 
 				assert_true(i - 1 < n);
 				assert_int_equal(atoll(c.cell[i][ct]), e[i - 1].tick);
 				after = atoll(c.cell[i][cm]) - e[i - 1].ts_ns;
-				assert_true(after >= 0 && after < 1000000);
+				if (after < 0 || after >= 1000000000)
+					fail_msg("frame %u: journal time %lld ns after the edge", i - 1,
+						 after);
 				fired++;
 			} else {
 				/* only the last record can be caught between its
