@@ -179,4 +179,9 @@ struct ld_rig_sections {
 };
 int ld_rig(struct ld *l, const struct ld_rig_sections *s);
 
+/* A Modbus device's modbus: section; then every output's axis against the
+ * register maps (load_modbus.c). */
+int ld_modbus(struct ld *l, yaml_node_t *map, struct rig_device_desc *dev);
+int ld_modbus_outputs(struct ld *l, const struct rig_desc *r, yaml_node_t *outputs);
+
 #endif /* STRAND_LOAD_PRIV_H */

@@ -83,7 +83,7 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 
 static int devices(struct rl *rl, yaml_node_t *seq)
 {
-	static const char *const keys[] = { "name", "driver", "sim", NULL };
+	static const char *const keys[] = { "name", "driver", "sim", "modbus", NULL };
 	static const char *const drivers[] = { "sim", "modbus", "gpio", "canopen", NULL };
 	struct ld *l = rl->l;
 	struct rig_device_desc *dev;
@@ -98,7 +98,7 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 	if (!dev || !rl->dev_names)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
-		yaml_node_t *map = ld_node(l, it[i]), *v[3];
+		yaml_node_t *map = ld_node(l, it[i]), *v[4];
 		int drv, k;
 
 		err = ld_map(l, map, "device", keys, v);
@@ -115,6 +115,13 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 		if (err)
 			return err;
 		dev[i].driver = (enum rig_driver)drv;
+		/* a Modbus device's bus and register map (load_modbus.c) */
+		if ((dev[i].driver == RIG_DRIVER_MODBUS) != !!v[3])
+			return ld_fail(l, v[3] ? v[3] : map, -EINVAL, v[3] ?
+				       "a modbus: section belongs to a device of driver modbus" :
+				       "a device of driver modbus needs its modbus: section");
+		if (v[3] && (err = ld_modbus(l, v[3], &dev[i])))
+			return err;
 		k = find(rl->dev_names, dev[i].name);
 		if (k >= 0)
 			return ld_fail(l, v[0], -EINVAL, "device '%s' is already listed (line %u)",
@@ -419,6 +426,8 @@ int ld_rig(struct ld *l, const struct ld_rig_sections *s)
 		err = devices(&rl, s->devices);
 	if (!err && s->outputs)
 		err = outputs(&rl, s->outputs);
+	if (!err)
+		err = ld_modbus_outputs(l, rl.r, s->outputs);
 	if (!err && s->triggers)
 		err = lines(&rl, s->triggers, true);
 	if (!err && s->inputs)

@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "exitcode.h"
+#include "modbus_dev.h"
 #include "timecode.h"
 
 /* Records the journal keeps mapped ahead of the loop: ten seconds of
@@ -345,6 +346,12 @@ void play_describe(const struct play *p, char *buf, size_t size)
 			 r->device ? r->device : "?", r->channel, when);
 		break;
 	case LOOP_CAUSE_DEVICE:
+		if (r->channel < 0) { /* the device as a whole: a bus, a unit */
+			snprintf(buf, size, "device fault: device '%s': %s (%s) %s",
+				 r->device ? r->device : "?", r->what ? r->what : "fault",
+				 strerror(r->code < 0 ? -r->code : r->code), when);
+			break;
+		}
 		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s) %s",
 			 r->device ? r->device : "?", r->channel, o >= 0 ? " (" : "",
 			 out_name(p, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
@@ -418,6 +425,8 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 		if (L->limited[i])
 			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
 				p->rig.out[i].channel, (long long)L->limited[i]);
+	for (i = 0; i < p->rig.naxes; i++)
+		hal_modbus_report(p->rig.axes[i], f);
 	if (L->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",
 			(long long)L->status_dropped);

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rig_modbus.h"
 #include "sim_camera.h"
 #include "sim_drive.h"
 #include "sim_gpio.h"
@@ -408,6 +409,13 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	for (k = 0; k < d->ndevices; k++) {
 		if (dev_axis[k] < 0)
 			continue;
+		if (!o->sim && d->devices[k].driver == RIG_DRIVER_MODBUS) {
+			rc = rig_modbus_open(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz,
+					     clk->is_virtual, err, errsize);
+			if (rc)
+				goto out;
+			continue;
+		}
 		if (!o->sim && d->devices[k].driver != RIG_DRIVER_SIM) {
 			rc = fail(err, errsize, -ENOTSUP,
 				  "device '%s': driver %s is not in this build yet; play with --sim",
@@ -438,6 +446,7 @@ out:
 
 int rig_start(struct rig *r, char *err, size_t errsize)
 {
+	struct hal_fault f;
 	uint32_t i;
 	int rc;
 
@@ -467,7 +476,12 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 	}
 	return 0;
 fail_axis:
-	fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name, strerror(-rc));
+	/* a backend that latched why names the bus, unit and register */
+	if (hal_axis_fault(r->axes[i], &f) && f.cause)
+		fail(err, errsize, rc, "device '%s': start: %s (%s)", r->axes[i]->name, f.cause,
+		     strerror(-rc));
+	else
+		fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name, strerror(-rc));
 undo:
 	rig_stop(r);
 	return rc;

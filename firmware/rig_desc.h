@@ -35,6 +35,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "modbus_dev.h" /* struct modbus_desc */
 #include "scene_desc.h" /* struct sd_limits */
 
 enum rig_driver {
@@ -60,6 +61,7 @@ struct rig_device_desc {
 	enum rig_driver driver;
 	struct rig_sim_desc sim;
 	/* the hardware backends add their settings here (issues 5-7) */
+	const struct modbus_desc *modbus; /* driver modbus: bus and register map */
 };
 
 struct rig_output_desc {
