@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "channel.h"
+#include "check_bus.h"
 #include "cli.h"
 #include "exitcode.h"
 #include "limit_check.h"
@@ -65,6 +66,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			path, res.violations, res.violations == 1 ? "" : "s", joints,
 			joints == 1 ? "" : "s", sf.desc.frame_first, sf.desc.frame_last,
 			(long long)res.ticks);
+		check_buses(out, &sf.rig, sf.desc.tick_hz);
 		rc = res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
 	scene_built_free(&b);
