@@ -20,7 +20,6 @@
  *
  * Each figure is the median of ROUNDS rounds.
  */
-#define _GNU_SOURCE
 #include <errno.h>
 #include <modbus.h>
 #include <stdio.h>

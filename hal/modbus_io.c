@@ -69,9 +69,17 @@ static int failed(struct modbus_drv *m, const char *what, int err)
 	snprintf(m->msg, sizeof(m->msg), "%s: %s: %s", m->where, what, why);
 	if (code == -ECONNRESET) {
 		mb_io_close(m);
+	} else if (m->connected && m->d->transport == MODBUS_TCP &&
+		   (err == ETIMEDOUT || err == EMBBADDATA)) {
+		/* a TCP drive answers in order: the answer still owed (to this
+		 * request, or the late one to an earlier) is awaited here, one
+		 * more timeout at most, else the next request would take it
+		 * for its own and fail too, and the next, ... */
+		uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
+
+		modbus_receive_confirmation(m->mb, rsp);
 	} else if (m->connected) {
-		/* an answer that comes after its timeout must not be taken
-		 * for the next request's */
+		/* RTU: a late answer's bytes must not start the next one's */
 		modbus_flush(m->mb);
 	}
 	return code;

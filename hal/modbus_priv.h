@@ -51,6 +51,8 @@ enum mb_cmd {
 #define MB_DONE_RING 64
 #define MB_CMD_RING 4
 #define MB_FAULT_TEXT 320
+/* The I/O thread's SCHED_FIFO priority: below the loop's default (80). */
+#define MB_IO_PRIORITY 70
 
 struct modbus_drv {
 	struct hal_axis ax; /* first: the HAL view */
@@ -81,7 +83,7 @@ struct modbus_drv {
 	sem_t wake;
 	bool wake_ready;
 	pthread_t thread;
-	bool thread_running;
+	bool thread_running, io_fifo;
 	_Atomic bool quit;
 	_Atomic bool thread_done;
 

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* mbpeer.c - strand-simdrive as a peer for tests and benchmarks (see mbpeer.h). */
+#ifndef _GNU_SOURCE
 #define _GNU_SOURCE
+#endif
 #include "mbpeer.h"
 
 #include <errno.h>
