@@ -1,0 +1,92 @@
+# lib.sh - sourced by the test scripts in the VM (tests/vm/t_*.sh). busybox sh.
+#
+# A test ends with pass WORDS or fail WORDS, which print its verdict line
+# for /init and the host, and kill what it started in the background.
+#
+# gpio-sim, through configfs (the module is loaded and configfs mounted by
+# /init): sim_chip NAME NLINES [OFFSET=LINENAME...] makes a live chip and
+# sets SIM_CHIP (gpiochipN, for the gpiod tools and strand) and SIM_DEV
+# (its platform device, for sim_pull and sim_value).
+
+VM_TEST=${VM_TEST:-$(basename "$0" .sh)}
+SIM_CFS=/sys/kernel/config/gpio-sim
+BG_PIDS=""
+
+note() { echo "$VM_TEST: $*"; }
+
+cleanup() {
+	for p in $BG_PIDS; do kill "$p" 2>/dev/null; done
+	BG_PIDS=""
+}
+
+pass() {
+	cleanup
+	echo "VMTEST PASS $VM_TEST: $*"
+	exit 0
+}
+
+fail() {
+	cleanup
+	echo "VMTEST FAIL $VM_TEST: $*"
+	exit 1
+}
+
+# bg CMD...: start CMD in the background, killed by pass and fail; $! is it.
+bg() {
+	"$@" &
+	BG_PIDS="$BG_PIDS $!"
+}
+
+# wait_for SECONDS CMD...: poll CMD every 20 ms until it succeeds; 1 on timeout.
+wait_for() {
+	_n=$(($1 * 50))
+	shift
+	while ! "$@" 2>/dev/null; do
+		_n=$((_n - 1))
+		[ $_n -gt 0 ] || return 1
+		sleep 0.02
+	done
+}
+
+# uptime_ms: milliseconds since boot, for coarse durations only (10 ms steps).
+uptime_ms() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
+
+sim_chip() {
+	_name=$1
+	_n=$2
+	shift 2
+	_d=$SIM_CFS/$_name
+	mkdir "$_d" "$_d/bank0" || fail "gpio-sim: cannot make $_d"
+	echo "$_n" >"$_d/bank0/num_lines"
+	for _l in "$@"; do
+		mkdir "$_d/bank0/line${_l%%=*}"
+		echo "${_l#*=}" >"$_d/bank0/line${_l%%=*}/name"
+	done
+	echo 1 >"$_d/live" || fail "gpio-sim: $_name does not go live"
+	SIM_CHIP=$(cat "$_d/bank0/chip_name")
+	SIM_DEV=$(cat "$_d/dev_name")
+	[ -c "/dev/$SIM_CHIP" ] || fail "gpio-sim: no /dev/$SIM_CHIP for $_name"
+}
+
+# sim_chip_remove NAME: take a chip down (lines must be released first).
+sim_chip_remove() {
+	_d=$SIM_CFS/$1
+	echo 0 >"$_d/live"
+	for _l in "$_d"/bank0/line*; do [ -d "$_l" ] && rmdir "$_l"; done
+	rmdir "$_d/bank0" "$_d"
+}
+
+_sim_attr() { echo "/sys/devices/platform/$SIM_DEV/$SIM_CHIP/sim_gpio$1/$2"; }
+
+# sim_pull OFFSET up|down: what the outside world drives onto an input line.
+sim_pull() { echo "pull-$2" >"$(_sim_attr "$1" pull)"; }
+
+# sim_value OFFSET: the level the chip sees on the line (0 or 1), for an
+# output what the program drives.
+sim_value() { cat "$(_sim_attr "$1" value)"; }
+
+# sim_value_is OFFSET V: for wait_for, which evaluates its command each time.
+sim_value_is() { [ "$(sim_value "$1")" = "$2" ]; }
+
+# lines_are N FILE: FILE has N lines (for wait_for).
+lines_are() { [ "$(wc -l <"$2" 2>/dev/null)" = "$1" ]; }
