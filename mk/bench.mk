@@ -1,7 +1,23 @@
-# mk/bench.mk - `make bench`: each benchmark is a target that `bench` depends
-# on; it builds its program and runs it, which prints BENCH lines.
+# mk/bench.mk - `make bench`: build every benchmark program, then run them
+# one after the other (never two at once, even under make -j: they time
+# themselves). Each prints BENCH lines. Not part of `make test`.
+#
+#   make bench           all of them
+#   make bench-fixmath   libfixmath's Q16.16 against double (fix.h's choice)
+#   make bench-motion    the core against its double twin (bench/motion_bench.c)
 
-.PHONY: bench-fixmath
+.PHONY: bench-fixmath bench-motion
+
+BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench
+
+bench: $(BENCH_PROGS)
+	$(Q)for p in $(BENCH_PROGS); do $$p || exit 1; done
+
+bench-fixmath: $(BUILD)/bench/fixmath_chain
+	$(Q)$<
+
+bench-motion: $(BUILD)/bench/motion_bench
+	$(Q)$<
 
 BENCH_CFLAGS := -std=c11 -O2 $(WARN) -Werror
 
@@ -9,11 +25,32 @@ BENCH_CFLAGS := -std=c11 -O2 $(WARN) -Werror
 # behind fix.h's choice of Q32.32). Debian ships only a static library,
 # /usr/lib/<triplet>/liblibfixmath.a, with its headers in
 # /usr/include/libfixmath/.
-bench: bench-fixmath
-
 $(BUILD)/bench/fixmath_chain: bench/fixmath_chain.c | $(BUILD)/.deps-bench
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(BENCH_CFLAGS) $< -llibfixmath -lm -o $@
 
-bench-fixmath: $(BUILD)/bench/fixmath_chain
-	$(Q)$<
+# ---- the motion benchmark ---------------------------------------------------------
+# Its own sources and the double twin (bench/dbl_*.c), the scene generator
+# and the tests' reference (tests/), all -O2 and without sanitizers (timing
+# sanitized code would time the sanitizer); the core and the scene builder
+# are the -O2 objects `make` builds. The tests' headers pull in cmocka's
+# (testutil.h), hence its package and no -Wpedantic, as for the tests.
+# No contraction into fused multiply-adds, as for firmware/: the double
+# side rounds the same way on every target.
+MB_SRC      := bench/motion_bench.c bench/scene_bench.c bench/pipe_bench.c \
+               bench/prim_bench.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c \
+               tests/synth.c tests/ref_scene.c tests/ref_curve.c tests/ref_mat.c
+MB_OBJ      := $(MB_SRC:%.c=$(BUILD)/bench/%.o)
+MB_HDR       = $(wildcard bench/*.h) $(wildcard tests/*.h) $(MOTION_HDR) $(FW_HDR)
+MB_CFLAGS    = -std=gnu11 -D_GNU_SOURCE -O2 $(filter-out -Wpedantic,$(WARN)) -Werror \
+               -ffp-contract=off -Ibench -Imotion -Ifirmware -Itests \
+               $(shell pkg-config --cflags cmocka 2>/dev/null)
+MB_LINK     := $(BUILD)/firmware/scene_build.o $(BUILD)/firmware/scene_desc.o \
+               $(BUILD)/libmotion.a
+
+$(BUILD)/bench/%.o: %.c $(MB_HDR) | $(BUILD)/.deps-test
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(MB_CFLAGS) -c $< -o $@
+
+$(BUILD)/bench/motion_bench: $(MB_OBJ) $(MB_LINK)
+	$(Q)$(CC) $^ -lm -o $@

@@ -61,7 +61,7 @@ void mot_mat_mul(struct mot_mat *out, const struct mot_mat *a, const struct mot_
  * translation row is -t . inverse, rounded once. MOT_E_SINGULAR when the
  * determinant is zero or so near it that an entry of the inverse's linear
  * part would reach 2^30 in magnitude (fix.h's length limit); out is then left
- * untouched. About 110 ns (tools/mat_bench.c): prepare, do not call per tick. */
+ * untouched. About 110 ns (make bench): prepare, do not call per tick. */
 int mot_mat_inverse(struct mot_mat *out, const struct mot_mat *a, uint32_t *sat);
 
 /* Determinant of the linear part, exact (192 bits) and rounded once to

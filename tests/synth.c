@@ -133,6 +133,43 @@ static void rand_curve(struct synth *s, uint64_t *st, struct sd_curve *c, enum m
 	}
 }
 
+/* Node i of a random forest: its name, a parent among the few nodes before
+ * it (keeping the depth bounded; now and then none) and a pivot. Returns the
+ * roll in [0, 100) that picks its kind. */
+static uint32_t rand_node(struct synth *s, uint64_t *st, struct sd_node *nd, int *depth,
+			  uint32_t i, const char *prefix)
+{
+	uint32_t roll = (uint32_t)(rnd(st) % 100), k;
+	char *name = s_alloc(s, 16);
+
+	snprintf(name, 16, "%s%u", prefix, i);
+	nd->name = name;
+	nd->parent = -1;
+	depth[i] = 0;
+	if (i > 0 && roll % 50 != 0) {
+		uint32_t j = i - 1 - (uint32_t)(rnd(st) % (i < 8 ? i : 8));
+
+		if (depth[j] < 12) {
+			nd->parent = (int32_t)j;
+			depth[i] = depth[j] + 1;
+		}
+	}
+	for (k = 0; k < 3; k++)
+		nd->pivot[k] = uni(st, -1, 1);
+	return roll;
+}
+
+/* A joint's axis: x, y, z or a tilted one (normalised by the builder). */
+static void rand_axis(uint64_t *st, struct sd_node *nd)
+{
+	uint32_t k;
+
+	nd->axis_id = (enum mot_axis)(rnd(st) % 4);
+	for (k = 0; k < 3; k++)
+		nd->axis[k] = nd->axis_id == MOT_AXIS_VEC ? uni(st, -1, 1) + 0.1 :
+							    (k == (uint32_t)nd->axis_id);
+}
+
 static void rand_quat(uint64_t *st, double q[4])
 {
 	double n;
@@ -161,31 +198,12 @@ void synth_random(struct synth *s, uint64_t seed, uint32_t n, double frames)
 	depth = s_alloc(s, n * sizeof(*depth));
 	for (i = 0; i < n; i++) {
 		struct sd_node *nd = &nodes[i];
-		uint32_t roll = (uint32_t)(rnd(&st) % 100);
+		uint32_t roll = rand_node(s, &st, nd, depth, i, "n");
 		enum mot_interp kind = (enum mot_interp)(i % 6);
-		char *name = s_alloc(s, 16);
 
-		snprintf(name, 16, "n%u", i);
-		nd->name = name;
-		/* a parent among the last few nodes, keeping the depth bounded */
-		nd->parent = -1;
-		depth[i] = 0;
-		if (i > 0 && roll % 50 != 0) {
-			uint32_t j = i - 1 - (uint32_t)(rnd(&st) % (i < 8 ? i : 8));
-
-			if (depth[j] < 12) {
-				nd->parent = (int32_t)j;
-				depth[i] = depth[j] + 1;
-			}
-		}
-		for (k = 0; k < 3; k++)
-			nd->pivot[k] = uni(&st, -1, 1);
 		if (roll < 60) {
 			nd->kind = MOT_NODE_REVOLUTE;
-			nd->axis_id = (enum mot_axis)(rnd(&st) % 4);
-			for (k = 0; k < 3; k++)
-				nd->axis[k] = nd->axis_id == MOT_AXIS_VEC ? uni(&st, -1, 1) + 0.1 :
-									    (k == (uint32_t)nd->axis_id);
+			rand_axis(&st, nd);
 			if (roll < 8) {
 				rand_curve(s, &st, &nd->spin, (enum mot_interp)(rnd(&st) % 3), -600,
 					   2400, frames);
@@ -198,10 +216,7 @@ void synth_random(struct synth *s, uint64_t seed, uint32_t n, double frames)
 			}
 		} else if (roll < 72) {
 			nd->kind = MOT_NODE_PRISMATIC;
-			nd->axis_id = (enum mot_axis)(rnd(&st) % 4);
-			for (k = 0; k < 3; k++)
-				nd->axis[k] = nd->axis_id == MOT_AXIS_VEC ? uni(&st, -1, 1) + 0.1 :
-									    (k == (uint32_t)nd->axis_id);
+			rand_axis(&st, nd);
 			rand_curve(s, &st, &nd->value, kind, -1, 1, frames);
 		} else {
 			struct sd_free *f = &nd->free;
@@ -243,6 +258,35 @@ void synth_random(struct synth *s, uint64_t seed, uint32_t n, double frames)
 		}
 	}
 	s->d.name = "synthetic";
+	timing(&s->d, frames);
+	s->d.nnodes = n;
+	s->d.nodes = nodes;
+}
+
+void synth_joints(struct synth *s, uint64_t seed, uint32_t n, double frames, unsigned kinds)
+{
+	uint64_t st = seed * 0x9e3779b97f4a7c15ull + 1;
+	enum mot_interp kind[MOT_INTERP_BEZIER + 1];
+	uint32_t nkinds = 0, i, k;
+	struct sd_node *nodes;
+	int *depth;
+
+	for (k = 0; k <= MOT_INTERP_BEZIER; k++)
+		if (!kinds || (kinds >> k & 1))
+			kind[nkinds++] = (enum mot_interp)k;
+	memset(s, 0, sizeof(*s));
+	nodes = s_alloc(s, n * sizeof(*nodes));
+	depth = s_alloc(s, n * sizeof(*depth));
+	for (i = 0; i < n; i++) {
+		struct sd_node *nd = &nodes[i];
+		uint32_t roll = rand_node(s, &st, nd, depth, i, "j");
+		double range = roll < 80 ? 400 : 1; /* degrees or units */
+
+		nd->kind = roll < 80 ? MOT_NODE_REVOLUTE : MOT_NODE_PRISMATIC;
+		rand_axis(&st, nd);
+		rand_curve(s, &st, &nd->value, kind[i % nkinds], -range, range, frames);
+	}
+	s->d.name = "joints";
 	timing(&s->d, frames);
 	s->d.nnodes = n;
 	s->d.nodes = nodes;

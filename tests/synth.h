@@ -34,6 +34,16 @@ void synth_robot_arm(struct synth *s, double scale, double frames);
  */
 void synth_random(struct synth *s, uint64_t seed, uint32_t n, double frames);
 
+/*
+ * A random forest of n joints only, shaped like synth_random's (the same
+ * parent and depth rule, revolute joints about x, y, z and tilted axes,
+ * prismatic joints), each keyed with a curve whose kind is taken in turn
+ * from the set `kinds` (bit k: enum mot_interp k; 0 means all). With linear
+ * and hermite it is the common case of a rig; with one kind it isolates
+ * that kind's cost.
+ */
+void synth_joints(struct synth *s, uint64_t seed, uint32_t n, double frames, unsigned kinds);
+
 void synth_free(struct synth *s);
 
 #endif /* SYNTH_H */

@@ -1,0 +1,530 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * dbl_curve.c - scalar curves in double, doing what motion/curve.c does
+ * (see dbl_curve.h). Where the core needs integer machinery that double
+ * does not (block floating point scales, 128-bit sums, the Newton
+ * reciprocal), the twin does the plain double operation instead; the
+ * algorithm, the preparation and the amount of work per evaluation are the
+ * core's. Comments say where the core's reasons live rather than repeat
+ * them.
+ */
+#include "dbl_curve.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Newton start rules and limits: curve.c's */
+enum { START_CHORD, START_CUBE0, START_CUBE1 };
+#define NEWTON_MAX_IT 64
+#define NEWTON_TOL (1.0 / 2147483648.0)     /* 2^-31 */
+#define BISECT_TOL (1.0 / 1125899906842624.0) /* 2^-50 */
+
+bool dbl_quantize(double v, double *out)
+{
+	mot_q32 x;
+
+	if (!sd_to_q32(v, &x))
+		return false;
+	*out = (double)x / 4294967296.0;
+	return true;
+}
+
+/* ---- ease (ease.c) ------------------------------------------------------------ */
+
+void dbl_ease_init(struct dbl_ease *e, double a, double b)
+{
+	e->a = a;
+	e->b = b;
+	e->v = 1 / (1 - a / 2 - b / 2);
+	e->ka = a > 0 ? e->v / (2 * a) : 0;
+	e->kb = b > 0 ? e->v / (2 * b) : 0;
+}
+
+double dbl_ease_apply(const struct dbl_ease *e, double s)
+{
+	double r, t;
+
+	if (s <= 0)
+		return 0;
+	if (s >= 1)
+		return 1;
+	if (s < e->a)
+		return s * e->ka * s;
+	r = 1 - s;
+	if (r < e->b)
+		return 1 - r * e->kb * r;
+	t = e->v * (2 * s - e->a) / 2;
+	return t < 0 ? 0 : t > 1 ? 1 : t;
+}
+
+/* ---- evaluation helpers --------------------------------------------------------- */
+
+static inline double poly_eval(const double c[4], double u)
+{
+	return ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
+}
+
+static inline double poly_deriv(const double c[4], double u)
+{
+	return (3 * c[3] * u + 2 * c[2]) * u + c[1];
+}
+
+/* x / d for the prepared 1 / d, clamped to [0, 1] (frac62) */
+static inline double frac(double x, double inv)
+{
+	double s = x * inv;
+
+	return s < 0 ? 0 : s > 1 ? 1 : s;
+}
+
+static inline double start_of(const struct dbl_curve *c, bool keys, uint32_t j)
+{
+	return keys ? c->frame[j] : c->seg[j].f0;
+}
+
+/* curve.c's locate(): the hint, its successor, else a binary search */
+static uint32_t locate(const struct dbl_curve *c, bool keys, uint32_t n, uint32_t hint, double f)
+{
+	uint32_t lo = 0, hi = n;
+
+	if (hint < n && start_of(c, keys, hint) <= f) {
+		if (hint + 1 == n || f < start_of(c, keys, hint + 1))
+			return hint;
+		if (hint + 2 == n || f < start_of(c, keys, hint + 2))
+			return hint + 1;
+		lo = hint + 2;
+	}
+	while (hi - lo > 1) {
+		uint32_t mid = lo + (hi - lo) / 2;
+
+		if (start_of(c, keys, mid) <= f)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+static uint32_t locate_seg(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
+{
+	uint32_t j = locate(c, false, c->nseg, cur ? cur->seg : 0, f);
+
+	if (cur)
+		cur->seg = j;
+	return j;
+}
+
+static uint32_t locate_key(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
+{
+	uint32_t i = locate(c, true, c->nkeys - 1, cur ? cur->key : 0, f);
+
+	if (cur)
+		cur->key = i;
+	return i;
+}
+
+/* ---- the approximating kinds ------------------------------------------------------ */
+
+/* de Casteljau on the keys relative to the first, until `left` points remain */
+static void bezier_reduce(const struct dbl_curve *c, const double *k, double u, uint32_t left,
+			  double w[MOT_BEZIER_MAX_KEYS])
+{
+	uint32_t n = c->nkeys, i, r;
+
+	for (i = 0; i < n; i++)
+		w[i] = k[i] - k[0];
+	for (r = n - 1; r >= left; r--)
+		for (i = 0; i < r; i++)
+			w[i] += (w[i + 1] - w[i]) * u;
+}
+
+/* frame(u) - fref and its derivative on piece s */
+static void frame_at(const struct dbl_curve *c, const struct dbl_seg *s, double u, double *f,
+		     double *df)
+{
+	double w[MOT_BEZIER_MAX_KEYS];
+
+	if (c->kind != MOT_INTERP_BEZIER) {
+		*f = poly_eval(s->fc, u);
+		*df = poly_deriv(s->fc, u);
+		return;
+	}
+	bezier_reduce(c, c->frame, u, 2, w);
+	*f = w[0] + (w[1] - w[0]) * u;
+	*df = (double)(c->nkeys - 1) * (w[1] - w[0]);
+}
+
+/* frame(u) = fref + d on piece s: curve.c's solve_u() (rtsafe), the same
+ * bracket, safeguards and stopping rule, with a plain division for the step */
+static double solve_u(const struct dbl_curve *c, const struct dbl_seg *s, double d, double u,
+		      int *it)
+{
+	bool lo_known = false, hi_known = false;
+	double lo = 0, hi = 1, dx = 1, dxold = 1;
+
+	for (*it = 1; *it <= NEWTON_MAX_IT; ++*it) {
+		double f, df, du = 0, un = 0, tol;
+		bool newton;
+
+		frame_at(c, s, u, &f, &df);
+		f -= d;
+		if (f == 0)
+			return u;
+		if (f < 0) {
+			lo = u;
+			lo_known = true;
+		} else {
+			hi = u;
+			hi_known = true;
+		}
+		if (lo >= hi)
+			return u;
+		newton = df > 0;
+		if (newton) {
+			du = f / df;
+			if (fabs(du) > dxold / 2)
+				newton = false;
+			un = u - du;
+			if (un <= lo) {
+				newton = newton && !lo_known;
+				un = lo;
+			} else if (un >= hi) {
+				newton = newton && !hi_known;
+				un = hi;
+			}
+		}
+		dxold = dx;
+		if (newton) {
+			dx = fabs(u - un);
+			tol = NEWTON_TOL;
+		} else {
+			dx = (hi - lo) / 2;
+			un = lo + dx;
+			tol = BISECT_TOL;
+		}
+		if (dx <= tol)
+			return un;
+		u = un;
+	}
+	*it = NEWTON_MAX_IT;
+	return u;
+}
+
+static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, int *it)
+{
+	const struct dbl_seg *s;
+	double u, w[MOT_BEZIER_MAX_KEYS];
+
+	s = c->kind == MOT_INTERP_BEZIER ? &c->seg[0] : &c->seg[locate_seg(c, cur, f)];
+	u = frac(f - s->f0, s->inv_w);
+	if (s->start == START_CUBE0)
+		u = cbrt(u);
+	else if (s->start == START_CUBE1)
+		u = 1 - cbrt(1 - u);
+	u = solve_u(c, s, f - s->fref, u, it);
+	if (c->kind != MOT_INTERP_BEZIER)
+		return s->vref + poly_eval(s->c, u);
+	bezier_reduce(c, c->value, u, 1, w);
+	return s->vref + w[0];
+}
+
+/* ---- evaluation (curve.c's eval()) ----------------------------------------------- */
+
+static double eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, int *it)
+{
+	const struct dbl_seg *s;
+	uint32_t n = c->nkeys;
+	double u;
+
+	if (f <= c->frame[0])
+		return c->value[0];
+	if (f >= c->frame[n - 1])
+		return c->value[n - 1];
+	if (c->span_ease) {
+		u = dbl_ease_apply(&c->span, frac(f - c->span_f0, c->span_inv));
+		f = c->span_f0 + u * (c->span_f1 - c->span_f0);
+		if (f <= c->frame[0])
+			return c->value[0];
+		if (f >= c->frame[n - 1])
+			return c->value[n - 1];
+	}
+	if (c->kind >= MOT_INTERP_BSPLINE) {
+		if (c->seg_ease) {
+			uint32_t i = locate_key(c, cur, f);
+
+			s = &c->seg[i];
+			if (!dbl_ease_is_identity(&s->ease)) {
+				u = dbl_ease_apply(&s->ease, frac(f - c->frame[i], s->inv_h));
+				f = c->frame[i] + u * (c->frame[i + 1] - c->frame[i]);
+				if (f <= c->frame[0])
+					return c->value[0];
+				if (f >= c->frame[n - 1])
+					return c->value[n - 1];
+			}
+		}
+		return approx_eval(c, cur, f, it);
+	}
+	s = &c->seg[locate_seg(c, cur, f)];
+	if (c->kind == MOT_INTERP_STEP)
+		return s->vref;
+	u = frac(f - s->f0, s->inv_w);
+	if (c->seg_ease && !dbl_ease_is_identity(&s->ease))
+		u = dbl_ease_apply(&s->ease, u);
+	if (c->kind == MOT_INTERP_LINEAR)
+		return s->vref + s->c[1] * u;
+	return s->vref + poly_eval(s->c, u);
+}
+
+double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
+{
+	int it;
+
+	return eval(c, cur, f, &it);
+}
+
+int dbl_curve_newton_iterations(const struct dbl_curve *c, double f)
+{
+	int it = 0;
+
+	eval(c, NULL, f, &it);
+	return it;
+}
+
+/* Integral over [f0, f0 + e] of interpolating piece i at parameter s */
+static double seg_integral(const struct dbl_curve *c, uint32_t i, double e, double s)
+{
+	const struct dbl_seg *sg = &c->seg[i];
+	double a = e * sg->vref;
+
+	if (c->kind == MOT_INTERP_LINEAR)
+		return a + sg->c[1] * e * e * sg->inv_w / 2;
+	if (c->kind == MOT_INTERP_HERMITE)
+		return a + e * poly_eval(sg->fc, s);
+	return a;
+}
+
+double dbl_curve_integral(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
+{
+	uint32_t n = c->nkeys, i;
+	const struct dbl_seg *s;
+
+	if (f < c->frame[0])
+		return c->area_first + c->value[0] * (f - c->frame[0]);
+	if (f >= c->frame[n - 1])
+		return c->area_last + c->value[n - 1] * (f - c->frame[n - 1]);
+	i = locate_seg(c, cur, f);
+	s = &c->seg[i];
+	return s->area + seg_integral(c, i, f - s->f0, frac(f - s->f0, s->inv_w));
+}
+
+/* ---- preparation ---------------------------------------------------------------- */
+
+/* curve.c's basis(): weights of E(j)..E(j+3) on u^p over den */
+static void basis(const struct dbl_curve *c, double b1, double b2, double nb[4][4], double *den)
+{
+	static const double bsp[4][4] = {
+		{ 1, -3, 3, -1 }, { 4, 0, -6, 3 }, { 1, 3, 3, -3 }, { 0, 0, 0, 1 },
+	};
+	double t3 = 2 * b1 * b1 * b1, t2 = 2 * b1 * b1, t1 = 2 * b1;
+	int p;
+
+	if (c->kind == MOT_INTERP_BSPLINE) {
+		memcpy(nb, bsp, sizeof(bsp));
+		*den = 6;
+		return;
+	}
+	*den = t3 + 2 * t2 + 2 * t1 + b2 + 2;
+	nb[1][0] = 2 * t2 + 2 * t1 + b2;
+	nb[1][1] = 3 * (t3 - t1);
+	nb[1][2] = -3 * (t3 + t2 + b2);
+	nb[1][3] = t3 + t2 + t1 + 2 * b2;
+	for (p = 0; p < 4; p++) {
+		nb[0][p] = t3 * bsp[0][p];
+		nb[3][p] = p == 3 ? 2 : 0;
+		nb[2][p] = (p == 0 ? *den : 0) - nb[0][p] - nb[1][p] - nb[3][p];
+	}
+}
+
+static void prep_spline(struct dbl_curve *c, uint32_t j, double nb[4][4], double den)
+{
+	struct dbl_seg *s = &c->seg[j];
+	int64_t n1 = (int64_t)c->nkeys - 1;
+	double df[4], dv[4], nf[4], big = 0;
+	int m, p;
+
+	for (m = 0; m < 4; m++) {
+		int64_t e = (int64_t)j + m - 2;
+
+		e = e < 0 ? 0 : e > n1 ? n1 : e;
+		if (m == 1) {
+			s->fref = c->frame[e];
+			s->vref = c->value[e];
+		}
+		df[m] = c->frame[e];
+		dv[m] = c->value[e];
+	}
+	for (m = 0; m < 4; m++) {
+		df[m] -= s->fref;
+		dv[m] -= s->vref;
+	}
+	for (p = 0; p < 4; p++) {
+		double v = 0;
+
+		nf[p] = 0;
+		for (m = 0; m < 4; m++) {
+			nf[p] += nb[m][p] * df[m];
+			v += nb[m][p] * dv[m];
+		}
+		s->fc[p] = nf[p] / den;
+		s->c[p] = v / den;
+		big += fabs(nf[p]);
+	}
+	s->f0 = s->fref + s->fc[0];
+	/* the start rules, on the numerators as curve.c tests them (up to the
+	 * rounding of double, which the core's exact sums do not have) */
+	s->start = START_CHORD;
+	if (fabs(nf[1]) + fabs(nf[2]) <= 1e-12 * big)
+		s->start = START_CUBE0;
+	else if (fabs(nf[1] - 3 * nf[3]) + fabs(nf[2] + 3 * nf[3]) <= 1e-12 * big)
+		s->start = START_CUBE1;
+}
+
+/* Hermite piece j: Catmull-Rom tangents times h (one-sided at the ends),
+ * then the cubic in s and its mean-value coefficients, as curve.c does */
+static void prep_hermite(struct dbl_curve *c, uint32_t j, double h, double dv)
+{
+	struct dbl_seg *s = &c->seg[j];
+	uint32_t n = c->nkeys, t, p;
+	double tm[2];
+
+	for (t = 0; t < 2; t++) {
+		uint32_t i = j + t, a = i == 0 ? 0 : i - 1, b = i == n - 1 ? i : i + 1;
+
+		tm[t] = h * (c->value[b] - c->value[a]) / (c->frame[b] - c->frame[a]);
+	}
+	s->c[1] = tm[0];
+	s->c[2] = 3 * dv - 2 * tm[0] - tm[1];
+	s->c[3] = -2 * dv + tm[0] + tm[1];
+	for (p = 1; p < 4; p++)
+		s->fc[p] = s->c[p] / (p + 1);
+}
+
+static void prep_pieces(struct dbl_curve *c, double b1, double b2)
+{
+	uint32_t n = c->nkeys, j;
+
+	if (n == 1)
+		return;
+	if (c->kind == MOT_INTERP_BEZIER) {
+		struct dbl_seg *s = &c->seg[0];
+
+		s->fref = s->f0 = c->frame[0];
+		s->vref = c->value[0];
+		s->f1 = c->frame[n - 1];
+		s->inv_w = 1 / (s->f1 - s->f0);
+		s->start = START_CHORD;
+		return;
+	}
+	if (c->kind >= MOT_INTERP_BSPLINE) {
+		double nb[4][4], den;
+
+		basis(c, b1, b2, nb, &den);
+		for (j = 0; j < c->nseg; j++)
+			prep_spline(c, j, nb, den);
+		for (j = 0; j < c->nseg; j++) {
+			struct dbl_seg *s = &c->seg[j];
+
+			s->f1 = j + 1 < c->nseg ? c->seg[j + 1].f0 : c->frame[n - 1];
+			s->inv_w = s->f1 > s->f0 ? 1 / (s->f1 - s->f0) : 0;
+		}
+		return;
+	}
+	for (j = 0; j + 1 < n; j++) {
+		struct dbl_seg *s = &c->seg[j];
+		double h = c->frame[j + 1] - c->frame[j], dv = c->value[j + 1] - c->value[j];
+
+		s->f0 = s->fref = c->frame[j];
+		s->f1 = c->frame[j + 1];
+		s->vref = c->value[j];
+		s->inv_w = 1 / h;
+		if (c->kind == MOT_INTERP_LINEAR)
+			s->c[1] = dv;
+		if (c->kind == MOT_INTERP_HERMITE)
+			prep_hermite(c, j, h, dv);
+	}
+}
+
+static void prep_area(struct dbl_curve *c)
+{
+	uint32_t n = c->nkeys, j;
+	double a = 0, zero;
+
+	c->area_first = 0;
+	for (j = 0; j + 1 < n; j++) {
+		c->seg[j].area = a;
+		a += seg_integral(c, j, c->frame[j + 1] - c->frame[j], 1);
+	}
+	c->area_last = a;
+	zero = dbl_curve_integral(c, NULL, 0);
+	c->area_first -= zero;
+	c->area_last -= zero;
+	for (j = 0; j + 1 < n; j++)
+		c->seg[j].area -= zero;
+}
+
+size_t dbl_curve_size(const struct sd_curve *sd)
+{
+	uint32_t nseg = mot_curve_seg_count(sd->interp, sd->nkeys);
+
+	return 2 * sd->nkeys * sizeof(double) + nseg * sizeof(struct dbl_seg);
+}
+
+int dbl_curve_init(struct dbl_curve *c, const struct sd_curve *sd, double scale, bool integral,
+		   void *mem)
+{
+	uint32_t n = sd->nkeys, i;
+	double b1, b2, e_in, e_out;
+
+	memset(c, 0, sizeof(*c));
+	if (n == 0 || (sd->interp == MOT_INTERP_BEZIER && n > MOT_BEZIER_MAX_KEYS))
+		return -1;
+	c->kind = sd->interp;
+	c->nkeys = n;
+	c->nseg = mot_curve_seg_count(sd->interp, n);
+	c->frame = mem;
+	c->value = c->frame + n;
+	c->seg = (struct dbl_seg *)(c->value + n);
+	memset(c->seg, 0, c->nseg * sizeof(*c->seg));
+	for (i = 0; i < n; i++)
+		if (!dbl_quantize(sd->keys[i].frame, &c->frame[i]) ||
+		    !dbl_quantize(sd->keys[i].value * scale, &c->value[i]))
+			return -1;
+	if (!dbl_quantize(sd->beta1, &b1) || !dbl_quantize(sd->beta2, &b2) ||
+	    !dbl_quantize(sd->ease_in, &e_in) || !dbl_quantize(sd->ease_out, &e_out))
+		return -1;
+	for (i = 0; i < c->nseg; i++) {
+		struct dbl_seg *s = &c->seg[i];
+		double a = 0, b = 0;
+
+		if (i + 1 < n && (!dbl_quantize(sd->keys[i].ease_out, &a) ||
+				  !dbl_quantize(sd->keys[i + 1].ease_in, &b)))
+			return -1;
+		dbl_ease_init(&s->ease, a, b);
+		s->inv_h = i + 1 < n ? 1 / (c->frame[i + 1] - c->frame[i]) : 0;
+		c->seg_ease = c->seg_ease || !dbl_ease_is_identity(&s->ease);
+	}
+	c->span_f0 = c->frame[0];
+	c->span_f1 = c->frame[n - 1];
+	c->span_ease = e_in != 0 || e_out != 0;
+	if (c->span_ease) {
+		double span = c->span_f1 - c->span_f0;
+
+		dbl_ease_init(&c->span, e_out / span, e_in / span);
+		c->span_inv = 1 / span;
+	}
+	prep_pieces(c, b1, b2);
+	c->integral = integral;
+	if (integral)
+		prep_area(c);
+	return 0;
+}

@@ -1,0 +1,83 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * dbl_curve.h - the double-precision twin of motion/curve.h and ease.h for
+ * the benchmarks: the same preparation (per-segment cubic coefficients in
+ * power form relative to a reference key, reciprocals of widths, ease
+ * factors, running integrals) and the same evaluation (cursor lookup, the
+ * safeguarded Newton solve of the approximating kinds from the same start,
+ * de Casteljau for Bezier), in double and libm. Keys come from a scene
+ * description, quantised to Q32.32 first exactly as scene_build() does, so
+ * that the twin, the core and tests/ref_curve.c all see the same inputs.
+ */
+#ifndef DBL_CURVE_H
+#define DBL_CURVE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "curve.h"
+#include "scene_desc.h"
+
+/* The trapezoidal slow-in/slow-out of ease.h, prepared. */
+struct dbl_ease {
+	double a, b, v; /* fractions and peak speed 1 / (1 - a/2 - b/2) */
+	double ka, kb;  /* v / (2a), v / (2b); 0 when a (b) is 0 */
+};
+
+/* Entry j: piece j of the curve and key interval j, as struct mot_curve_seg. */
+struct dbl_seg {
+	double f0, f1, vref, fref;
+	double c[4];  /* value(u) = vref + c(u) */
+	double fc[4]; /* bspline/beta: frame(u) = fref + fc(u); hermite: c[p] / (p + 1) */
+	double inv_w; /* 1 / (f1 - f0) */
+	double inv_h; /* 1 / width of key interval j */
+	int start;    /* Newton start rule */
+	struct dbl_ease ease;
+	double area;  /* integral from frame 0 to key j */
+};
+
+struct dbl_curve {
+	enum mot_interp kind;
+	uint32_t nkeys, nseg;
+	bool seg_ease, span_ease, integral;
+	double *frame, *value; /* the keys */
+	struct dbl_seg *seg;
+	double span_f0, span_f1, span_inv;
+	struct dbl_ease span;
+	double area_first, area_last;
+};
+
+struct dbl_cursor {
+	uint32_t seg, key;
+};
+
+/* Bytes dbl_curve_init() takes from its block for this description. */
+size_t dbl_curve_size(const struct sd_curve *sd);
+
+/* Prepare from a description whose values are scaled by `scale` (1/360 for
+ * degrees to turns). mem: dbl_curve_size() bytes, 8-aligned, owned by the
+ * caller. -1 when the description does not fit Q32.32 or the curve needs
+ * more than the core allows (the core would refuse it too). */
+int dbl_curve_init(struct dbl_curve *c, const struct sd_curve *sd, double scale, bool integral,
+		   void *mem);
+
+double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f);
+/* The Newton iterations dbl_curve_eval() takes at f (0 where it solves
+ * nothing), as mot_curve_newton_iterations(): the two must be close for the
+ * twin to do the core's work. */
+int dbl_curve_newton_iterations(const struct dbl_curve *c, double f);
+/* Integral from frame 0 to f, value x frames (step, linear, hermite). */
+double dbl_curve_integral(const struct dbl_curve *c, struct dbl_cursor *cur, double f);
+
+void dbl_ease_init(struct dbl_ease *e, double a, double b);
+double dbl_ease_apply(const struct dbl_ease *e, double s);
+
+static inline bool dbl_ease_is_identity(const struct dbl_ease *e)
+{
+	return e->a == 0 && e->b == 0;
+}
+
+/* A double as scene_build() quantises it (Q32.32), false when out of range. */
+bool dbl_quantize(double v, double *out);
+
+#endif /* DBL_CURVE_H */

@@ -1,0 +1,501 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * dbl_scene.c - the double twin of motion/scene.c and strand.c (see
+ * dbl_scene.h): built like scene_build.c, evaluated like mot_scene_eval().
+ */
+#include "dbl_scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- the block ------------------------------------------------------------------ */
+
+/* A bump allocator over the one block; sizes here are multiples of 8. */
+struct pool {
+	char *base;
+	size_t used;
+};
+
+static void *take(struct pool *p, size_t n)
+{
+	void *r = p->base + p->used;
+
+	p->used += (n + 7) & ~(size_t)7;
+	return r;
+}
+
+static size_t rot_size(const struct sd_free *f)
+{
+	uint32_t nseg = f->nrot > 1 ? f->nrot - 1 : 1;
+
+	return ((f->nrot * sizeof(double) + 7) & ~(size_t)7) + nseg * sizeof(struct dbl_rot_seg);
+}
+
+static size_t curve_size(const struct sd_curve *c)
+{
+	return c->nkeys ? (dbl_curve_size(c) + 7) & ~(size_t)7 : 0;
+}
+
+/* What the scene needs, in scene_build.c's order. */
+static size_t count(struct dbl_scene *sc, const struct scene_desc *d)
+{
+	size_t bytes = 0;
+	uint32_t i, k;
+
+	sc->ncurves = sc->nrot = sc->nfree = 0;
+	for (i = 0; i < d->nnodes; i++) {
+		const struct sd_node *n = &d->nodes[i];
+
+		if (n->kind != MOT_NODE_FREE) {
+			sc->ncurves += (n->value.nkeys > 0) + (n->spin.nkeys > 0);
+			bytes += curve_size(&n->value) + curve_size(&n->spin);
+			continue;
+		}
+		if (!n->has_free)
+			continue;
+		sc->nfree++;
+		for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+			sc->ncurves += n->free.ch[k].nkeys > 0;
+			bytes += curve_size(&n->free.ch[k]);
+		}
+		if (n->free.nrot) {
+			sc->nrot++;
+			bytes += rot_size(&n->free);
+		}
+	}
+	return bytes + d->nnodes * sizeof(struct dbl_node) +
+	       sc->ncurves * sizeof(struct dbl_curve) + sc->nrot * sizeof(struct dbl_rot) +
+	       sc->nfree * sizeof(struct dbl_free);
+}
+
+/* ---- rotation tracks (strand.c) ----------------------------------------------------- */
+
+static void quat_align(struct dbl_quat *out, const struct dbl_quat *a, const struct dbl_quat *b)
+{
+	*out = *b;
+	if (dbl_quat_dot(a, b) < 0)
+		*out = (struct dbl_quat){ -b->w, -b->x, -b->y, -b->z };
+}
+
+static int rot_init(struct dbl_rot *r, const struct sd_free *f, struct pool *p)
+{
+	struct dbl_quat prev, cur, next, s_cur, s_next, *q;
+	uint32_t n = f->nrot, i, k;
+
+	r->n = n;
+	r->squad = f->squad;
+	r->frame = take(p, n * sizeof(double));
+	r->seg = take(p, (n > 1 ? n - 1 : 1) * sizeof(struct dbl_rot_seg));
+	q = calloc(n, sizeof(*q));
+	if (!q)
+		return -1;
+	/* normalised in double, then quantised: scene_build.c's build_rot() */
+	for (i = 0; i < n; i++) {
+		const double *kq = f->rot[i].q;
+		double len = sqrt(kq[0] * kq[0] + kq[1] * kq[1] + kq[2] * kq[2] + kq[3] * kq[3]);
+		double c[4];
+
+		for (k = 0; k < 4; k++)
+			if (!(len > 1e-9) || !dbl_quantize(kq[k] / len, &c[k]))
+				goto fail;
+		q[i] = (struct dbl_quat){ c[0], c[1], c[2], c[3] };
+		if (!dbl_quantize(f->rot[i].frame, &r->frame[i]))
+			goto fail;
+	}
+	r->q0 = q[0];
+	cur = prev = s_cur = q[0];
+	for (i = 0; i + 1 < n; i++) {
+		struct dbl_rot_seg *sg = &r->seg[i];
+		double a, b;
+
+		quat_align(&next, &cur, &q[i + 1]);
+		if (!dbl_quantize(f->rot[i].ease_out, &a) ||
+		    !dbl_quantize(f->rot[i + 1].ease_in, &b))
+			goto fail;
+		dbl_ease_init(&sg->ease, a, b);
+		sg->inv_h = 1 / (r->frame[i + 1] - r->frame[i]);
+		dbl_slerp_prepare(&sg->arc, &cur, &next);
+		if (r->squad) {
+			struct dbl_quat after = next;
+
+			if (i == 0)
+				dbl_squad_inner(&s_cur, &prev, &cur, &next);
+			if (i + 2 < n)
+				quat_align(&after, &next, &q[i + 2]);
+			dbl_squad_inner(&s_next, &cur, &next, &after);
+			dbl_slerp_prepare(&sg->inner, &s_cur, &s_next);
+			s_cur = s_next;
+		} else {
+			sg->inner = sg->arc;
+		}
+		prev = cur;
+		cur = next;
+	}
+	free(q);
+	return 0;
+fail:
+	free(q);
+	return -1;
+}
+
+static uint32_t rot_find(const struct dbl_rot *r, struct dbl_cursor *cur, double f)
+{
+	const double *k = r->frame;
+	uint32_t lo = 0, hi = r->n - 1, i = cur->seg;
+
+	if (i + 1 < r->n && k[i] <= f) {
+		if (f < k[i + 1])
+			return i;
+		if (i + 2 < r->n && f < k[i + 2]) {
+			cur->seg = i + 1;
+			return i + 1;
+		}
+	}
+	while (hi - lo > 1) {
+		uint32_t mid = lo + (hi - lo) / 2;
+
+		if (k[mid] <= f)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	cur->seg = lo;
+	return lo;
+}
+
+static void rot_eval(struct dbl_quat *out, const struct dbl_rot *r, struct dbl_cursor *cur,
+		     double f)
+{
+	const struct dbl_rot_seg *sg;
+	struct dbl_quat qa, qb;
+	struct dbl_slerp outer;
+	double s;
+
+	if (r->n == 1 || f <= r->frame[0]) {
+		*out = r->n == 1 ? r->q0 : r->seg[0].arc.a;
+		return;
+	}
+	if (f >= r->frame[r->n - 1]) {
+		*out = r->seg[r->n - 2].arc.b;
+		return;
+	}
+	sg = &r->seg[rot_find(r, cur, f)];
+	s = (f - r->frame[sg - r->seg]) * sg->inv_h;
+	s = s > 1 ? 1 : s;
+	if (!dbl_ease_is_identity(&sg->ease))
+		s = dbl_ease_apply(&sg->ease, s);
+	dbl_slerp_eval(&qa, &sg->arc, s);
+	if (!r->squad) {
+		*out = qa;
+		return;
+	}
+	dbl_slerp_eval(&qb, &sg->inner, s);
+	dbl_slerp_prepare(&outer, &qa, &qb);
+	dbl_slerp_eval(out, &outer, 2 * s * (1 - s));
+}
+
+/* ---- building -------------------------------------------------------------------- */
+
+static int curve_take(struct dbl_scene *sc, uint32_t *ci, int32_t *idx, const struct sd_curve *c,
+		      double scale, bool integral, struct pool *p)
+{
+	*idx = -1;
+	if (!c->nkeys)
+		return 0;
+	if (dbl_curve_init(&sc->curves[*ci], c, scale, integral, take(p, curve_size(c))))
+		return -1;
+	*idx = (int32_t)(*ci)++;
+	return 0;
+}
+
+static int warp_init(struct dbl_warp *w, const struct sd_free *f)
+{
+	double lo = INFINITY, hi = -INFINITY, e_in, e_out;
+	uint32_t k;
+
+	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+		const struct sd_curve *c = &f->ch[k];
+
+		if (c->nkeys) {
+			lo = fmin(lo, c->keys[0].frame);
+			hi = fmax(hi, c->keys[c->nkeys - 1].frame);
+		}
+	}
+	if (f->nrot) {
+		lo = fmin(lo, f->rot[0].frame);
+		hi = fmax(hi, f->rot[f->nrot - 1].frame);
+	}
+	if (lo > hi)
+		lo = hi = 0;
+	if (!dbl_quantize(lo, &w->f0) || !dbl_quantize(hi, &w->f1) ||
+	    !dbl_quantize(f->ease_in, &e_in) || !dbl_quantize(f->ease_out, &e_out))
+		return -1;
+	w->on = (e_in != 0 || e_out != 0) && w->f1 > w->f0;
+	if (w->on)
+		dbl_ease_init(&w->ease, e_out / (w->f1 - w->f0), e_in / (w->f1 - w->f0));
+	return 0;
+}
+
+static int node_init(struct dbl_scene *sc, uint32_t i, const struct sd_node *sn, uint32_t *ci,
+		     uint32_t *ri, uint32_t *fi, struct pool *p)
+{
+	struct dbl_node *n = &sc->nodes[i];
+	double scale = sn->kind == MOT_NODE_REVOLUTE ? 1.0 / 360.0 : 1.0;
+	double len = sqrt(sn->axis[0] * sn->axis[0] + sn->axis[1] * sn->axis[1] +
+			  sn->axis[2] * sn->axis[2]);
+	uint32_t k;
+
+	n->parent = sn->parent;
+	n->kind = sn->kind;
+	n->axis_id = sn->axis_id;
+	n->curve = n->spin = n->strand = -1;
+	for (k = 0; k < 3; k++) {
+		if (!dbl_quantize(sn->pivot[k], &n->pivot[k]))
+			return -1;
+		if (sn->kind == MOT_NODE_FREE)
+			n->axis[k] = 0;
+		else if (sn->axis_id != MOT_AXIS_VEC)
+			n->axis[k] = k == (uint32_t)sn->axis_id;
+		else if (!(len > 1e-9) || !dbl_quantize(sn->axis[k] / len, &n->axis[k]))
+			return -1;
+	}
+	if (!dbl_quantize(sn->rest * scale, &n->rest))
+		return -1;
+	if (sn->kind != MOT_NODE_FREE)
+		return curve_take(sc, ci, &n->curve, &sn->value, scale, false, p) ||
+			       curve_take(sc, ci, &n->spin, &sn->spin, 1.0, true, p) ?
+			       -1 : 0;
+	if (!sn->has_free)
+		return 0;
+	{
+		struct dbl_free *f = &sc->free[*fi];
+
+		for (k = 0; k < MOT_FREE_NCHANNELS; k++)
+			if (curve_take(sc, ci, &f->ch[k], &sn->free.ch[k], 1.0, false, p))
+				return -1;
+		f->rot = -1;
+		if (sn->free.nrot) {
+			if (rot_init(&sc->rot[*ri], &sn->free, p))
+				return -1;
+			f->rot = (int32_t)(*ri)++;
+		}
+		if (warp_init(&f->warp, &sn->free))
+			return -1;
+		n->strand = (int32_t)(*fi)++;
+	}
+	return 0;
+}
+
+int dbl_scene_new(struct dbl_scene *sc, const struct scene_desc *d)
+{
+	struct pool p = { NULL, 0 };
+	uint32_t i, ci = 0, ri = 0, fi = 0;
+	size_t size;
+
+	memset(sc, 0, sizeof(*sc));
+	if (d->has_camera || d->ncycles || d->nattrs)
+		return -1;
+	size = count(sc, d);
+	p.base = aligned_alloc(64, (size + 63) & ~(size_t)63);
+	if (!p.base)
+		return -1;
+	sc->block = p.base;
+	sc->rate_num = d->rate_num;
+	sc->rate_den = d->rate_den;
+	sc->nnodes = d->nnodes;
+	sc->nodes = take(&p, d->nnodes * sizeof(*sc->nodes));
+	sc->curves = take(&p, sc->ncurves * sizeof(*sc->curves));
+	sc->rot = take(&p, sc->nrot * sizeof(*sc->rot));
+	sc->free = take(&p, sc->nfree * sizeof(*sc->free));
+	for (i = 0; i < d->nnodes; i++) {
+		if (d->nodes[i].parent >= (int32_t)i ||
+		    node_init(sc, i, &d->nodes[i], &ci, &ri, &fi, &p)) {
+			dbl_scene_free(sc);
+			return -1;
+		}
+	}
+	return 0;
+}
+
+void dbl_scene_free(struct dbl_scene *sc)
+{
+	free(sc->block);
+	memset(sc, 0, sizeof(*sc));
+}
+
+int dbl_eval_new(struct dbl_eval *ev, const struct dbl_scene *sc)
+{
+	ev->cursors = calloc(sc->ncurves + sc->nrot + 1, sizeof(*ev->cursors));
+	return ev->cursors ? 0 : -1;
+}
+
+void dbl_eval_free(struct dbl_eval *ev)
+{
+	free(ev->cursors);
+	ev->cursors = NULL;
+}
+
+int dbl_pose_new(struct dbl_pose *p, const struct dbl_scene *sc)
+{
+	size_t n = sc->nnodes ? sc->nnodes : 1;
+
+	p->world = calloc(n, sizeof(*p->world));
+	p->pos = calloc(n, sizeof(*p->pos));
+	p->value = calloc(n, sizeof(*p->value));
+	p->rpm = calloc(n, sizeof(*p->rpm));
+	if (p->world && p->pos && p->value && p->rpm)
+		return 0;
+	dbl_pose_free(p);
+	return -1;
+}
+
+void dbl_pose_free(struct dbl_pose *p)
+{
+	free(p->world);
+	free(p->pos);
+	free(p->value);
+	free(p->rpm);
+	memset(p, 0, sizeof(*p));
+}
+
+/* ---- evaluation (scene.c) ------------------------------------------------------------ */
+
+static double joint_value(const struct dbl_scene *sc, struct dbl_eval *ev,
+			  const struct dbl_node *n, double f, double *rpm)
+{
+	*rpm = 0;
+	if (n->curve >= 0)
+		return dbl_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], f);
+	if (n->spin >= 0) {
+		const struct dbl_curve *c = &sc->curves[n->spin];
+		struct dbl_cursor *cur = &ev->cursors[n->spin];
+
+		/* turns = integral(rpm df) * den / (60 num): strand.c's spin */
+		*rpm = dbl_curve_eval(c, cur, f);
+		return n->rest +
+		       dbl_curve_integral(c, cur, f) * sc->rate_den / (60.0 * sc->rate_num);
+	}
+	return n->rest;
+}
+
+static double warp_apply(const struct dbl_warp *w, double f)
+{
+	double span = w->f1 - w->f0;
+
+	if (!w->on || f <= w->f0 || f >= w->f1)
+		return f;
+	return w->f0 + dbl_ease_apply(&w->ease, (f - w->f0) / span) * span;
+}
+
+/* T(-p) . S . H . R . T(p) . T(t) */
+static void free_local(struct dbl_mat *out, const struct dbl_scene *sc, struct dbl_eval *ev,
+		       const struct dbl_node *n, double frame)
+{
+	const struct dbl_free *fs;
+	struct dbl_decomp d;
+	double v[MOT_FREE_NCHANNELS], g;
+	uint32_t k;
+
+	if (n->strand < 0) {
+		dbl_mat_identity(out);
+		return;
+	}
+	fs = &sc->free[n->strand];
+	g = warp_apply(&fs->warp, frame);
+	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+		int32_t c = fs->ch[k];
+
+		v[k] = c >= 0 ? dbl_curve_eval(&sc->curves[c], &ev->cursors[c], g) :
+				k >= MOT_FREE_SX && k <= MOT_FREE_SZ;
+	}
+	if (fs->rot >= 0)
+		rot_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
+			 g);
+	else
+		d.rot = (struct dbl_quat){ 1, 0, 0, 0 };
+	for (k = 0; k < 3; k++) {
+		d.translate[k] = v[MOT_FREE_TX + k];
+		d.scale[k] = v[MOT_FREE_SX + k];
+		d.shear[k] = v[MOT_FREE_HXY + k];
+	}
+	dbl_mat_compose(out, &d);
+	dbl_mat_about_pivot(out, out, n->pivot);
+}
+
+/* scene.c's revolute_world(): R mixes rows a and b of the parent */
+static void revolute_world(struct dbl_mat *w, const struct dbl_mat *parent, unsigned axis,
+			   const double p[3], double turns)
+{
+	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
+	static const struct dbl_mat id = { { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0, 0, 0 } } };
+	const unsigned a = ab[axis][0], b = ab[axis][1], o = axis;
+	double s, c, ta, tb;
+	unsigned j;
+
+	sincos(2 * M_PI * turns, &s, &c);
+	ta = p[a] - (c * p[a] - s * p[b]);
+	tb = p[b] - (s * p[a] + c * p[b]);
+	if (!parent)
+		parent = &id;
+	for (j = 0; j < 3; j++) {
+		double pa = parent->m[a][j], pb = parent->m[b][j];
+
+		w->m[3][j] = parent->m[3][j] + ta * pa + tb * pb;
+		w->m[a][j] = c * pa + s * pb;
+		w->m[b][j] = c * pb - s * pa;
+		w->m[o][j] = parent->m[o][j];
+	}
+}
+
+void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double frame,
+		    struct dbl_pose *out)
+{
+	uint32_t i, k;
+
+	for (i = 0; i < sc->nnodes; i++) {
+		const struct dbl_node *n = &sc->nodes[i];
+		const struct dbl_mat *parent = n->parent >= 0 ? &out->world[n->parent] : NULL;
+		struct dbl_mat *w = &out->world[i];
+		double v = 0, r = 0;
+
+		if (n->kind == MOT_NODE_REVOLUTE && n->axis_id != MOT_AXIS_VEC) {
+			v = joint_value(sc, ev, n, frame, &r);
+			revolute_world(w, parent, n->axis_id, n->pivot, v);
+		} else if (n->kind == MOT_NODE_PRISMATIC) {
+			double t[3];
+
+			v = joint_value(sc, ev, n, frame, &r);
+			for (k = 0; k < 3; k++)
+				t[k] = v * n->axis[k];
+			if (parent) {
+				*w = *parent;
+				dbl_mat_apply(w->m[3], t, parent);
+			} else {
+				dbl_mat_identity(w);
+				for (k = 0; k < 3; k++)
+					w->m[3][k] = t[k];
+			}
+		} else {
+			struct dbl_mat local;
+
+			if (n->kind == MOT_NODE_REVOLUTE) {
+				struct dbl_quat q;
+
+				v = joint_value(sc, ev, n, frame, &r);
+				dbl_quat_from_axis_angle(&q, n->axis, 2 * M_PI * v);
+				dbl_quat_to_mat(&local, &q);
+				dbl_mat_about_pivot(&local, &local, n->pivot);
+			} else {
+				free_local(&local, sc, ev, n, frame);
+			}
+			if (parent)
+				dbl_mat_mul(w, &local, parent);
+			else
+				*w = local;
+		}
+		dbl_mat_apply(out->pos[i], n->pivot, w);
+		out->value[i] = v;
+		out->rpm[i] = r;
+	}
+}
