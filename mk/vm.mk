@@ -24,13 +24,17 @@ VM_KDIR    := $(VM_CACHE)/kernel-$(VM_KERNEL_VERSION)
 VM_SIMDIR  := $(VM_CACHE)/gpio-sim-$(VM_KERNEL_VERSION)
 VM_TIMEOUT ?= 300
 
-DEB_VM := qemu-system-x86 busybox-static cpio kmod xz-utils gcc-12 make bc \
+DEB_VM := qemu-system-x86 busybox-static cpio kmod xz-utils gcc-12 make bc patch \
           can-utils gpiod libgpiod-dev
 
 # Modules from the kernel package, loaded with insmod in this order (the
 # initramfs has no modules.dep); gpio-sim.ko, built here, comes last.
+# VM_MODULE_PARAMS: NAME.ko:PARAM=VALUE, given to insmod. gpio-sim wires
+# output 0 to input 8 and output 1 to input 9 of every chip (the trigger
+# and rig-ready lines of tests/vm/t_gpio_*.sh, watched by gpiomon).
 VM_MODULES := kernel/drivers/net/can/dev/can-dev.ko kernel/drivers/net/can/vcan.ko \
               kernel/net/can/can.ko kernel/net/can/can-raw.ko kernel/fs/configfs/configfs.ko
+VM_MODULE_PARAMS += gpio-sim.ko:loopback=0,8,1,9
 
 # What goes into the guest. Other mk files add to these: VM_BINS are copied
 # to /bin with the shared libraries ldd names for them, VM_FILES are
@@ -52,11 +56,12 @@ $(VM_KDIR)/.done: tests/vm/fetch-kernel.sh | $(BUILD)/.deps-vm
 	$(Q)sh tests/vm/fetch-kernel.sh $(VM_KERNEL_ABI) $(VM_KERNEL_VERSION) $(VM_KDIR)
 vm-kernel: $(VM_KDIR)/.done
 
-$(VM_SIMDIR)/gpio-sim.ko: $(VM_KDIR)/.done tests/vm/build-gpio-sim.sh tests/vm/gpio-sim.Kbuild
-	$(Q)sh tests/vm/build-gpio-sim.sh $(VM_KDIR) $(VM_SIMDIR) tests/vm/gpio-sim.Kbuild
+VM_SIM_SRC := tests/vm/gpio-sim.Kbuild tests/vm/gpio-sim-loopback.patch
+$(VM_SIMDIR)/gpio-sim.ko: $(VM_KDIR)/.done tests/vm/build-gpio-sim.sh $(VM_SIM_SRC)
+	$(Q)sh tests/vm/build-gpio-sim.sh $(VM_KDIR) $(VM_SIMDIR) $(VM_SIM_SRC)
 
 # Rebuilt when any input or the lists change; cheap (a few MB of cpio).
-VM_LISTS := $(VM_MODULES) | $(VM_HOST_BINS) $(VM_BINS) | $(VM_FILES) | $(VM_TESTS)
+VM_LISTS := $(VM_MODULES) $(VM_MODULE_PARAMS) | $(VM_HOST_BINS) $(VM_BINS) | $(VM_FILES) | $(VM_TESTS)
 $(VM_DIR)/initrd.lists: FORCE
 	@mkdir -p $(@D)
 	$(Q)echo '$(VM_LISTS)' | cmp -s - $@ || echo '$(VM_LISTS)' >$@
@@ -64,7 +69,7 @@ $(VM_DIR)/initrd.cpio.gz: $(VM_DIR)/initrd.lists $(VM_KDIR)/.done $(VM_SIMDIR)/g
 		tests/vm/init.sh $(VM_TESTS) $(VM_BINS) $(foreach f,$(VM_FILES),$(lastword $(subst =, ,$(f)))) \
 		| $(BUILD)/.deps-vm
 	$(Q)VM_MODULES="$(addprefix $(VM_KDIR)/lib/modules/$(VM_KERNEL_ABI)-amd64/,$(VM_MODULES)) \
-		$(VM_SIMDIR)/gpio-sim.ko" \
+		$(VM_SIMDIR)/gpio-sim.ko" VM_MODULE_PARAMS="$(VM_MODULE_PARAMS)" \
 		VM_BINS="$(VM_HOST_BINS) $(VM_BINS)" VM_FILES="$(VM_FILES)" VM_TESTS="$(VM_TESTS)" \
 		sh tests/vm/mkinitramfs.sh tests/vm/init.sh $@
 vm-initramfs: $(VM_DIR)/initrd.cpio.gz

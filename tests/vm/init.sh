@@ -43,9 +43,11 @@ finish() {
 	while :; do sleep 1; done
 }
 
-for m in $(cat /lib/modules/load.order); do
-	insmod "/lib/modules/$m" || finish "FAIL insmod $m"
-done
+# one module a line: FILE [PARAM=VALUE...]
+while read -r m params; do
+	# shellcheck disable=SC2086 # the parameters are words
+	insmod "/lib/modules/$m" $params || finish "FAIL insmod $m $params"
+done </lib/modules/load.order
 mount -t configfs configfs /sys/kernel/config || finish "FAIL mount configfs"
 
 if [ "$(arg shell)" = 1 ]; then

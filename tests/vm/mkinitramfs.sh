@@ -4,6 +4,7 @@
 #
 # From the environment, lists separated by blanks:
 #   VM_MODULES  .ko files, copied to /lib/modules/ and loaded in this order
+#   VM_MODULE_PARAMS  NAME.ko:PARAM=VALUE, for insmod
 #   VM_BINS     programs, copied to /bin/, each with the shared libraries ldd
 #               lists for it at the same paths (so the guest's loader finds
 #               them without an ld.so.cache)
@@ -32,7 +33,12 @@ chmod 755 "$root/init"
 for m in ${VM_MODULES:-}; do
 	[ -f "$m" ] || { echo "mkinitramfs: no module $m" >&2; exit 1; }
 	cp "$m" "$root/lib/modules/"
-	basename "$m" >>"$root/lib/modules/load.order"
+	name=$(basename "$m")
+	params=""
+	for p in ${VM_MODULE_PARAMS:-}; do
+		[ "${p%%:*}" = "$name" ] && params="$params ${p#*:}"
+	done
+	echo "$name$params" >>"$root/lib/modules/load.order"
 done
 
 # A library at the path ldd names; /lib64 and /lib are symlinks into /usr on

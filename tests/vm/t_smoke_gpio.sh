@@ -46,4 +46,21 @@ awk 'NR == 1 && !($1 == 1 && $2 == 2) { exit 1 }
      { t = $3 }' /tmp/mon.out || fail "edges: $(tr '\n' ' ' </tmp/mon.out), want rising then falling on 2"
 
 sim_chip_remove smoke
-pass "$SIM_CHIP: set/get/find, 2 edges in order, EBUSY on a held line"
+
+# The test wire of the patched gpio-sim (loopback=0,8,...): what an output
+# drives on line 0, an input on line 8 sees, edges and all.
+sim_chip wire 16
+bg gpiomon -b -n 2 -F '%e %o %s.%n' "$SIM_CHIP" 8 >/tmp/wire.out
+mon=$!
+wait_for 5 sh -c "gpioinfo $SIM_CHIP | grep -q '\"gpiomon\"'" || fail "gpiomon never holds line 8"
+gpioset --mode=time --usec=20000 "$SIM_CHIP" 0=1 || fail "gpioset 0=1"
+gpioset "$SIM_CHIP" 0=0 || fail "gpioset 0=0"
+wait_for 5 lines_are 2 /tmp/wire.out || fail "line 8 saw $(wc -l </tmp/wire.out) edges of line 0, want 2"
+wait "$mon"
+note "wire: $(tr '\n' ' ' </tmp/wire.out)"
+awk 'NR == 1 && !($1 == 1 && $2 == 8) { exit 1 }
+     NR == 2 && !($1 == 0 && $2 == 8) { exit 1 }
+     NR == 2 && !($3 - t > 0.015) { exit 1 }
+     { t = $3 }' /tmp/wire.out || fail "wire: $(tr '\n' ' ' </tmp/wire.out), want a 20 ms pulse on 8"
+sim_chip_remove wire
+pass "$SIM_CHIP: set/get/find, 2 edges in order, EBUSY on a held line, the 0->8 test wire"
