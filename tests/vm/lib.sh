@@ -90,3 +90,29 @@ sim_value_is() { [ "$(sim_value "$1")" = "$2" ]; }
 
 # lines_are N FILE: FILE has N lines (for wait_for).
 lines_are() { [ "$(wc -l <"$2" 2>/dev/null)" = "$1" ]; }
+
+# line_held OFFSET CONSUMER: gpioinfo shows CONSUMER holding the line of
+# SIM_CHIP (for wait_for: a request is made before its events count).
+line_held() {
+	gpioinfo "$SIM_CHIP" | grep -E "^[[:space:]]+line[[:space:]]+$1:" | grep -q "\"$2\""
+}
+
+# gpio_rig_chip: the chip of /scenes/gpio_rig.yaml, every line named:
+#   0 cam-trigger  strand's trigger output, wired to 8 (loopback=0,8)
+#   1 rig-ready    an output, wired to 9 (loopback=1,9)
+#   2 estop        the e-stop chain: pulled up, closed (active low)
+#   3 cam-ready    the camera's ready output: pulled up, ready
+#   8 cam-wire     what gpiomon watches to see the trigger
+#   9 ready-wire
+gpio_rig_chip() {
+	sim_chip rig 16 0=cam-trigger 1=rig-ready 2=estop 3=cam-ready 8=cam-wire 9=ready-wire
+	sim_pull 2 up
+	sim_pull 3 up
+}
+
+# edge_count FILE E: lines of gpiomon -F '%e %s %n' output with event E
+# (1 rising, 0 falling).
+edge_count() { awk -v e="$2" '$1 == e { n++ } END { print n + 0 }' "$1"; }
+
+# edges_at_least FILE E N: for wait_for.
+edges_at_least() { [ "$(edge_count "$1" "$2")" -ge "$3" ]; }
