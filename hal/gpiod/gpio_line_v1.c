@@ -130,7 +130,7 @@ int gpio_req_open(struct gpio_req **out, const struct gpio_req_cfg *cfg, char *e
 	if (rc)
 		goto fail;
 	for (i = 0; i < cfg->nlines; i++) {
-		struct gpiod_line *l;
+		struct gpiod_line *l = NULL;
 
 		rc = find_line(r, cfg, i, &l, err, errsize);
 		if (rc)
