@@ -101,8 +101,9 @@ $(BUILD)/san/firmware/%.o: firmware/%.c $(MOTION_HDR) $(FW_HDR) | $(BUILD)/.deps
 	$(Q)$(CC) $(FW_CFLAGS) -g -O1 $(SAN) -c $< -o $@
 
 # ---- unit tests ------------------------------------------------------------------
-# Test objects depend on the core sources too: tests/*_portable.c include them.
-$(BUILD)/san/tests/%.o: tests/%.c $(MOTION_HDR) $(MOTION_SRC) $(wildcard tests/*.h) | $(BUILD)/.deps-test
+# Test objects depend on the core sources too: tests/*_portable.c include them;
+# and on firmware/'s headers: a test must see a changed struct.
+$(BUILD)/san/tests/%.o: tests/%.c $(MOTION_HDR) $(MOTION_SRC) $(FW_HDR) $(wildcard tests/*.h) | $(BUILD)/.deps-test
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
 

@@ -12,7 +12,7 @@
 
 /* Every subcommand, in the order `strand --help` lists them. */
 static const struct cli_cmd *const commands[] = {
-	&cmd_check, &cmd_export, &cmd_plot, &cmd_info, NULL,
+	&cmd_check, &cmd_export, &cmd_plot, &cmd_info, &cmd_play, &cmd_journal, NULL,
 };
 
 static void main_help(FILE *out)
@@ -21,12 +21,14 @@ static void main_help(FILE *out)
 
 	fprintf(out, "usage: strand <command> [options] SCENE.yaml\n"
 		     "       strand --version | --help\n\n"
-		     "Keyframed motion for servo rigs: check, export, plot and describe scene files.\n\n"
+		     "Keyframed motion for servo rigs: check, export, plot and describe scene files,\n"
+		     "and play them in real time, one camera trigger per frame.\n\n"
 		     "commands:\n");
 	for (i = 0; commands[i]; i++)
 		fprintf(out, "  %-8s %s\n", commands[i]->name, commands[i]->summary);
 	fprintf(out, "\n'strand <command> --help' describes a command.\n"
 		     "exit codes: 0 ok, 1 limits violated, 2 invalid scene, 3 usage, 4 I/O,\n"
+		     "            5 play stopped by a signal, 6 e-stop, 7 device fault,\n"
 		     "            8 internal error (see the README)\n");
 }
 

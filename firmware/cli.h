@@ -65,6 +65,6 @@ int cli_scene_args(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, 
 /* A whole number option value in [min, max]; false if it is not one. */
 bool cli_parse_long(const char *s, long long min, long long max, long long *out);
 
-extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info;
+extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info, cmd_play, cmd_journal;
 
 #endif /* STRAND_CLI_H */

@@ -10,9 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const top_keys[] = { "scene", "timing", "nodes", "strands",
-					"camera", "cycles", "attributes", NULL };
-enum { T_SCENE, T_TIMING, T_NODES, T_STRANDS, T_CAMERA, T_CYCLES, T_ATTRS, T_COUNT };
+static const char *const top_keys[] = { "scene",      "timing",  "nodes",   "strands",
+					"camera",     "cycles",  "attributes", "devices",
+					"outputs",    "triggers", "inputs",  NULL };
+enum { T_SCENE, T_TIMING, T_NODES, T_STRANDS, T_CAMERA, T_CYCLES, T_ATTRS, T_DEVICES,
+       T_OUTPUTS, T_TRIGGERS, T_INPUTS, T_COUNT };
 
 static int yaml_error(struct ld *l, const yaml_parser_t *p)
 {
@@ -107,6 +109,13 @@ static int sections(struct ld *l, yaml_node_t *root)
 		err = ld_attributes(l, v[T_ATTRS]);
 	if (!err)
 		err = unique_names(l);
+	if (!err) {
+		/* the rig refers to the scene's channels: read it last */
+		struct ld_rig_sections rs = { v[T_DEVICES], v[T_OUTPUTS], v[T_TRIGGERS],
+					      v[T_INPUTS] };
+
+		err = ld_rig(l, &rs);
+	}
 	return err;
 }
 

@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #include "pool.h"
+#include "rig_desc.h"
 #include "scene_desc.h"
 
 /* Largest scene file the loader reads. */
@@ -59,6 +60,7 @@ struct sf_marks;
 
 struct scene_file {
 	struct scene_desc desc;
+	struct rig_desc rig;       /* devices:, outputs:, triggers:, inputs: (all 0 if none) */
 	const char *path;          /* as given to the loader */
 	const struct sf_strand *strand; /* desc.nnodes entries */
 	struct sf_marks *marks;    /* positions for the build's errors */

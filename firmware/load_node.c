@@ -83,12 +83,11 @@ static int joint(struct ld *l, uint32_t i, yaml_node_t *n)
 	return 0;
 }
 
-static int limits(struct ld *l, uint32_t i, yaml_node_t *n)
+int ld_limits(struct ld *l, yaml_node_t *n, bool degrees, struct sd_limits *lim)
 {
 	static const char *const keys[] = { "min", "max", "velocity", "acceleration", NULL };
-	struct sd_limits *lim = &l->nodes[i].limits;
-	double scale = l->nodes[i].kind == MOT_NODE_REVOLUTE ? 1.0 / 360 : 1.0;
-	const char *unit = scale == 1.0 ? "scene units" : "degrees";
+	double scale = degrees ? 1.0 / 360 : 1.0;
+	const char *unit = degrees ? "degrees" : "scene units";
 	yaml_node_t *v[4];
 	int err;
 
@@ -217,7 +216,8 @@ static int node_body(struct ld *l, uint32_t i, yaml_node_t **v)
 			return ld_fail(l, v[N_LIMITS], -EINVAL,
 				       "limits apply to joints, but '%s' is a free node (it has no joint)",
 				       sn->name);
-		err = limits(l, i, v[N_LIMITS]);
+		err = ld_limits(l, v[N_LIMITS], l->nodes[i].kind == MOT_NODE_REVOLUTE,
+				&l->nodes[i].limits);
 	}
 	return err;
 }

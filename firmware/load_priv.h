@@ -117,6 +117,13 @@ int ld_str(struct ld *l, const yaml_node_t *n, const char **out);
 int ld_enum(struct ld *l, const yaml_node_t *n, const char *what, const char *const *names,
 	    int *out);
 
+/* true or false. */
+int ld_bool(struct ld *l, const yaml_node_t *n, bool *out);
+
+/* A `limits:` mapping (min, max, velocity, acceleration) in degrees or in
+ * scene units (load_node.c). */
+int ld_limits(struct ld *l, yaml_node_t *n, bool degrees, struct sd_limits *lim);
+
 /* A channel name: letters, digits, '_' and '-', starting with a letter or
  * '_' (no '.': channels are `<name>.x`). */
 int ld_name(struct ld *l, const yaml_node_t *n, const char **out);
@@ -165,5 +172,11 @@ int ld_free_strand(struct ld *l, uint32_t node, yaml_node_t *interp, yaml_node_t
 int ld_camera(struct ld *l, yaml_node_t *n);     /* load_camera.c */
 int ld_cycles(struct ld *l, yaml_node_t *n);     /* load_cycle.c */
 int ld_attributes(struct ld *l, yaml_node_t *n); /* load_attr.c */
+
+/* The rig: devices:, outputs:, triggers:, inputs: (load_rig.c). */
+struct ld_rig_sections {
+	yaml_node_t *devices, *outputs, *triggers, *inputs;
+};
+int ld_rig(struct ld *l, const struct ld_rig_sections *s);
 
 #endif /* STRAND_LOAD_PRIV_H */

@@ -398,3 +398,22 @@ int ld_name(struct ld *l, const yaml_node_t *n, const char **out)
 			       ld_describe(n, buf, sizeof(buf)));
 	return ld_str(l, n, out);
 }
+
+int ld_bool(struct ld *l, const yaml_node_t *n, bool *out)
+{
+	const char *v = (const char *)n->data.scalar.value;
+	char what[48];
+
+	if (n->type == YAML_SCALAR_NODE && n->data.scalar.style == YAML_PLAIN_SCALAR_STYLE) {
+		if (!strcmp(v, "true")) {
+			*out = true;
+			return 0;
+		}
+		if (!strcmp(v, "false")) {
+			*out = false;
+			return 0;
+		}
+	}
+	return ld_fail(l, n, -EINVAL, "expected true or false, found %s",
+		       ld_describe(n, what, sizeof(what)));
+}

@@ -5,13 +5,15 @@
 #   make bench           all of them
 #   make bench-fixmath   libfixmath's Q16.16 against double (fix.h's choice)
 #   make bench-motion    the core against its double twin (bench/motion_bench.c)
+#   make bench-play      the play loop against cyclictest, CPU per tick (mk/bench-play.sh)
 
-.PHONY: bench-fixmath bench-motion
+.PHONY: bench-fixmath bench-motion bench-play
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench
 
-bench: $(BENCH_PROGS)
+bench: $(BENCH_PROGS) $(BUILD)/strand | $(BUILD)/.deps-bench-play
 	$(Q)for p in $(BENCH_PROGS); do $$p || exit 1; done
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play
 
 bench-fixmath: $(BUILD)/bench/fixmath_chain
 	$(Q)$<
@@ -54,3 +56,13 @@ $(BUILD)/bench/%.o: %.c $(MB_HDR) | $(BUILD)/.deps-test
 
 $(BUILD)/bench/motion_bench: $(MB_OBJ) $(MB_LINK)
 	$(Q)$(CC) $^ -lm -o $@
+
+# ---- the play loop ------------------------------------------------------------------
+# Its wake-up latency on the wall clock against cyclictest (Debian's
+# rt-tests), taking turns in 3 s rounds for 30 s each at 1 kHz and the same
+# priority, and the CPU time per tick of the robot arm on the simulated rig.
+DEB_BENCH_PLAY := rt-tests
+$(BUILD)/.deps-bench-play: mk/deps.sh $(BUILD)/.deps-build
+	$(Q)sh mk/deps.sh $(DEB_BENCH_PLAY) && touch $@
+bench-play: $(BUILD)/strand | $(BUILD)/.deps-bench-play
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play

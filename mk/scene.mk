@@ -36,10 +36,10 @@ FUZZ_SHORT_SECONDS ?= 45
 FUZZ_DIR    := $(BUILD)/fuzz
 FUZZ_CFLAGS := -std=gnu11 -g -O1 -ffp-contract=off \
                -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-               -Imotion -Ifirmware
-FUZZ_SRC    := tests/fuzz/fuzz_load.c $(FW_LIB_SRC) $(MOTION_SRC)
+               -Imotion -Ifirmware -Ihal -Isim
+FUZZ_SRC    := tests/fuzz/fuzz_load.c $(FW_LIB_SRC) $(MOTION_SRC) $(wildcard hal/*.c sim/*.c)
 
-$(FUZZ_DIR)/fuzz_load: $(FUZZ_SRC) $(MOTION_HDR) $(FW_HDR) | $(BUILD)/.deps-fuzz
+$(FUZZ_DIR)/fuzz_load: $(FUZZ_SRC) $(MOTION_HDR) $(FW_HDR) $(wildcard hal/*.h sim/*.h) | $(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
 	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags yaml-0.1) $(FUZZ_SRC) \
 		$(FW_LIBS) -o $@

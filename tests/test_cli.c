@@ -10,46 +10,9 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cliutil.h"
 #include "exitcode.h"
 #include "testutil.h"
-
-static const char *const examples[] = {
-	"examples/robot_arm.yaml",  "examples/propeller.yaml", "examples/camera_move.yaml",
-	"examples/cycled_data.yaml", "examples/curves.yaml",
-};
-#define NEXAMPLES (sizeof(examples) / sizeof(examples[0]))
-
-struct run {
-	int rc;
-	char *out, *err;
-	size_t out_len, err_len;
-};
-
-/* Run `strand args...` with its output captured. */
-static void strand(struct run *r, const char *args)
-{
-	char *argv[16], buf[512], *save = NULL, *tok;
-	int argc = 0;
-	FILE *out, *err;
-
-	snprintf(buf, sizeof(buf), "strand %s", args);
-	for (tok = strtok_r(buf, " ", &save); tok && argc < 15; tok = strtok_r(NULL, " ", &save))
-		argv[argc++] = tok;
-	argv[argc] = NULL;
-	out = open_memstream(&r->out, &r->out_len);
-	err = open_memstream(&r->err, &r->err_len);
-	assert_non_null(out);
-	assert_non_null(err);
-	r->rc = cli_main(argc, argv, out, err);
-	fclose(out);
-	fclose(err);
-}
-
-static void run_free(struct run *r)
-{
-	free(r->out);
-	free(r->err);
-}
 
 static size_t lines(const char *s)
 {
@@ -62,7 +25,7 @@ static size_t lines(const char *s)
 
 static void test_version_help(void **state)
 {
-	static const char *const cmds[] = { "check", "export", "plot", "info" };
+	static const char *const cmds[] = { "check", "export", "plot", "info", "play", "journal" };
 	struct run r;
 	char args[64], want[64];
 	size_t i;
@@ -73,10 +36,10 @@ static void test_version_help(void **state)
 	run_free(&r);
 	strand(&r, "--help");
 	assert_int_equal(r.rc, STRAND_EXIT_OK);
-	for (i = 0; i < 4; i++)
+	for (i = 0; i < 6; i++)
 		assert_non_null(strstr(r.out, cmds[i]));
 	run_free(&r);
-	for (i = 0; i < 4; i++) {
+	for (i = 0; i < 6; i++) {
 		snprintf(args, sizeof(args), "%s --help", cmds[i]);
 		snprintf(want, sizeof(want), "usage: strand %s", cmds[i]);
 		strand(&r, args);
@@ -164,27 +127,27 @@ static void test_examples(void **state)
 		FILE *f;
 		char head[6] = { 0 };
 
-		snprintf(args, sizeof(args), "check %s", examples[i]);
+		snprintf(args, sizeof(args), "check %s", cli_examples[i]);
 		strand(&r, args);
 		if (r.rc != STRAND_EXIT_OK)
 			fail_msg("%s: %s%s", args, r.out, r.err);
 		assert_non_null(strstr(r.out, " 0 violations"));
 		run_free(&r);
 
-		snprintf(args, sizeof(args), "info %s", examples[i]);
+		snprintf(args, sizeof(args), "info %s", cli_examples[i]);
 		strand(&r, args);
 		assert_int_equal(r.rc, STRAND_EXIT_OK);
 		assert_non_null(strstr(r.out, "bytes in one block"));
 		run_free(&r);
 
-		snprintf(args, sizeof(args), "export %s", examples[i]);
+		snprintf(args, sizeof(args), "export %s", cli_examples[i]);
 		strand(&r, args);
 		assert_int_equal(r.rc, STRAND_EXIT_OK);
 		assert_int_equal(r.err_len, 0);
 		assert_memory_equal(r.out, "tick,frame,", 11);
 		run_free(&r);
 
-		snprintf(args, sizeof(args), "plot %s -o %s", examples[i], svg);
+		snprintf(args, sizeof(args), "plot %s -o %s", cli_examples[i], svg);
 		strand(&r, args);
 		assert_int_equal(r.rc, STRAND_EXIT_OK);
 		f = fopen(svg, "r");

@@ -28,7 +28,7 @@ static const struct err_case cases[] = {
 	{ "unknown key listed",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "lights: []\n",
-	  "t.yaml:2:1: unknown key 'lights' in the scene (valid keys: scene, timing, nodes, strands, camera, cycles, attributes)" },
+	  "t.yaml:2:1: unknown key 'lights' in the scene (valid keys: scene, timing, nodes, strands, camera, cycles, attributes, devices, outputs, triggers, inputs)" },
 	{ "unknown key in a key",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
@@ -472,6 +472,99 @@ static const struct err_case cases[] = {
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "nodes: [{name: a, rest: 10}]\n",
 	  "t.yaml:2:25: 'rest' is a joint's value, but 'a' is a free node (it has no joint)" },
+	{ "rig: unknown device",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: amr, counts_per_unit: 100}]\n",
+	  "t.yaml:5:38: unknown device 'amr'; did you mean 'arm'?" },
+	{ "rig: unknown channel",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angel, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:5:21: unknown channel 'a.angel'; did you mean 'a.angle'?" },
+	{ "rig: output without limits",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: b.position, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:5:11: output 'b.position' needs velocity and acceleration limits (here or on its node): the pre-roll, the moves and every stop are planned with them" },
+	{ "rig: axis twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100},\n"
+	  "          {channel: b.position, device: arm, axis: 0, counts_per_unit: 1,\n"
+	  "           limits: {velocity: 1, acceleration: 1}}]\n",
+	  "t.yaml:6:52: axis 0 of device 'arm' already drives 'a.angle' (line 5)" },
+	{ "rig: zero counts per unit",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 0}]\n",
+	  "t.yaml:5:60: counts_per_unit must be non-zero and below 2^31 counts per turn" },
+	{ "rig: min_ferror above ferror",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 10, ferror: 1, min_ferror: 2}]\n",
+	  "t.yaml:5:87: min_ferror 2 is above ferror 1" },
+	{ "rig: unknown driver",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "devices: [{name: arm, driver: serial}]\n",
+	  "t.yaml:2:31: unknown driver 'serial' (one of: sim, modbus, gpio, canopen)" },
+	{ "rig: device twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "devices: [{name: arm, driver: sim},\n"
+	  "          {name: arm, driver: gpio}]\n",
+	  "t.yaml:3:18: device 'arm' is already listed (line 2)" },
+	{ "rig: no devices",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "triggers: [{name: cam, device: io, line: 0}]\n",
+	  "t.yaml:2:11: a rig needs its devices: section first" },
+	{ "rig: pulse too long",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "triggers: [{name: cam, device: io, line: 0, pulse_ms: 45}]\n",
+	  "t.yaml:5:55: a 45 ms pulse does not end before the next frame's (frames are 41.6667 ms apart, ticks 1 ms)" },
+	{ "rig: offset of a frame",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "triggers: [{name: cam, device: io, line: 0, offset_ms: -50}]\n",
+	  "t.yaml:5:56: offset -50 ms is a frame (41.6667 ms) or more" },
+	{ "rig: line twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "triggers: [{name: cam, device: io, line: 3}]\n"
+	  "inputs: [{name: estop, device: io, line: 3, role: estop}]\n",
+	  "t.yaml:6:42: line 3 of 'io' is trigger 'cam' already" },
+	{ "rig: unknown role",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "inputs: [{name: estop, device: io, line: 1, role: e-stop}]\n",
+	  "t.yaml:5:51: unknown input role 'e-stop' (did you mean 'estop'?)" },
+	{ "rig: polarity not a bool",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "inputs: [{name: estop, device: io, line: 1, role: estop, active_low: yes}]\n",
+	  "t.yaml:5:70: expected true or false, found 'yes'" },
 };
 
 #define NCASES (sizeof(cases) / sizeof(cases[0]))

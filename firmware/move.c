@@ -1,0 +1,120 @@
+/* SPDX-License-Identifier: MIT */
+/* move.c - point-to-point moves and stops within limits (see move.h). */
+#include "move.h"
+
+#include <errno.h>
+#include <math.h>
+
+mot_q32 move_d2q(double x)
+{
+	double r = x * 4294967296.0;
+
+	if (r >= 9.2233720368547748e18)
+		return MOT_Q32_MAX;
+	if (r <= -9.2233720368547748e18)
+		return MOT_Q32_MIN;
+	return (mot_q32)llround(r);
+}
+
+/* Shortest time to cover distance d (>= 0) from rest to rest. */
+static double t_min(double d, double v, double a)
+{
+	if (d <= v * v / a)
+		return 2 * sqrt(d / a);
+	return d / v + v / a;
+}
+
+int move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mot_q32 *from,
+	      const mot_q32 *to, const double *vmax, const double *amax, uint32_t tick_hz)
+{
+	double t = 0;
+	uint32_t i;
+
+	m->n = n;
+	m->ch = ch;
+	m->tick_hz = tick_hz;
+	for (i = 0; i < n; i++) {
+		if (!(vmax[i] > 0) || !(amax[i] > 0) || !isfinite(vmax[i]) || !isfinite(amax[i]))
+			return -EINVAL;
+		ch[i].from = from[i];
+		ch[i].to = to[i];
+		ch[i].d = move_q2d(to[i]) - move_q2d(from[i]);
+		t = fmax(t, t_min(fabs(ch[i].d), vmax[i], amax[i]));
+	}
+	m->ticks = (int64_t)ceil(t * tick_hz - 1e-9);
+	if (m->ticks < 0)
+		m->ticks = 0;
+	m->t = (double)m->ticks / tick_hz;
+	for (i = 0; i < n; i++) {
+		double d = fabs(ch[i].d), a = amax[i], T = m->t, disc;
+
+		ch[i].a = a;
+		if (d == 0 || T == 0) {
+			ch[i].v = 0;
+			ch[i].ta = 0;
+			continue;
+		}
+		/* T >= this channel's shortest time, so the root is real (up to
+		 * rounding) and the cruise speed is within vmax */
+		disc = a * a * T * T - 4 * a * d;
+		ch[i].v = (a * T - sqrt(fmax(disc, 0))) / 2;
+		ch[i].ta = ch[i].v / a;
+	}
+	return 0;
+}
+
+mot_q32 move_at(const struct move *m, uint32_t i, int64_t k)
+{
+	const struct move_ch *c = &m->ch[i];
+	double t, s, T = m->t;
+
+	if (k >= m->ticks)
+		return c->to;
+	if (k <= 0)
+		return c->from;
+	if (c->v == 0)
+		return c->from;
+	t = (double)k / m->tick_hz;
+	if (t < c->ta)
+		s = c->a * t * t / 2;
+	else if (t <= T - c->ta)
+		s = c->a * c->ta * c->ta / 2 + c->v * (t - c->ta);
+	else
+		s = fabs(c->d) - c->a * (T - t) * (T - t) / 2;
+	return c->from + move_d2q(c->d < 0 ? -s : s);
+}
+
+bool move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double amax,
+		    uint32_t tick_hz)
+{
+	double dv = amax / tick_hz, dt = 1.0 / tick_hz, nv;
+
+	if (!vel_ch) {
+		nv = *v > 0 ? fmax(*v - dv, 0) : fmin(*v + dv, 0);
+		*value += move_d2q(nv * dt);
+		*v = nv;
+		return nv == 0;
+	}
+	/* a velocity channel: drive the value itself to 0 along the braking
+	 * curve |rate| <= sqrt(2 amax |value|), the rate changing by <= dv */
+	{
+		double u = move_q2d(*value), want, r;
+
+		if (u == 0 && *v == 0)
+			return true;
+		want = -copysign(fmin(vmax, sqrt(2 * amax * fabs(u))), u);
+		r = fmax(*v - dv, fmin(*v + dv, want));
+		/* the last step lands on zero: when it would cross it, and when
+		 * what is left is within two Q32.32 steps (a smaller increment
+		 * would round to nothing and the value would never arrive) */
+		if (fabs(u) <= 2.0 / 4294967296.0 ||
+		    (fabs(u) <= fabs(r) * dt && r != 0 && copysign(1, r) != copysign(1, u))) {
+			*value = 0;
+			*v = 0;
+			return true;
+		}
+		*value += move_d2q(r * dt);
+		*v = r;
+		return false;
+	}
+}

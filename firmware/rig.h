@@ -1,0 +1,102 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * rig.h - a rig ready to run: devices opened behind the HAL, each output
+ * bound to a source channel and a device channel with its scale and limits
+ * in core units, trigger and input lines resolved to (device, line).
+ *
+ * Building allocates everything the loop will touch (Klipper's "configure,
+ * then seal"); nothing is allocated once the loop runs. Under --sim, or for
+ * a device whose driver is `sim`, every device is its simulated twin: a
+ * drive (sim/sim_drive.h) for outputs, a GPIO chip (sim/sim_gpio.h) for triggers
+ * and inputs, and a camera (sim/sim_camera.h) on every trigger line.
+ */
+#ifndef STRAND_RIG_H
+#define STRAND_RIG_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "axis.h"
+#include "clock.h"
+#include "din.h"
+#include "dout.h"
+#include "rig_desc.h"
+#include "scale.h"
+#include "source.h"
+
+/* Defaults of a simulated twin. */
+#define RIG_SIM_BANDWIDTH_HZ 40.0
+#define RIG_SIM_DAMPING 1.0
+#define RIG_SIM_FEEDFORWARD 0.9
+#define RIG_SIM_LIMIT_FACTOR 1.5
+/* A simulated camera: exposure and readout as fractions of a frame. */
+#define RIG_SIM_EXPOSURE_FRAC 0.4
+#define RIG_SIM_READOUT_FRAC 0.1
+
+struct rig_out {
+	const char *channel;
+	uint32_t src;        /* the source's channel index */
+	uint32_t dev, ch;    /* rig.axes[dev], its channel ch */
+	struct hal_scale scale;
+	bool vel_mode;       /* the device follows the value as a velocity */
+	enum src_unit unit;
+	double min, max;     /* core units; -/+INFINITY when unlimited */
+	double vmax, amax;   /* core units per s and s^2; always set */
+	double ferror, min_ferror; /* core units; ferror 0: unchecked */
+	double in_position;  /* core units */
+	mot_q32 home;
+};
+
+struct rig_trig {
+	const char *name;
+	uint32_t dev, line;  /* rig.douts[dev], line index on it */
+	int64_t width;       /* ticks, >= 1 */
+	int64_t offset;      /* ticks, signed */
+};
+
+struct rig_in {
+	const char *name;
+	uint32_t dev, line;  /* rig.dins[dev] */
+	enum rig_input_role role;
+};
+
+struct rig {
+	uint32_t naxes, ndouts, ndins;
+	struct hal_axis **axes;
+	struct hal_dout **douts;
+	struct hal_din **dins;
+	uint32_t nout, ntrig, nin;
+	struct rig_out *out;
+	struct rig_trig *trig;
+	struct rig_in *in;
+	/* the simulated parts (NULL where a device is real) */
+	struct sim_drive **sim_drive;  /* naxes */
+	uint32_t nsim_gpio;
+	struct sim_gpio **sim_gpio;
+	struct sim_camera **camera;    /* ntrig */
+	bool *started_axes, *started_douts, *started_dins;
+};
+
+struct rig_opts {
+	bool sim;               /* every device by its simulated twin */
+	const char *camera_log; /* the first simulated camera's log file, or NULL */
+	uint64_t camera_cap;    /* exposures each simulated camera keeps */
+};
+
+/* [init] Build the rig for a source. 0, or a negative errno with a message
+ * in err naming the section entry and what is wrong. */
+int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
+	      struct hal_clock *clk, const struct rig_opts *o, char *err, size_t errsize);
+
+/* [init] Start every device; on failure stop those started. */
+int rig_start(struct rig *r, char *err, size_t errsize);
+/* [init] Stop every started device (drives disabled, lines deasserted). */
+void rig_stop(struct rig *r);
+void rig_free(struct rig *r);
+
+/* Core value -> file units (degrees for angles), for messages. */
+double rig_file_units(enum src_unit unit, double v);
+const char *rig_unit_name(enum src_unit unit);
+
+#endif /* STRAND_RIG_H */
