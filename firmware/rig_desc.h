@@ -20,8 +20,10 @@
  *       ferror: 2                # following error bound at full speed (units)
  *       min_ferror: 0.2          # ... at rest
  *       in_position: 0.05        # step mode: close enough to shoot
+ *     - {name: gpio0, driver: gpio, chip: gpiochip0}   # chip: optional
  *   triggers:                    # camera trigger lines
  *     - {name: cam, device: io, line: 0, pulse_ms: 2, active_low: false, offset_ms: -8}
+ *     - {name: cam2, device: gpio0, line: CAM2_TRIG}   # a line by its name
  *   inputs:
  *     - {name: estop, device: io, line: 0, role: estop, active_low: true}
  *     - {name: ready, device: io, line: 1, role: camera_ready}
@@ -60,6 +62,8 @@ struct rig_device_desc {
 	enum rig_driver driver;
 	struct rig_sim_desc sim;
 	/* the hardware backends add their settings here (issues 5-7) */
+	const char *chip;      /* gpio: gpiochip0, /dev/gpiochip0 or a label;
+				* NULL: the lines by name, on whichever chip */
 };
 
 struct rig_output_desc {
@@ -83,6 +87,7 @@ struct rig_trigger_desc {
 	bool active_low;
 	double offset_ms; /* edge time relative to the frame's tick; negative
 			   * fires early to make up for a camera's shutter lag */
+	const char *line_name; /* gpio: the line by its name; NULL: by number */
 };
 
 enum rig_input_role {
@@ -97,6 +102,7 @@ struct rig_input_desc {
 	uint32_t line;
 	enum rig_input_role role;
 	bool active_low;
+	const char *line_name; /* gpio: the line by its name; NULL: by number */
 };
 
 struct rig_desc {

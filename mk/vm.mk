@@ -41,8 +41,9 @@ VM_MODULE_PARAMS += gpio-sim.ko:loopback=0,8,1,9
 # DEST=SRC pairs copied as they are, VM_TESTS are the scripts run in order.
 VM_HOST_BINS += /usr/bin/gpiodetect /usr/bin/gpioinfo /usr/bin/gpioget /usr/bin/gpioset \
                 /usr/bin/gpiomon /usr/bin/gpiofind /usr/bin/candump /usr/bin/cansend
-VM_BINS      +=
-VM_FILES     += /tests/lib.sh=tests/vm/lib.sh
+VM_BINS      += $(BUILD)/strand
+VM_FILES     += /tests/lib.sh=tests/vm/lib.sh /tests/edges.awk=tests/vm/edges.awk \
+                $(foreach f,$(wildcard tests/vm/scenes/*.yaml),/scenes/$(notdir $(f))=$(f))
 VM_TESTS     += $(sort $(wildcard tests/vm/t_*.sh))
 
 .PHONY: test-vm check-vm vm-shell vm-kernel vm-initramfs FORCE

@@ -12,8 +12,10 @@
 # was due (due_ns) and no later than the loop's own reading of the clock
 # right after the commit (mono_ns); its falling edge width_ns later, give
 # or take max_late_us; no edge later than max_late_us after its due time.
-# Prints the figures as BENCH lines (microseconds) and, on a mismatch, the
-# first one, and exits 1.
+# Prints the figures as BENCH lines (microseconds): how late the edges came
+# after their ticks were due (the jitter of the trigger), how far the
+# pulses' widths were off, and how long after the edge the journal's time
+# was read. On a mismatch it prints the first one and exits 1.
 
 function fail(msg) {
 	print "edges: " msg
@@ -87,6 +89,7 @@ END {
 				     "of the clock that followed the commit", frame[k],
 				     (rise[k] - mono[k]) / 1000))
 		late[k] = (rise[k] - due[k]) / 1000
+		lag[k] = (mono[k] - rise[k]) / 1000
 		if (late[k] > max_late_us)
 			fail(sprintf("frame %d: the edge came %.1f us after its tick was due " \
 				     "(bound %d us)", frame[k], late[k], max_late_us))
@@ -105,4 +108,6 @@ END {
 	printf "BENCH gpio_edge_late_p99 %.1f us\n", quantile(late, nj, 0.99)
 	printf "BENCH gpio_edge_late_max %.1f us\n", late[nj]
 	printf "BENCH gpio_pulse_width_error_max %.1f us\n", worst_w
+	printf "BENCH gpio_journal_after_edge_p50 %.1f us\n", quantile(lag, nj, 0.5)
+	printf "BENCH gpio_journal_after_edge_max %.1f us\n", lag[nj]
 }

@@ -79,6 +79,26 @@ reap() {
 	done
 }
 
+# What a test set up in the kernel: gpio-sim chips and virtual CAN links,
+# so that each test starts from the same machine.
+tidy() {
+	for c in /sys/kernel/config/gpio-sim/*; do
+		[ -d "$c" ] || continue
+		echo 0 >"$c/live"
+		for b in "$c"/bank*; do
+			for l in "$b"/line*; do
+				[ -d "$l/hog" ] && rmdir "$l/hog"
+				[ -d "$l" ] && rmdir "$l"
+			done
+			rmdir "$b"
+		done
+		rmdir "$c"
+	done
+	for l in /sys/class/net/vcan*; do
+		[ -e "$l" ] && ip link del "${l##*/}"
+	done
+}
+
 only=$(arg only | tr ',' ' ')
 failed=0
 ran=0
@@ -97,6 +117,7 @@ for name in $(cat /tests/list); do
 	rc=$?
 	t1=$(cut -d' ' -f1 /proc/uptime)
 	reap
+	tidy 2>>/tmp/current.out
 	cat /tmp/current.out
 	verdict=$(grep -E "^VMTEST (PASS|FAIL) $name:" /tmp/current.out | tail -n 1 | cut -d' ' -f2)
 	if [ "$rc" = 137 ]; then

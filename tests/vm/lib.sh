@@ -116,3 +116,7 @@ edge_count() { awk -v e="$2" '$1 == e { n++ } END { print n + 0 }' "$1"; }
 
 # edges_at_least FILE E N: for wait_for.
 edges_at_least() { [ "$(edge_count "$1" "$2")" -ge "$3" ]; }
+
+# vm_arg NAME: the value of strand.NAME= on the kernel command line (make
+# test-vm VM_APPEND=strand.NAME=VALUE), empty when not given.
+vm_arg() { sed -n "s/.*strand\.$1=\([^ ]*\).*/\1/p" /proc/cmdline; }

@@ -23,7 +23,7 @@ wait_for 5 line_held 0 gpioset || fail "gpioset never holds line 0"
 strand play /tmp/offsets.yaml --to 5 --no-journal --quiet >/tmp/busy.out 2>&1
 rc=$?
 cat /tmp/busy.out
-[ $rc != 0 ] || fail "strand play ran on a line gpioset holds"
+[ $rc = 7 ] || fail "strand play exited $rc on a line gpioset holds, want 7 (device)"
 msg=$(grep -i "held" /tmp/busy.out | head -n 1)
 for want in "'io'" "$SIM_CHIP" "line 0" "gpioset"; do
 	echo "$msg" | grep -qF "$want" || fail "the message does not name $want: '$msg'"

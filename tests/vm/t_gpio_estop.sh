@@ -7,7 +7,8 @@
 . /tests/lib.sh
 
 PERIOD_US=4000                      # gpio_rig.yaml: 250 ticks a second
-MAX_LATE_US=${MAX_LATE_US:-2000}    # as t_gpio_trigger.sh
+MAX_LATE_US=$(vm_arg max_late_us)
+MAX_LATE_US=${MAX_LATE_US:-10000}   # as t_gpio_trigger.sh
 
 gpio_rig_chip
 bg gpiomon -b -F '%e %s %n' "$SIM_CHIP" 8 >/tmp/edges

@@ -5,19 +5,24 @@
 # journal, in order, no earlier than its tick was due and no later than the
 # loop's own reading of the clock after the commit; every pulse is the
 # scene's 8 ms wide; no edge is later than the bound below (edges.awk).
-# vm-timeout: 60
+# vm-timeout: 120
 . /tests/lib.sh
 
 # The bound on an edge's lateness and a pulse's width error under qemu's
-# software emulation (TCG): a tick is 4 ms; a board does far better
-# (README "GPIO").
-MAX_LATE_US=${MAX_LATE_US:-2000}
+# software emulation (TCG), where the guest's CPU is a host thread that the
+# host preempts: measured medians of 0.3 ms, worst cases of 5.6 ms in 76
+# frames (README "GPIO"); a board does far better. A tick is 4 ms.
+MAX_LATE_US=$(vm_arg max_late_us)
+MAX_LATE_US=${MAX_LATE_US:-10000}
+# make bench-gpio: the scene ten times over (760 frames, 30 s)
+PASSES=$(vm_arg bench_passes)
 
 gpio_rig_chip
 bg gpiomon -b -F '%e %s %n' "$SIM_CHIP" 8 >/tmp/edges
 wait_for 5 line_held 8 gpiomon || fail "gpiomon never holds the wire (line 8)"
 
-strand play /scenes/gpio_rig.yaml --journal /tmp/journal --quiet >/tmp/play.out 2>&1
+strand play /scenes/gpio_rig.yaml ${PASSES:+--loop --passes $PASSES} --journal /tmp/journal \
+	--quiet >/tmp/play.out 2>&1
 rc=$?
 cat /tmp/play.out
 [ $rc = 0 ] || fail "strand play exited $rc: $(tail -n 1 /tmp/play.out)"
@@ -30,6 +35,11 @@ awk -f /tests/edges.awk -v width_ns=8000000 -v max_late_us="$MAX_LATE_US" \
 	/tmp/journal.csv /tmp/edges >/tmp/cmp.out
 rc=$?
 cat /tmp/cmp.out
+if [ $rc != 0 ]; then
+	echo "journal (frame,tick,due_ns,mono_ns) and edges (event s ns):"
+	cut -d, -f1,3,6,7 /tmp/journal.csv | head -n 6
+	head -n 10 /tmp/edges
+fi
 [ $rc = 0 ] || fail "$(grep '^edges:' /tmp/cmp.out | tail -n 1)"
 pass "$frames frames, $frames pulses seen by gpiomon, in order and on time:" \
 	"edge late p99 $(sed -n 's/^BENCH gpio_edge_late_p99 //p' /tmp/cmp.out)," \

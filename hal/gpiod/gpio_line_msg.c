@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* gpio_line.c - what the libgpiod 1.x and 2.x request code share: the
+/* gpio_line_msg.c - what the libgpiod 1.x and 2.x request code share: the
  * wording of its errors, so that both APIs say the same thing. */
 #include "gpio_line.h"
 
