@@ -55,3 +55,20 @@ $(BUILD)/san/tests/fake/%.o: tests/fake/%.c tests/fake/%.h $(GPIOD_HDR) | $(BUIL
 $(BUILD)/tests/test_gpio: $(BUILD)/san/tests/fake/gpio_line_fake.o
 $(BUILD)/san/tests/test_gpio.o: TEST_CFLAGS += -Itests/fake
 $(BUILD)/san/tests/test_gpio.o: tests/fake/gpio_line_fake.h $(GPIOD_HDR)
+
+# make bench-gpio (part of make bench): the trigger's edge jitter measured
+# in the test VM: tests/vm/t_gpio_trigger.sh over the scene ten times (760
+# frames, 30 s), gpiomon's kernel timestamps against each tick's due time.
+# Under qemu's software emulation (TCG) the guest's CPU is a host thread
+# the host preempts: these figures bound what the harness sees, not what a
+# board does (README "GPIO").
+.PHONY: bench-gpio
+bench: bench-gpio
+bench-gpio: $(BUILD)/vm/initrd.cpio.gz
+	$(Q)VM_ONLY=t_gpio_trigger VM_APPEND="strand.bench_passes=10 strand.max_late_us=100000" \
+		sh tests/vm/run.sh $(BUILD)/vm-cache/kernel-$(VM_KERNEL_VERSION)/vmlinux $< \
+		$(BUILD)/bench-gpio >$(BUILD)/bench-gpio.log 2>&1 || \
+		{ cat $(BUILD)/bench-gpio.log; exit 1; }
+	$(Q)echo "bench-gpio: trigger edges in the VM ($$(sed -n 's/^vm: booting [^ ]* (\([A-Z]*\)).*/\1/p' \
+		$(BUILD)/bench-gpio.log)), 250 Hz tick, 8 ms pulses; late = edge - due"
+	$(Q)grep -h '^BENCH gpio_' $(BUILD)/bench-gpio/console.log.txt
