@@ -82,9 +82,42 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 	return err;
 }
 
+/* `line:`, a number (the line's offset on its chip) or the line's name
+ * (the chip's gpio-line-names, as gpioinfo shows them). */
+static int line_spec(struct ld *l, yaml_node_t *n, uint32_t *line, const char **name)
+{
+	long long v = 0;
+	int err;
+
+	*name = NULL;
+	if (n->type == YAML_SCALAR_NODE && n->data.scalar.length &&
+	    (n->data.scalar.value[0] < '0' || n->data.scalar.value[0] > '9'))
+		return ld_str(l, n, name);
+	err = ld_int(l, n, 0, 4095, &v);
+	*line = (uint32_t)v;
+	return err;
+}
+
+/* `ready: {line: L, active_low: B}`: the device's rig-ready output. */
+static int ready_output(struct ld *l, yaml_node_t *map, struct rig_device_desc *dev)
+{
+	static const char *const keys[] = { "line", "active_low", NULL };
+	yaml_node_t *v[2];
+	int err = ld_map(l, map, "ready", keys, v);
+
+	if (!err)
+		err = ld_require(l, map, "ready", v[0], "line");
+	if (!err)
+		err = line_spec(l, v[0], &dev->ready_line, &dev->ready_line_name);
+	if (!err && v[1])
+		err = ld_bool(l, v[1], &dev->ready_active_low);
+	dev->has_ready = !err;
+	return err;
+}
+
 static int devices(struct rl *rl, yaml_node_t *seq)
 {
-	static const char *const keys[] = { "name", "driver", "sim", "chip", NULL };
+	static const char *const keys[] = { "name", "driver", "sim", "chip", "ready", NULL };
 	static const char *const drivers[] = { "sim", "modbus", "gpio", "canopen", NULL };
 	struct ld *l = rl->l;
 	struct rig_device_desc *dev;
@@ -99,7 +132,7 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 	if (!dev || !rl->dev_names)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
-		yaml_node_t *map = ld_node(l, it[i]), *v[4];
+		yaml_node_t *map = ld_node(l, it[i]), *v[5];
 		int drv, k;
 
 		err = ld_map(l, map, "device", keys, v);
@@ -117,6 +150,8 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 			err = ld_fail(l, v[3], -EINVAL, "chip: is for a device with driver gpio");
 		if (!err && v[3])
 			err = ld_str(l, v[3], &dev[i].chip);
+		if (!err && v[4])
+			err = ready_output(l, v[4], &dev[i]);
 		if (err)
 			return err;
 		dev[i].driver = (enum rig_driver)drv;
@@ -254,22 +289,6 @@ static int outputs(struct rl *rl, yaml_node_t *seq)
 		rl->r->noutputs = (uint32_t)i + 1;
 	}
 	return 0;
-}
-
-/* `line:`, a number (the line's offset on its chip) or the line's name
- * (the chip's gpio-line-names, as gpioinfo shows them). */
-static int line_spec(struct ld *l, yaml_node_t *n, uint32_t *line, const char **name)
-{
-	long long v = 0;
-	int err;
-
-	*name = NULL;
-	if (n->type == YAML_SCALAR_NODE && n->data.scalar.length &&
-	    (n->data.scalar.value[0] < '0' || n->data.scalar.value[0] > '9'))
-		return ld_str(l, n, name);
-	err = ld_int(l, n, 0, 4095, &v);
-	*line = (uint32_t)v;
-	return err;
 }
 
 static bool same_line(const char *dev_a, uint32_t a, const char *name_a, const char *dev_b,

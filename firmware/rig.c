@@ -240,6 +240,8 @@ static int check_lines(struct rig *r, const struct rig_desc *d, const struct mot
 	return 0;
 }
 
+/* Device k's output (trig) or input lines; the outputs are its triggers,
+ * then its rig-ready line. */
 static uint32_t count_role(const struct rig_desc *d, int k, bool trig)
 {
 	uint32_t i, n = 0;
@@ -247,6 +249,7 @@ static uint32_t count_role(const struct rig_desc *d, int k, bool trig)
 	if (trig) {
 		for (i = 0; i < d->ntriggers; i++)
 			n += find_device(d, d->triggers[i].device) == k;
+		n += d->devices[k].has_ready; /* the last output line */
 	} else {
 		for (i = 0; i < d->ninputs; i++)
 			n += find_device(d, d->inputs[i].device) == k;
@@ -298,6 +301,10 @@ static int plan_gpio(struct rig *r, const struct rig_desc *d, uint32_t k, bool t
 		g->lines[j].active_low = trig ? d->triggers[i].active_low : d->inputs[i].active_low;
 		j++;
 	}
+	if (trig && dd->has_ready)
+		g->lines[j] = (struct hal_gpio_line){ .name = dd->ready_line_name,
+						      .offset = dd->ready_line,
+						      .active_low = dd->ready_active_low };
 	g->cfg = (struct hal_gpio_cfg){ .device = dd->name, .chip = dd->chip, .nlines = n,
 					.lines = g->lines, .priority = o->gpio_priority };
 	g->trig = trig;
@@ -338,9 +345,10 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 	r->douts = calloc(nd, sizeof(*r->douts));
 	r->dins = calloc(nd, sizeof(*r->dins));
 	r->gpio = calloc(2 * nd, sizeof(*r->gpio));
+	r->ready = calloc(nd, sizeof(*r->ready));
 	r->camera = calloc(d->ntriggers ? d->ntriggers : 1, sizeof(*r->camera));
 	if (!dev_gpio || !dev_dout || !dev_din || !r->sim_gpio || !r->douts || !r->dins ||
-	    !r->gpio || !r->camera) {
+	    !r->gpio || !r->ready || !r->camera) {
 		rc = fail(err, size, -ENOMEM, "out of memory");
 		goto out;
 	}
@@ -380,7 +388,14 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 		dev_din[k] = (int)r->ndins;
 		r->douts[r->ndouts++] = sim_gpio_dout(g);
 		r->dins[r->ndins++] = sim_gpio_din(g);
+		if (d->devices[k].has_ready)
+			sim_gpio_out_polarity(g, nt - 1, d->devices[k].ready_active_low);
 	}
+	for (k = 0; k < d->ndevices; k++)
+		if (d->devices[k].has_ready)
+			r->ready[r->nready++] = (struct rig_line){
+				.dev = (uint32_t)dev_dout[k],
+				.line = count_role(d, (int)k, true) - 1 };
 	for (i = 0; i < d->ntriggers; i++) {
 		const struct rig_trigger_desc *td = &d->triggers[i];
 		int dev = find_device(d, td->device);
@@ -559,6 +574,17 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 		}
 		r->started_dins[i] = true;
 	}
+	/* every device is up: the rig is ready (rig_stop's deasserting every
+	 * line says it no longer is) */
+	for (i = 0; i < r->nready; i++) {
+		hal_dout_set(r->douts[r->ready[i].dev], r->ready[i].line, true);
+		rc = hal_dout_commit(r->douts[r->ready[i].dev], 0);
+		if (rc) {
+			fail(err, errsize, rc, "device '%s': rig-ready line: %s",
+			     r->douts[r->ready[i].dev]->name, strerror(-rc));
+			goto undo;
+		}
+	}
 	return 0;
 fail_axis:
 	fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name, strerror(-rc));
@@ -615,6 +641,7 @@ void rig_free(struct rig *r)
 	free(r->sim_drive);
 	free(r->sim_gpio);
 	free(r->gpio);
+	free(r->ready);
 	free(r->camera);
 	free(r->started_axes);
 	free(r->started_douts);

@@ -65,6 +65,10 @@ struct rig_in {
 	enum rig_input_role role;
 };
 
+struct rig_line {
+	uint32_t dev, line;
+};
+
 /* A device's trigger or input lines on a GPIO chip, requested at start. */
 struct rig_gpio {
 	bool trig;                   /* douts[at], else dins[at] */
@@ -87,6 +91,8 @@ struct rig {
 	uint32_t nsim_gpio;
 	struct sim_gpio **sim_gpio;
 	struct sim_camera **camera;    /* ntrig */
+	uint32_t nready;               /* rig-ready outputs: douts[dev], line */
+	struct rig_line *ready;
 	uint32_t ngpio;                /* real GPIO lines (gpio.h): rig_start requests */
 	struct rig_gpio *gpio;         /* them into douts[at] or dins[at] */
 	bool *started_axes, *started_douts, *started_dins;

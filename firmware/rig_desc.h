@@ -20,7 +20,8 @@
  *       ferror: 2                # following error bound at full speed (units)
  *       min_ferror: 0.2          # ... at rest
  *       in_position: 0.05        # step mode: close enough to shoot
- *     - {name: gpio0, driver: gpio, chip: gpiochip0}   # chip: optional
+ *     - {name: gpio0, driver: gpio, chip: gpiochip0,   # chip: optional
+ *        ready: {line: RIG_READY, active_low: false}}  # optional
  *   triggers:                    # camera trigger lines
  *     - {name: cam, device: io, line: 0, pulse_ms: 2, active_low: false, offset_ms: -8}
  *     - {name: cam2, device: gpio0, line: CAM2_TRIG}   # a line by its name
@@ -64,6 +65,12 @@ struct rig_device_desc {
 	/* the hardware backends add their settings here (issues 5-7) */
 	const char *chip;      /* gpio: gpiochip0, /dev/gpiochip0 or a label;
 				* NULL: the lines by name, on whichever chip */
+	/* a rig-ready output (a lamp, a PLC input): asserted once every
+	 * device has started, deasserted when the run ends */
+	bool has_ready;
+	uint32_t ready_line;
+	const char *ready_line_name; /* by name; NULL: by number */
+	bool ready_active_low;
 };
 
 struct rig_output_desc {

@@ -5,7 +5,7 @@
  * The event thread is the ring's only producer and the loop its only
  * consumer. The thread blocks in poll() on the lines' event descriptors
  * and an eventfd that stop() writes to end it; it never touches the
- * loop's state. What it must tell the loop besides edges (events lost, a
+ * loop's state (level[] is the loop's, sent[] the thread's). What it must tell the loop besides edges (events lost, a
  * read failing) it latches in one atomic fault code.
  */
 #define _GNU_SOURCE /* pthread_setname_np */
@@ -21,9 +21,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/eventfd.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "ring.h"
+
+/* With no event for this long, the thread reads the lines back anyway: a
+ * lost edge is found within it even when no other edge follows. */
+#define GPIO_DIN_READ_BACK_MS 50
 
 struct gpio_din {
 	struct hal_din base; /* first */
@@ -31,6 +36,8 @@ struct gpio_din {
 	uint32_t n;
 	bool active_low[GPIO_LINE_MAX];
 	bool level[GPIO_LINE_MAX]; /* logical, the loop's: after the edges polled */
+	bool sent[GPIO_LINE_MAX];  /* logical, the thread's: after the edges pushed */
+	uint64_t corrected;        /* the thread's: edges made from a read-back */
 	struct hal_ring ring;      /* struct hal_edge, thread -> loop */
 	struct hal_edge *ring_buf;
 	int wake_fd;               /* eventfd: stop() ends the thread */
@@ -55,27 +62,87 @@ static void latch(struct gpio_din *g, int code)
 	atomic_compare_exchange_strong(&g->fault, &none, code);
 }
 
+/* Pass a line's level on to the loop when it changed. */
+static void push(struct gpio_din *g, uint32_t line, bool asserted, int64_t ts_ns)
+{
+	struct hal_edge e = { .line = line, .asserted = asserted, .ts_ns = ts_ns };
+
+	if (g->sent[line] == asserted)
+		return;
+	g->sent[line] = asserted;
+	if (!hal_ring_push(&g->ring, &e))
+		latch(g, -ENOBUFS);
+}
+
+static int64_t mono_ns(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
 /* Read what waits on fds[k] and pass it on; false when the thread must end. */
 static bool forward(struct gpio_din *g, uint32_t k)
 {
 	struct gpio_line_event ev[16];
-	struct hal_edge e;
-	int i, n;
+	int j, n;
 
 	n = gpio_req_read(g->req, k, ev, 16);
 	if (n < 0) {
 		latch(g, n);
 		return false;
 	}
-	for (i = 0; i < n; i++) {
-		if (ev[i].line >= g->n)
-			continue;
-		e.line = ev[i].line;
-		e.asserted = ev[i].rising != g->active_low[ev[i].line];
-		e.ts_ns = ev[i].ts_ns;
-		if (!hal_ring_push(&g->ring, &e))
-			latch(g, -ENOBUFS);
+	for (j = 0; j < n; j++)
+		if (ev[j].line < g->n)
+			push(g, ev[j].line, ev[j].rising != g->active_low[ev[j].line], ev[j].ts_ns);
+	return true;
+}
+
+/* Has the kernel more events for us? */
+static bool pending(struct gpio_din *g)
+{
+	struct pollfd p[GPIO_LINE_MAX];
+	uint32_t k;
+
+	for (k = 0; k < g->nfds; k++)
+		p[k] = (struct pollfd){ .fd = g->fds[k], .events = POLLIN };
+	return poll(p, g->nfds, 0) > 0;
+}
+
+/*
+ * When the kernel has no more events, the lines' levels must be what was
+ * passed on: the kernel can get an edge wrong. The v1 ABI labels an edge
+ * rising or falling by reading the line in its interrupt thread, which may
+ * run after the line changed again, and an interrupt that comes while that
+ * thread still runs for the previous one can be lost. A level that differs
+ * becomes an edge of its own, dated now, so a lost or mislabelled edge
+ * never leaves the loop's view of an e-stop wrong for longer than
+ * GPIO_DIN_READ_BACK_MS. (An event that arrives between the two checks is
+ * read first, next round.)
+ */
+static bool read_back(struct gpio_din *g)
+{
+	bool high[GPIO_LINE_MAX];
+	int64_t now;
+	uint32_t i;
+	int rc;
+
+	if (pending(g))
+		return true;
+	rc = gpio_req_get(g->req, high);
+	if (rc) {
+		latch(g, rc);
+		return false;
 	}
+	if (pending(g))
+		return true;
+	now = mono_ns();
+	for (i = 0; i < g->n; i++)
+		if ((high[i] != g->active_low[i]) != g->sent[i]) {
+			g->corrected++;
+			push(g, i, high[i] != g->active_low[i], now);
+		}
 	return true;
 }
 
@@ -93,7 +160,7 @@ static void *event_thread(void *arg)
 		pfd[k] = (struct pollfd){ .fd = g->fds[k], .events = POLLIN };
 	pfd[g->nfds] = (struct pollfd){ .fd = g->wake_fd, .events = POLLIN };
 	for (;;) {
-		if (poll(pfd, g->nfds + 1, -1) < 0) {
+		if (poll(pfd, g->nfds + 1, GPIO_DIN_READ_BACK_MS) < 0) {
 			if (errno == EINTR)
 				continue;
 			latch(g, -errno);
@@ -109,6 +176,8 @@ static void *event_thread(void *arg)
 			if ((pfd[k].revents & POLLIN) && !forward(g, k))
 				return NULL;
 		}
+		if (!read_back(g))
+			return NULL;
 	}
 }
 
@@ -132,7 +201,7 @@ static int initial_levels(struct gpio_din *g)
 	if (rc)
 		return rc;
 	for (i = 0; i < g->n; i++)
-		g->level[i] = high[i] != g->active_low[i];
+		g->level[i] = g->sent[i] = high[i] != g->active_low[i];
 	return 0;
 }
 

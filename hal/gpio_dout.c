@@ -1,12 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* gpio_dout.c - trigger and lamp outputs on a GPIO chip (gpio.h). */
+/* gpio_dout.c - camera trigger outputs on a GPIO chip (gpio.h). */
 #include "gpio_priv.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
 
 struct gpio_dout {
 	struct hal_dout base; /* first */

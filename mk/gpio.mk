@@ -70,5 +70,5 @@ bench-gpio: $(BUILD)/vm/initrd.cpio.gz
 		$(BUILD)/bench-gpio >$(BUILD)/bench-gpio.log 2>&1 || \
 		{ cat $(BUILD)/bench-gpio.log; exit 1; }
 	$(Q)echo "bench-gpio: trigger edges in the VM ($$(sed -n 's/^vm: booting [^ ]* (\([A-Z]*\)).*/\1/p' \
-		$(BUILD)/bench-gpio.log)), 250 Hz tick, 8 ms pulses; late = edge - due"
+		$(BUILD)/bench-gpio.log)), 250 Hz tick, 20 ms pulses; late = edge - due"
 	$(Q)grep -h '^BENCH gpio_' $(BUILD)/bench-gpio/console.log.txt

@@ -24,7 +24,9 @@ VM_KDIR    := $(VM_CACHE)/kernel-$(VM_KERNEL_VERSION)
 VM_SIMDIR  := $(VM_CACHE)/gpio-sim-$(VM_KERNEL_VERSION)
 VM_TIMEOUT ?= 300
 
-DEB_VM := qemu-system-x86 busybox-static cpio kmod xz-utils gcc-12 make bc patch \
+# The kernel's kbuild tools are unpacked, not installed: their libraries
+# (libelf1, libssl3) and compiler (gcc-12) are listed here instead.
+DEB_VM := qemu-system-x86 busybox-static cpio xz-utils patch gcc-12 make libelf1 libssl3 \
           can-utils gpiod libgpiod-dev
 
 # Modules from the kernel package, loaded with insmod in this order (the

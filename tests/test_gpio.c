@@ -224,6 +224,32 @@ static void test_din_edges(void **state)
 	hal_din_close(d);
 }
 
+/* The kernel labelled an edge wrong (the v1 ABI reads the line in its
+ * thread, after the fact) or lost one: the read-back after the events
+ * sets the level right with an edge of its own. */
+static void test_din_read_back(void **state)
+{
+	const struct hal_gpio_line l[1] = { { .name = "estop", .active_low = true } };
+	struct hal_edge ev[4];
+	struct hal_din *d;
+
+	fake_lines();
+	fake_chip.high[2] = true; /* the chain is closed */
+	d = open_din(l, 1, 0);
+	assert_int_equal(hal_din_start(d), 0);
+	assert_false(hal_din_level(d, 0));
+	/* it opens, and closes, but the kernel loses the closing edge */
+	fake_edge(0, false, 1000);
+	fake_level(2, true);
+	assert_int_equal(poll_edges(d, ev, 2), 2);
+	assert_true(ev[0].asserted);
+	assert_int_equal(ev[0].ts_ns, 1000);
+	assert_false(ev[1].asserted); /* from the read-back, dated by the thread */
+	assert_true(ev[1].ts_ns > 1000);
+	assert_false(hal_din_level(d, 0));
+	hal_din_close(d);
+}
+
 /* More edges than the ring holds before the loop polls: a fault, since a
  * lost e-stop edge must not pass silently. */
 static void test_din_lost_edges(void **state)
@@ -271,6 +297,7 @@ int main(void)
 		cmocka_unit_test(test_dout_fault),
 		cmocka_unit_test(test_open_errors),
 		cmocka_unit_test(test_din_edges),
+		cmocka_unit_test(test_din_read_back),
 		cmocka_unit_test(test_din_lost_edges),
 		cmocka_unit_test(test_din_unplugged),
 	};

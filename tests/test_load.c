@@ -231,14 +231,16 @@ static void test_truncated(void **state)
 	assert_true(errors > 0);
 }
 
-/* A GPIO device: its chip, lines by offset and by name, each kept apart. */
+/* A GPIO device: its chip, its rig-ready line, lines by offset and by
+ * name, each kept apart. */
 static void test_gpio_lines(void **state)
 {
 	struct scene_file sf;
 	const struct rig_desc *r;
 
 	parse_ok(&sf, "timing: {frame_rate: 24, frames: [0, 10]}\n"
-		      "devices: [{name: io, driver: gpio, chip: gpiochip2}, {name: any, driver: gpio}]\n"
+		      "devices: [{name: io, driver: gpio, chip: gpiochip2},\n"
+		      "          {name: any, driver: gpio, ready: {line: LAMP, active_low: true}}]\n"
 		      "triggers: [{name: cam, device: io, line: 5, active_low: true},\n"
 		      "           {name: cam2, device: any, line: CAM2_TRIG}]\n"
 		      "inputs: [{name: estop, device: any, line: ESTOP-1, role: estop},\n"
@@ -248,6 +250,10 @@ static void test_gpio_lines(void **state)
 	assert_int_equal(r->devices[0].driver, RIG_DRIVER_GPIO);
 	assert_string_equal(r->devices[0].chip, "gpiochip2");
 	assert_null(r->devices[1].chip);
+	assert_false(r->devices[0].has_ready);
+	assert_true(r->devices[1].has_ready);
+	assert_string_equal(r->devices[1].ready_line_name, "LAMP");
+	assert_true(r->devices[1].ready_active_low);
 	assert_int_equal(r->triggers[0].line, 5);
 	assert_null(r->triggers[0].line_name);
 	assert_true(r->triggers[0].active_low);

@@ -10,6 +10,7 @@
 #include "gpio_line_fake.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,9 @@ struct gpio_req {
 };
 
 static struct gpio_req *input_req; /* the last input request, for fake_edge */
+/* A level changes with its event at once, as far as the backend's thread
+ * can tell (the kernel's window between the two is not what is tested). */
+static pthread_mutex_t fake_lock = PTHREAD_MUTEX_INITIALIZER;
 
 void fake_reset(void)
 {
@@ -144,8 +148,10 @@ int gpio_req_get(struct gpio_req *r, bool *high)
 {
 	uint32_t i;
 
+	pthread_mutex_lock(&fake_lock);
 	for (i = 0; i < r->n; i++)
 		high[i] = fake_chip.high[r->offset[i]];
+	pthread_mutex_unlock(&fake_lock);
 	return 0;
 }
 
@@ -181,9 +187,18 @@ void fake_edge(uint32_t line, bool rising, int64_t ts_ns)
 {
 	struct gpio_line_event e = { .line = line, .rising = rising, .ts_ns = ts_ns };
 
+	pthread_mutex_lock(&fake_lock);
 	fake_chip.high[input_req->offset[line]] = rising;
 	if (write(input_req->wr[line], &e, sizeof(e)) != sizeof(e))
 		abort();
+	pthread_mutex_unlock(&fake_lock);
+}
+
+void fake_level(uint32_t offset, bool high)
+{
+	pthread_mutex_lock(&fake_lock);
+	fake_chip.high[offset] = high;
+	pthread_mutex_unlock(&fake_lock);
 }
 
 void fake_unplug(uint32_t line)

@@ -24,6 +24,8 @@ extern struct fake_chip fake_chip;
 void fake_reset(void);
 /* An edge on input line `line` (index in the last input request). */
 void fake_edge(uint32_t line, bool rising, int64_t ts_ns);
+/* A level changes with no event (the kernel lost it). */
+void fake_level(uint32_t offset, bool high);
 /* The line's descriptor hangs up, as when the chip goes away. */
 void fake_unplug(uint32_t line);
 

@@ -30,6 +30,7 @@ if [ -w /dev/kvm ] && { [ -d /sys/module/kvm_intel ] || [ -d /sys/module/kvm_amd
 fi
 
 append="console=ttyS0 quiet panic=-1 strand.watchdog=$((timeout * 4 / 5))"
+append="$append strand.accel=$(echo $accel_name | tr 'A-Z' 'a-z')"
 if [ -n "${VM_ONLY:-}" ]; then
 	append="$append strand.only=$(echo "$VM_ONLY" | tr -s ' ' ',')"
 fi

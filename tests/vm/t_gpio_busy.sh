@@ -7,7 +7,7 @@
 . /tests/lib.sh
 
 gpio_rig_chip
-sed -e "s|{name: io, driver: gpio}|{name: io, driver: gpio, chip: $SIM_CHIP}|" \
+sed -e "s|{name: io, driver: gpio, ready: {line: rig-ready}}|{name: io, driver: gpio, chip: $SIM_CHIP}|" \
 	-e 's|line: cam-trigger|line: 0|' -e 's|line: estop|line: 2|' \
 	/scenes/gpio_rig.yaml >/tmp/offsets.yaml
 grep -q "chip: $SIM_CHIP" /tmp/offsets.yaml && grep -q "line: 0" /tmp/offsets.yaml ||

@@ -21,13 +21,13 @@ play=$!
 for k in 1 2 3; do
 	# not ready: nothing may fire, however long the rig has settled
 	sleep 1
-	n=$(edge_count /tmp/edges 1)
+	n=$(pulses /tmp/edges)
 	[ "$n" = $((k - 1)) ] || fail "frame $k: $n pulses while the camera was busy, want $((k - 1))"
 	sim_pull 3 up                   # ready: one frame
-	wait_for 10 edges_at_least /tmp/edges 1 "$k" || fail "frame $k never fired after ready"
+	wait_for 10 pulses_at_least /tmp/edges "$k" || fail "frame $k never fired after ready"
 	sim_pull 3 down                 # exposing, then reading out
 	sleep 0.3
-	n=$(edge_count /tmp/edges 1)
+	n=$(pulses /tmp/edges)
 	[ "$n" = "$k" ] || fail "frame $k: $n pulses after one ready edge, want $k"
 done
 sim_pull 3 up
