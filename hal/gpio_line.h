@@ -92,7 +92,7 @@ int gpio_req_read(struct gpio_req *r, uint32_t k, struct gpio_line_event *ev, ui
 /* The library's version, for `strand info` and messages. */
 const char *gpio_line_lib_version(void);
 
-/* ---- shared by the two implementations (gpio_line.c) ---- */
+/* ---- shared by the two implementations (gpiod/gpio_line_msg.c) ---- */
 
 /* Format "chip gpiochip0 line 5 ('cam-trigger')" style messages into err:
  * returns code. */
