@@ -27,6 +27,14 @@ static void print_violation(void *ctx, const struct lim_violation *v)
 
 	/* 7 digits: a velocity or acceleration is a difference of quantised
 	 * values, and more digits would print only that noise (limit_check.h) */
+	if (v->kind == LIM_STOP) {
+		fprintf(r->out,
+			"%s.%s: a controlled stop would end at %.7g %s, beyond limit %.7g %s, "
+			"frames %.10g to %.10g\n",
+			n->name, rev ? "angle" : "position", v->worst, unit, v->limit, unit,
+			v->frame_first, v->frame_last);
+		return;
+	}
 	fprintf(r->out, "%s.%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
 		n->name, rev ? "angle" : "position", lim_kind_name(v->kind), v->worst, unit, per,
 		v->limit, unit, per, v->frame_first, v->frame_last);

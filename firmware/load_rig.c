@@ -11,6 +11,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "channel.h"
@@ -81,9 +82,43 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 	return err;
 }
 
+/* `line:`, a number (the line's offset on its chip) or the line's name
+ * (the chip's gpio-line-names, as gpioinfo shows them). */
+static int line_spec(struct ld *l, yaml_node_t *n, uint32_t *line, const char **name)
+{
+	long long v = 0;
+	int err;
+
+	*name = NULL;
+	if (n->type == YAML_SCALAR_NODE && n->data.scalar.length &&
+	    (n->data.scalar.value[0] < '0' || n->data.scalar.value[0] > '9'))
+		return ld_str(l, n, name);
+	err = ld_int(l, n, 0, 4095, &v);
+	*line = (uint32_t)v;
+	return err;
+}
+
+/* `ready: {line: L, active_low: B}`: the device's rig-ready output. */
+static int ready_output(struct ld *l, yaml_node_t *map, struct rig_device_desc *dev)
+{
+	static const char *const keys[] = { "line", "active_low", NULL };
+	yaml_node_t *v[2];
+	int err = ld_map(l, map, "ready", keys, v);
+
+	if (!err)
+		err = ld_require(l, map, "ready", v[0], "line");
+	if (!err)
+		err = line_spec(l, v[0], &dev->ready_line, &dev->ready_line_name);
+	if (!err && v[1])
+		err = ld_bool(l, v[1], &dev->ready_active_low);
+	dev->has_ready = !err;
+	return err;
+}
+
 static int devices(struct rl *rl, yaml_node_t *seq)
 {
-	static const char *const keys[] = { "name", "driver", "sim", "modbus", NULL };
+	static const char *const keys[] = { "name", "driver", "sim", "chip", "ready", "modbus",
+					    NULL };
 	static const char *const drivers[] = { "sim", "modbus", "gpio", "canopen", NULL };
 	struct ld *l = rl->l;
 	struct rig_device_desc *dev;
@@ -98,7 +133,7 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 	if (!dev || !rl->dev_names)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
-		yaml_node_t *map = ld_node(l, it[i]), *v[4];
+		yaml_node_t *map = ld_node(l, it[i]), *v[6];
 		int drv, k;
 
 		err = ld_map(l, map, "device", keys, v);
@@ -112,15 +147,21 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 			err = ld_enum(l, v[1], "driver", drivers, &drv);
 		if (!err && v[2])
 			err = sim_params(l, v[2], &dev[i].sim);
+		if (!err && v[3] && drv != RIG_DRIVER_GPIO)
+			err = ld_fail(l, v[3], -EINVAL, "chip: is for a device with driver gpio");
+		if (!err && v[3])
+			err = ld_str(l, v[3], &dev[i].chip);
+		if (!err && v[4])
+			err = ready_output(l, v[4], &dev[i]);
 		if (err)
 			return err;
 		dev[i].driver = (enum rig_driver)drv;
 		/* a Modbus device's bus and register map (load_modbus.c) */
-		if ((dev[i].driver == RIG_DRIVER_MODBUS) != !!v[3])
-			return ld_fail(l, v[3] ? v[3] : map, -EINVAL, v[3] ?
+		if ((dev[i].driver == RIG_DRIVER_MODBUS) != !!v[5])
+			return ld_fail(l, v[5] ? v[5] : map, -EINVAL, v[5] ?
 				       "a modbus: section belongs to a device of driver modbus" :
 				       "a device of driver modbus needs its modbus: section");
-		if (v[3] && (err = ld_modbus(l, v[3], &dev[i])))
+		if (v[5] && (err = ld_modbus(l, v[5], &dev[i])))
 			return err;
 		k = find(rl->dev_names, dev[i].name);
 		if (k >= 0)
@@ -258,19 +299,40 @@ static int outputs(struct rl *rl, yaml_node_t *seq)
 	return 0;
 }
 
-/* A line of a device: not taken by an earlier trigger or input. */
-static int line_free(struct rl *rl, yaml_node_t *at, const char *dev, uint32_t line)
+static bool same_line(const char *dev_a, uint32_t a, const char *name_a, const char *dev_b,
+		      uint32_t b, const char *name_b)
 {
+	if (strcmp(dev_a, dev_b) || !name_a != !name_b)
+		return false;
+	return name_a ? !strcmp(name_a, name_b) : a == b;
+}
+
+/* A line of a device: not taken by an earlier trigger or input. (A line
+ * given by number and by name at once is the backend's to find.) */
+static int line_free(struct rl *rl, yaml_node_t *at, const char *dev, uint32_t line,
+		     const char *name)
+{
+	char what[80];
 	uint32_t j;
 
-	for (j = 0; j < rl->r->ntriggers; j++)
-		if (!strcmp(rl->r->triggers[j].device, dev) && rl->r->triggers[j].line == line)
-			return ld_fail(rl->l, at, -EINVAL, "line %u of '%s' is trigger '%s' already",
-				       line, dev, rl->r->triggers[j].name);
-	for (j = 0; j < rl->r->ninputs; j++)
-		if (!strcmp(rl->r->inputs[j].device, dev) && rl->r->inputs[j].line == line)
-			return ld_fail(rl->l, at, -EINVAL, "line %u of '%s' is input '%s' already",
-				       line, dev, rl->r->inputs[j].name);
+	if (name)
+		snprintf(what, sizeof(what), "line '%s'", name);
+	else
+		snprintf(what, sizeof(what), "line %u", line);
+	for (j = 0; j < rl->r->ntriggers; j++) {
+		const struct rig_trigger_desc *t = &rl->r->triggers[j];
+
+		if (same_line(t->device, t->line, t->line_name, dev, line, name))
+			return ld_fail(rl->l, at, -EINVAL, "%s of '%s' is trigger '%s' already",
+				       what, dev, t->name);
+	}
+	for (j = 0; j < rl->r->ninputs; j++) {
+		const struct rig_input_desc *in = &rl->r->inputs[j];
+
+		if (same_line(in->device, in->line, in->line_name, dev, line, name))
+			return ld_fail(rl->l, at, -EINVAL, "%s of '%s' is input '%s' already",
+				       what, dev, in->name);
+	}
 	return 0;
 }
 
@@ -283,7 +345,6 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	const struct scene_desc *d = l->d;
 	yaml_node_t *v[G_N];
 	double frame_ms = 1000.0 * d->rate_den / d->rate_num, tick_ms = 1000.0 / d->tick_hz;
-	long long line;
 	int err, dev;
 
 	err = ld_map(l, map, "trigger", keys, v);
@@ -298,11 +359,10 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	if (!err)
 		err = lookup(rl, v[G_DEV], "device", rl->dev_names, "devices:", &dev);
 	if (!err)
-		err = ld_int(l, v[G_LINE], 0, 4095, &line);
+		err = line_spec(l, v[G_LINE], &t->line, &t->line_name);
 	if (err)
 		return err;
 	t->device = rl->dev_names[dev];
-	t->line = (uint32_t)line;
 	t->pulse_ms = 1;
 	if (v[G_PULSE])
 		err = positive(l, v[G_PULSE], &t->pulse_ms);
@@ -311,7 +371,7 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	if (!err && v[G_OFF])
 		err = ld_num(l, v[G_OFF], &t->offset_ms);
 	if (!err)
-		err = line_free(rl, v[G_LINE], t->device, t->line);
+		err = line_free(rl, v[G_LINE], t->device, t->line, t->line_name);
 	if (err)
 		return err;
 	/* the player's rule (rig.c): whole ticks, at least one, ending before
@@ -333,7 +393,6 @@ static int input(struct rl *rl, yaml_node_t *map, struct rig_input_desc *in)
 	enum { I_NAME, I_DEV, I_LINE, I_ROLE, I_LOW, I_N };
 	struct ld *l = rl->l;
 	yaml_node_t *v[I_N];
-	long long line;
 	int err, dev, role;
 
 	err = ld_map(l, map, "input", keys, v);
@@ -350,13 +409,12 @@ static int input(struct rl *rl, yaml_node_t *map, struct rig_input_desc *in)
 	if (!err)
 		err = lookup(rl, v[I_DEV], "device", rl->dev_names, "devices:", &dev);
 	if (!err)
-		err = ld_int(l, v[I_LINE], 0, 4095, &line);
+		err = line_spec(l, v[I_LINE], &in->line, &in->line_name);
 	if (!err)
 		err = ld_enum(l, v[I_ROLE], "input role", roles, &role);
 	if (err)
 		return err;
 	in->device = rl->dev_names[dev];
-	in->line = (uint32_t)line;
 	in->role = role == 0 ? RIG_INPUT_ESTOP : role == 1 ? RIG_INPUT_STOP :
 							     RIG_INPUT_CAMERA_READY;
 	/* an e-stop chain is wired normally closed: asserted when it opens */
@@ -364,7 +422,7 @@ static int input(struct rl *rl, yaml_node_t *map, struct rig_input_desc *in)
 	if (v[I_LOW])
 		err = ld_bool(l, v[I_LOW], &in->active_low);
 	if (!err)
-		err = line_free(rl, v[I_LINE], in->device, in->line);
+		err = line_free(rl, v[I_LINE], in->device, in->line, in->line_name);
 	return err;
 }
 

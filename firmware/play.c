@@ -95,7 +95,9 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 		p->o.rt.pm_qos = false;
 	}
 	p->failed_at = PLAY_STAGE_RIG;
-	rc = rig_build(&p->rig, rd, src, &p->clk, &o->rig, err, errsize);
+	/* GPIO edges (an e-stop) must not wait behind ordinary work either */
+	p->o.rig.gpio_priority = p->o.rt.priority;
+	rc = rig_build(&p->rig, rd, src, &p->clk, &p->o.rig, err, errsize);
 	if (rc)
 		return rc;
 	p->rig_built = true;
@@ -342,8 +344,13 @@ void play_describe(const struct play *p, char *buf, size_t size)
 			 when);
 		break;
 	case LOOP_CAUSE_ESTOP:
-		snprintf(buf, size, "e-stop: input '%s' (line %d) %s; drives disabled, latched",
-			 r->device ? r->device : "?", r->channel, when);
+		if (r->has_edge)
+			snprintf(buf, size, "e-stop: input '%s' (line %d) %s, acted on %.1f us after "
+				 "the edge; drives disabled, latched", r->device ? r->device : "?",
+				 r->channel, when, (r->acted_ns - r->edge_ns) / 1000.0);
+		else
+			snprintf(buf, size, "e-stop: input '%s' (line %d) %s; drives disabled, "
+				 "latched", r->device ? r->device : "?", r->channel, when);
 		break;
 	case LOOP_CAUSE_DEVICE:
 		if (r->channel < 0) { /* the device as a whole: a bus, a unit */

@@ -565,6 +565,17 @@ static const struct err_case cases[] = {
 	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
 	  "inputs: [{name: estop, device: io, line: 1, role: estop, active_low: yes}]\n",
 	  "t.yaml:5:70: expected true or false, found 'yes'" },
+	{ "rig: chip on a simulated device",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "devices: [{name: io, driver: sim, chip: gpiochip0}]\n",
+	  "t.yaml:2:41: chip: is for a device with driver gpio" },
+	{ "rig: a named line twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: io, driver: gpio}]\n"
+	  "triggers: [{name: cam, device: io, line: SHUTTER}]\n"
+	  "inputs: [{name: estop, device: io, line: SHUTTER, role: estop}]\n",
+	  "t.yaml:5:42: line 'SHUTTER' of 'io' is trigger 'cam' already" },
 };
 
 #define NCASES (sizeof(cases) / sizeof(cases[0]))
