@@ -289,6 +289,61 @@ static inline int64_t mot_acc_round(mot_acc x, unsigned shift, uint32_t *sat)
 	return (int64_t)lo;
 }
 
+/*
+ * The kernel of the hot paths (matrix products, joint updates): a short sum
+ * of exact products rounded once, with the overflow test taken out of the
+ * sum's way. A sum starts at mot_acc_start(c, shift), an addend c at the
+ * sum's scale 2^shift plus the half unit that makes the final floor a
+ * rounding to nearest (ties toward +inf, as mot_acc_round); products join
+ * with mot_acc_mac(); mot_acc_floor_ov() ends it without a branch and
+ * without saturating: it ORs a nonzero value into *ov when the result does
+ * not fit int64. A caller checks ov once for a whole matrix and, only then,
+ * redoes the matrix with the saturating functions. Results are those of
+ * mot_acc_round() bit for bit whenever they fit.
+ *
+ * Wrap-around. With up to three products of any int64 factors and an
+ * addend c (any c at shift 32, |c| <= 2^62 at shift 62) a true sum that
+ * leaves the signed 128-bit range lands, after wrapping, far outside what
+ * fits, so it is reported too (tests/test_fix.c checks both paths). Longer
+ * sums must bound their terms (see each caller).
+ *
+ * The shift is a constant in every caller (32 or 62), 1 <= shift <= 63.
+ */
+static inline mot_acc mot_acc_start(int64_t c, unsigned shift)
+{
+	/* c * 2^shift has shift zero low bits: the half unit just fills one */
+	return mot_acc_make((uint64_t)(c >> (64 - shift)),
+			    ((uint64_t)c << shift) | ((uint64_t)1 << (shift - 1)));
+}
+
+static inline int64_t mot_acc_floor_ov(mot_acc x, unsigned shift, uint64_t *ov)
+{
+	uint64_t hi = mot_acc_hi(x), lo = mot_acc_lo(x);
+
+	/* floor(x / 2^shift) fits int64 iff hi is in [-2^(shift-1), 2^(shift-1)) */
+	*ov |= (hi + ((uint64_t)1 << (shift - 1))) >> shift;
+	return (int64_t)((hi << (64 - shift)) | (lo >> shift));
+}
+
+/* round(a0*b0 + a1*b1 + c * 2^shift) / 2^shift and the like: the sums the
+ * hot paths are made of, each rounded once (see above). */
+static inline int64_t mot_sum2_ov(int64_t a0, int64_t b0, int64_t a1, int64_t b1, int64_t c,
+				  unsigned shift, uint64_t *ov)
+{
+	mot_acc s = mot_acc_mac(mot_acc_start(c, shift), a0, b0);
+
+	return mot_acc_floor_ov(mot_acc_mac(s, a1, b1), shift, ov);
+}
+
+static inline int64_t mot_sum3_ov(int64_t a0, int64_t b0, int64_t a1, int64_t b1, int64_t a2,
+				  int64_t b2, int64_t c, unsigned shift, uint64_t *ov)
+{
+	mot_acc s = mot_acc_mac(mot_acc_start(c, shift), a0, b0);
+
+	s = mot_acc_mac(s, a1, b1);
+	return mot_acc_floor_ov(mot_acc_mac(s, a2, b2), shift, ov);
+}
+
 /* ---- Q32.32 arithmetic ---------------------------------------------------- */
 
 /* a * b, rounded, saturating. */
