@@ -164,6 +164,7 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 	int64_t r[3][3];
 	struct mot_mat m;
 	bool small = true;
+	uint64_t ov = 0;
 	int i, j;
 
 	for (i = 0; i < 3; i++)
@@ -180,7 +181,16 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 		mot_mat_mul(out, &a, &m, sat);
 		return;
 	}
-	for (i = 0; i < 3; i++)
+	/* S . H is lower-triangular: row i has i + 1 products (fix.h's kernel,
+	 * the saturating rounding only when an entry does not fit) */
+	for (j = 0; j < 3; j++) {
+		m.m[0][j] = mot_acc_floor_ov(mot_acc_mac(mot_acc_start(0, 62), sh[0][0], r[0][j]), 62,
+					     &ov);
+		m.m[1][j] = mot_sum2_ov(sh[1][0], r[0][j], sh[1][1], r[1][j], 0, 62, &ov);
+		m.m[2][j] = mot_sum3_ov(sh[2][0], r[0][j], sh[2][1], r[1][j], sh[2][2], r[2][j], 0,
+					62, &ov);
+	}
+	for (i = 0; ov && i < 3; i++)
 		for (j = 0; j < 3; j++) {
 			mot_acc acc = mot_acc_mul(sh[i][0], r[0][j]);
 

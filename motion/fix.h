@@ -318,11 +318,21 @@ static inline mot_acc mot_acc_start(int64_t c, unsigned shift)
 
 static inline int64_t mot_acc_floor_ov(mot_acc x, unsigned shift, uint64_t *ov)
 {
-	uint64_t hi = mot_acc_hi(x), lo = mot_acc_lo(x);
+	uint64_t hi = mot_acc_hi(x);
 
 	/* floor(x / 2^shift) fits int64 iff hi is in [-2^(shift-1), 2^(shift-1)) */
 	*ov |= (hi + ((uint64_t)1 << (shift - 1))) >> shift;
-	return (int64_t)((hi << (64 - shift)) | (lo >> shift));
+#if MOT_HAVE_INT128
+	return (int64_t)((mot_uacc)x >> shift); /* one double-word shift */
+#else
+	return (int64_t)((hi << (64 - shift)) | (x.lo >> shift));
+#endif
+}
+
+/* round(x / 2^shift), the kernel's way: mot_acc_round() without saturation */
+static inline int64_t mot_acc_round_ov(mot_acc x, unsigned shift, uint64_t *ov)
+{
+	return mot_acc_floor_ov(mot_acc_add(x, mot_acc_start(0, shift)), shift, ov);
 }
 
 /* round(a0*b0 + a1*b1 + c * 2^shift) / 2^shift and the like: the sums the

@@ -444,12 +444,30 @@ static void vec_neg(mot_q32 out[3], const mot_q32 v[3], uint32_t *sat)
 void mot_mat_about_pivot(struct mot_mat *out, const struct mot_mat *a, const mot_q32 p[3],
 			 uint32_t *sat)
 {
-	/* T(-p) . a . T(p): linear part a's, translation -p.A + t + p */
-	mot_q32 np[3];
+	/* T(-p) . a . T(p): linear part a's, translation -p.A + t + p, each
+	 * entry three products and two addends below 2^96 (fix.h's kernel);
+	 * the saturating sums when that overflows, or when -p does not exist */
+	mot_q32 np[3], t[3];
 	struct mot_mat r = *a;
+	uint64_t ov = p[0] == MOT_Q32_MIN || p[1] == MOT_Q32_MIN || p[2] == MOT_Q32_MIN;
+	int j;
 
-	vec_neg(np, p, sat);
-	pivot_row(r.m[3], np, a, a->m[3], p, sat);
+	for (j = 0; j < 3; j++) {
+		mot_acc x = mot_acc_add(mot_acc_start(a->m[3][j], MOT_Q32_FRAC),
+					mot_acc_from(p[j], MOT_Q32_FRAC));
+
+		x = mot_acc_sub(x, mot_acc_mul(p[0], a->m[0][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[1], a->m[1][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[2], a->m[2][j]));
+		t[j] = mot_acc_floor_ov(x, MOT_Q32_FRAC, &ov);
+	}
+	if (ov) {
+		vec_neg(np, p, sat);
+		pivot_row(t, np, a, a->m[3], p, sat);
+	}
+	r.m[3][0] = t[0];
+	r.m[3][1] = t[1];
+	r.m[3][2] = t[2];
 	*out = r;
 }
 

@@ -124,7 +124,12 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 	int i;
 
 	if (rot_exact(e, q)) {
+		uint64_t ov = 0;
+
+		/* saturating only when an entry does not fit (fix.h's kernel) */
 		for (i = 0; i < 9; i++)
+			r.m[i / 3][i % 3] = mot_acc_round_ov(e[i / 3][i % 3], MOT_Q32_FRAC, &ov);
+		for (i = 0; ov && i < 9; i++)
 			r.m[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], MOT_Q32_FRAC, sat);
 	} else {
 		const mot_q32 nx = neg(x, sat), ny = neg(y, sat), nz = neg(z, sat);
@@ -151,11 +156,14 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
 {
 	mot_acc e[3][3];
+	uint64_t ov = 0;
 	int i;
 
 	if (!rot_exact(e, q))
 		return MOT_E_RANGE;
 	for (i = 0; i < 9; i++)
+		r[i / 3][i % 3] = mot_acc_round_ov(e[i / 3][i % 3], 2, &ov);
+	for (i = 0; ov && i < 9; i++)
 		r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
 	return MOT_OK;
 }

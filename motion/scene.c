@@ -4,6 +4,12 @@
 #include "decomp.h"
 #include "trig.h"
 
+#define ONE MOT_Q32_ONE
+
+static const struct mot_mat mat_id = {
+	{ { ONE, 0, 0 }, { 0, ONE, 0 }, { 0, 0, ONE }, { 0, 0, 0 } },
+};
+
 static bool in_range(int32_t idx, uint32_t n)
 {
 	return idx >= 0 && (uint32_t)idx < n;
@@ -106,44 +112,63 @@ static mot_q32 joint_value(const struct mot_scene *sc, struct mot_eval *ev,
 	return n->rest;
 }
 
+/*
+ * The linear part S . H . R and the translation of a free node (channels
+ * without keys at their rest values). Returns false when the node has no
+ * rotation, scale or shear channel: its linear part is then the identity,
+ * exactly, and m is not written.
+ */
+static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene *sc,
+			struct mot_eval *ev, const struct mot_free_strand *fs, mot_q32 frame)
+{
+	struct mot_decomp d;
+	mot_q32 v[MOT_FREE_NCHANNELS], g = mot_warp_apply(&fs->warp, frame, &ev->sat);
+	bool lin = fs->rot >= 0;
+	uint32_t k;
+
+	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+		int32_t c = fs->channel[k];
+
+		if (c >= 0) {
+			v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g, &ev->sat);
+			lin = lin || k >= MOT_FREE_SX;
+		} else {
+			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
+		}
+	}
+	for (k = 0; k < 3; k++)
+		t[k] = v[MOT_FREE_TX + k];
+	if (!lin)
+		return false;
+	if (fs->rot >= 0)
+		mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
+				   &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g, &ev->sat);
+	else
+		mot_quat_identity(&d.rot);
+	for (k = 0; k < 3; k++) {
+		d.translate[k] = t[k];
+		d.scale[k] = v[MOT_FREE_SX + k];
+		d.shear[k] = v[MOT_FREE_HXY + k];
+	}
+	mot_mat_compose(m, &d, &ev->sat);
+	return true;
+}
+
 /* Local matrix of a free node: T(-p) . S . H . R . T(p) . T(t). */
 static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
 		       const struct mot_node *n, mot_q32 frame)
 {
-	struct mot_decomp d;
-	mot_q32 v[MOT_FREE_NCHANNELS];
-	uint32_t k;
+	mot_q32 t[3];
 
 	if (n->strand < 0) {
 		mot_mat_identity(out);
 		return;
 	}
-	{
-		const struct mot_free_strand *fs = &sc->free[n->strand];
-		mot_q32 g = mot_warp_apply(&fs->warp, frame, &ev->sat);
-
-		for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
-			int32_t c = fs->channel[k];
-
-			if (c >= 0)
-				v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g,
-						      &ev->sat);
-			else
-				v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
-		}
-		if (fs->rot >= 0)
-			mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
-					   &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g,
-					   &ev->sat);
-		else
-			mot_quat_identity(&d.rot);
+	if (!free_linear(out, t, sc, ev, &sc->free[n->strand], frame)) {
+		/* T(-p) . T(p) . T(t) = T(t), exactly */
+		mot_mat_translate(out, t);
+		return;
 	}
-	for (k = 0; k < 3; k++) {
-		d.translate[k] = v[MOT_FREE_TX + k];
-		d.scale[k] = v[MOT_FREE_SX + k];
-		d.shear[k] = v[MOT_FREE_HXY + k];
-	}
-	mot_mat_compose(out, &d, &ev->sat);
 	mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 }
 
@@ -154,33 +179,71 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  * so L . P costs 4 + 2 row products instead of a full 3x3 product, and
  * the translation T(-p) . R . T(p) contributes (p - p.R) . P_lin.
  */
-static void revolute_world(struct mot_mat *w, const struct mot_mat *parent, unsigned axis,
-			   const mot_q32 p[3], mot_q32 turns, uint32_t *sat)
+static void revolute_world_sat(struct mot_mat *w, const struct mot_mat *parent, unsigned a,
+			       unsigned b, const mot_q32 p[3], mot_q32 s, mot_q32 c, uint32_t *sat)
 {
-	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
-	const unsigned a = ab[axis][0], b = ab[axis][1], o = axis;
-	struct mot_mat id;
-	mot_q32 s, c, ta, tb;
+	mot_q32 ta, tb, r[4][3];
 	unsigned j;
 
-	mot_sincos(turns, &s, &c);
-	/* p - p.R, components a and b (component o is 0) */
-	ta = p[a] - mot_acc_round(mot_acc_mac(mot_acc_mul(c, p[a]), -s, p[b]), 32, sat);
-	tb = p[b] - mot_acc_round(mot_acc_mac(mot_acc_mul(s, p[a]), c, p[b]), 32, sat);
-	if (!parent) {
-		mot_mat_identity(&id);
-		parent = &id;
-	}
+	/* the saturating twin of the fast path below, for absurd inputs */
+	ta = mot_sub_sat(p[a], mot_acc_round(mot_acc_mac(mot_acc_mul(c, p[a]), -s, p[b]), 32, sat),
+			 sat);
+	tb = mot_sub_sat(p[b], mot_acc_round(mot_acc_mac(mot_acc_mul(s, p[a]), c, p[b]), 32, sat),
+			 sat);
 	for (j = 0; j < 3; j++) {
 		mot_q32 pa = parent->m[a][j], pb = parent->m[b][j];
 		mot_acc t = mot_acc_from(parent->m[3][j], 32);
 
 		t = mot_acc_mac(mot_acc_mac(t, ta, pa), tb, pb);
-		w->m[3][j] = mot_acc_round(t, 32, sat);
-		w->m[a][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(c, pa), s, pb), 32, sat);
-		w->m[b][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(-s, pa), c, pb), 32, sat);
+		r[3][j] = mot_acc_round(t, 32, sat);
+		r[a][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(c, pa), s, pb), 32, sat);
+		r[b][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(-s, pa), c, pb), 32, sat);
+	}
+	for (j = 0; j < 3; j++) {
+		w->m[3][j] = r[3][j];
+		w->m[a][j] = r[a][j];
+		w->m[b][j] = r[b][j];
+	}
+}
+
+/* The three columns of the fast path, for constant row indices (one copy
+ * per axis: the rows are then fixed offsets, not computed ones). */
+static inline __attribute__((always_inline)) void
+revolute_cols(struct mot_mat *w, const struct mot_mat *parent, unsigned a, unsigned b,
+	      unsigned o, mot_q32 s, mot_q32 c, mot_q32 ta, mot_q32 tb, uint64_t *ov)
+{
+	unsigned j;
+
+	for (j = 0; j < 3; j++) {
+		mot_q32 pa = parent->m[a][j], pb = parent->m[b][j];
+
+		w->m[3][j] = mot_sum2_ov(ta, pa, tb, pb, parent->m[3][j], 32, ov);
+		w->m[a][j] = mot_sum2_ov(c, pa, s, pb, 0, 32, ov);
+		w->m[b][j] = mot_sum2_ov(-s, pa, c, pb, 0, 32, ov);
 		w->m[o][j] = parent->m[o][j];
 	}
+}
+
+/* w must not alias parent (a root passes NULL). */
+static void revolute_world(struct mot_mat *w, const struct mot_mat *parent, unsigned axis,
+			   const mot_q32 p[3], mot_q32 turns, uint32_t *sat)
+{
+	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
+	const unsigned a = ab[axis][0], b = ab[axis][1];
+	mot_q32 s, c, ta, tb;
+	uint64_t ov = 0;
+
+	mot_sincos(turns, &s, &c);
+	if (!parent)
+		parent = &mat_id;
+	/* p - p.R, components a and b (component o is 0) */
+	ov |= (uint64_t)__builtin_sub_overflow(p[a], mot_sum2_ov(c, p[a], -s, p[b], 0, 32, &ov),
+					       &ta);
+	ov |= (uint64_t)__builtin_sub_overflow(p[b], mot_sum2_ov(s, p[a], c, p[b], 0, 32, &ov),
+					       &tb);
+	revolute_cols(w, parent, a, b, axis, s, c, ta, tb, &ov);
+	if (ov)
+		revolute_world_sat(w, parent, a, b, p, s, c, sat);
 }
 
 void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
@@ -216,42 +279,64 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 		*rpm = r;
 }
 
+/* W = T(t) . P: P's linear part, translation t . P_lin + P_t (P = NULL: a
+ * root, W = T(t)). */
+static void translate_world(struct mot_mat *w, const struct mot_mat *parent, const mot_q32 t[3],
+			    uint32_t *sat)
+{
+	if (!parent) {
+		mot_mat_translate(w, t);
+		return;
+	}
+	*w = *parent;
+	mot_mat_apply(w->m[3], t, parent, sat);
+}
+
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out)
 {
-	uint32_t i;
+	static const mot_q32 zero[3] = { 0, 0, 0 };
+	uint32_t i, k;
 
 	for (i = 0; i < sc->nnodes; i++) {
 		const struct mot_node *n = &sc->nodes[i];
 		const struct mot_mat *parent = n->parent >= 0 ? &out->world[n->parent] : NULL;
-		struct mot_mat *w = &out->world[i];
-		mot_q32 v = 0, r = 0;
+		struct mot_mat *w = &out->world[i], local;
+		mot_q32 v = 0, r = 0, t[3];
 
-		if (n->kind == MOT_NODE_REVOLUTE && n->axis_id != MOT_AXIS_VEC) {
+		switch (n->kind) {
+		case MOT_NODE_REVOLUTE:
 			v = joint_value(sc, ev, n, frame, &r);
-			revolute_world(w, parent, n->axis_id, n->pivot, v, &ev->sat);
-		} else if (n->kind == MOT_NODE_PRISMATIC) {
-			mot_q32 t[3];
-			uint32_t k;
-
-			v = joint_value(sc, ev, n, frame, &r);
-			for (k = 0; k < 3; k++)
-				t[k] = mot_mul(v, n->axis[k], &ev->sat);
-			if (parent) {
-				/* T(t) . P: P's linear part, translation t.P_lin + P_t */
-				*w = *parent;
-				mot_mat_apply(w->m[3], t, parent, &ev->sat);
-			} else {
-				mot_mat_translate(w, t);
+			if (n->axis_id != MOT_AXIS_VEC) {
+				revolute_world(w, parent, n->axis_id, n->pivot, v, &ev->sat);
+				break;
 			}
-		} else {
-			struct mot_mat local;
-
-			mot_node_local(&local, sc, ev, i, frame, &v, &r);
+			mot_mat_rot_axis(&local, n->axis, v, &ev->sat);
+			mot_mat_about_pivot(&local, &local, n->pivot, &ev->sat);
 			if (parent)
 				mot_mat_mul(w, &local, parent, &ev->sat);
 			else
 				*w = local;
+			break;
+		case MOT_NODE_PRISMATIC:
+			v = joint_value(sc, ev, n, frame, &r);
+			for (k = 0; k < 3; k++)
+				t[k] = mot_mul(v, n->axis[k], &ev->sat);
+			translate_world(w, parent, t, &ev->sat);
+			break;
+		default:
+			if (n->strand < 0) {
+				translate_world(w, parent, zero, &ev->sat);
+			} else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame)) {
+				translate_world(w, parent, t, &ev->sat);
+			} else {
+				mot_mat_about_pivot(&local, &local, n->pivot, &ev->sat);
+				if (parent)
+					mot_mat_mul(w, &local, parent, &ev->sat);
+				else
+					*w = local;
+			}
+			break;
 		}
 		mot_mat_apply(out->pos[i], n->pivot, w, &ev->sat);
 		out->value[i] = v;
