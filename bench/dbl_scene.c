@@ -262,6 +262,14 @@ static int node_init(struct dbl_scene *sc, uint32_t i, const struct sd_node *sn,
 	}
 	if (!dbl_quantize(sn->rest * scale, &n->rest))
 		return -1;
+	for (k = 0; k < 3; k++) {
+		const double *a = n->axis;
+		uint32_t j = (k + 1) % 3, l = (k + 2) % 3;
+		bool tilted = sn->kind == MOT_NODE_REVOLUTE && sn->axis_id == MOT_AXIS_VEC;
+
+		n->rot_sq[k] = tilted ? a[j] * a[j] + a[l] * a[l] : 0;
+		n->rot_pr[k] = tilted ? a[j] * a[l] : 0;
+	}
 	if (sn->kind != MOT_NODE_FREE)
 		return curve_take(sc, ci, &n->curve, &sn->value, scale, false, p) ||
 			       curve_take(sc, ci, &n->spin, &sn->spin, 1.0, true, p) ?
@@ -423,6 +431,22 @@ static void free_local(struct dbl_mat *out, const struct dbl_scene *sc, struct d
 	dbl_mat_about_pivot(out, out, n->pivot);
 }
 
+/* scene.c's tilted_rot(): Rodrigues on the prepared squares and products */
+static void tilted_rot(struct dbl_mat *r, const struct dbl_node *n, double turns)
+{
+	const double *a = n->axis, *sq = n->rot_sq, *pr = n->rot_pr;
+	double s, c, omc;
+
+	sincos(2 * M_PI * turns, &s, &c);
+	omc = 1 - c;
+	*r = (struct dbl_mat){ {
+		{ 1 - omc * sq[0], omc * pr[2] + s * a[2], omc * pr[1] - s * a[1] },
+		{ omc * pr[2] - s * a[2], 1 - omc * sq[1], omc * pr[0] + s * a[0] },
+		{ omc * pr[1] + s * a[1], omc * pr[0] - s * a[0], 1 - omc * sq[2] },
+		{ 0, 0, 0 },
+	} };
+}
+
 /* scene.c's revolute_world(): R mixes rows a and b of the parent */
 static void revolute_world(struct dbl_mat *w, const struct dbl_mat *parent, unsigned axis,
 			   const double p[3], double turns)
@@ -480,11 +504,8 @@ void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double fram
 			struct dbl_mat local;
 
 			if (n->kind == MOT_NODE_REVOLUTE) {
-				struct dbl_quat q;
-
 				v = joint_value(sc, ev, n, frame, &r);
-				dbl_quat_from_axis_angle(&q, n->axis, 2 * M_PI * v);
-				dbl_quat_to_mat(&local, &q);
+				tilted_rot(&local, n, v);
 				dbl_mat_about_pivot(&local, &local, n->pivot);
 			} else {
 				free_local(&local, sc, ev, n, frame);

@@ -15,7 +15,9 @@
  *   - the hierarchy in one pass in index order: revolute joints about x, y
  *     or z with scene.c's specialised world update (six row products and a
  *     copy), prismatic joints as a translated parent, free nodes and tilted
- *     axes as a composed local matrix times the parent, 4x3 affine products.
+ *     axes as a composed local matrix times the parent, 4x3 affine products;
+ *     tilted axes by Rodrigues' formula on the axis' squares and products
+ *     prepared per node, as scene.c.
  * Built from the same scene description, quantised as scene_build() does, in
  * one block. Compiled -O2 like the core, without -ffast-math.
  *
@@ -61,6 +63,7 @@ struct dbl_node {
 	enum mot_axis axis_id;
 	double pivot[3], axis[3], rest;
 	int32_t curve, spin, strand;
+	double rot_sq[3], rot_pr[3]; /* tilted axis: struct mot_node's */
 };
 
 struct dbl_scene {

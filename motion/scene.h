@@ -11,6 +11,8 @@
  *     L = T(position . axis)                    prismatic joint
  *     W(root) = L, W(child) = L . W(parent)
  * and a node's reported position is its pivot in world space, (p, 1) . W.
+ * Both are computed for every node on every evaluation (scene.c says how
+ * they share their products); each entry is rounded once from the parent's.
  *
  * All arrays are owned by the caller (the scene loader packs them into one
  * block, see arena.h); the scene itself is read-only while it plays. The
@@ -52,6 +54,13 @@ struct mot_node {
 	int32_t curve;    /* joints: curve of the value, or -1 */
 	int32_t spin;     /* revolute joints: rpm curve (prepared with integral), or -1 */
 	int32_t strand;   /* free nodes: index into scene->free, or -1 */
+	/* Derived from axis by mot_node_prepare(), for revolute joints about a
+	 * tilted axis (zero otherwise): the constant parts of the rotation
+	 * matrix, in Q2.62, with (k, j, l) = (k, k+1, k+2) mod 3:
+	 *     R[j][j] = 1 - (1 - cos) rot_sq[j],  rot_sq[j] = a_k^2 + a_l^2
+	 *     R[j][l], R[l][j] = (1 - cos) rot_pr[k] +- sin a_k, rot_pr[k] = a_j a_l */
+	int64_t rot_sq[3];
+	int64_t rot_pr[3];
 };
 
 struct mot_scene {
@@ -91,9 +100,17 @@ struct mot_pose {
 };
 
 /*
+ * Fill the derived fields of a node (rot_sq, rot_pr) from its kind, axis_id
+ * and axis. Whoever builds the node array calls it for every node once
+ * those are set, before mot_scene_validate(). Init only.
+ */
+void mot_node_prepare(struct mot_node *n);
+
+/*
  * Check the scene's structure: every parent before its child (MOT_E_PARENT),
  * every index in range and of the right kind for its node (MOT_E_KIND,
- * MOT_E_INVAL), every joint axis unit length. Init only.
+ * MOT_E_INVAL), every joint axis unit length and every node's derived fields
+ * those of mot_node_prepare() (MOT_E_INVAL). Init only.
  */
 int mot_scene_validate(const struct mot_scene *sc);
 

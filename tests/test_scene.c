@@ -365,6 +365,18 @@ static void test_bad_input(void **state)
 		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_PARENT);
 		nodes[1].parent = 0;
 		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
+		/* the claw's tilted axis with derived fields that do not match it
+		 * (an axis edited without mot_node_prepare), then prepared again */
+		nodes[4].axis[0] = nodes[4].axis[2];
+		nodes[4].axis[2] = -nodes[4].axis[0];
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_INVAL);
+		mot_node_prepare(&nodes[4]);
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
+		/* derived fields on a node that has none */
+		nodes[1].rot_pr[0] = 1;
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_INVAL);
+		mot_node_prepare(&nodes[1]);
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
 	}
 	/* too few cursors for the scene */
 	ev.cursors = cur;
