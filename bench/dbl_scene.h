@@ -12,12 +12,13 @@
  *   - rotation tracks: slerp prepared per key interval (and squad's inner
  *     slerp), one sincos per in-between, squad's outer slerp per tick as in
  *     strand.c;
- *   - the hierarchy in one pass in index order: revolute joints about x, y
- *     or z with scene.c's specialised world update (six row products and a
- *     copy), prismatic joints as a translated parent, free nodes and tilted
- *     axes as a composed local matrix times the parent, 4x3 affine products;
- *     tilted axes by Rodrigues' formula on the axis' squares and products
- *     prepared per node, as scene.c.
+ *   - the hierarchy in one pass in index order, as scene.c: the pivot's
+ *     world position (p + t) . P_lin + P_t and the world translation
+ *     pos - p . W_lin from it; revolute joints about x, y or z mixing two
+ *     rows of the parent, prismatic joints and free nodes without rotation,
+ *     scale or shear as a translated parent, free nodes and tilted axes as
+ *     their linear part times the parent's; tilted axes by Rodrigues'
+ *     formula on the axis' squares and products prepared per node.
  * Built from the same scene description, quantised as scene_build() does, in
  * one block. Compiled -O2 like the core, without -ffast-math.
  *

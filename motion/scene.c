@@ -241,100 +241,197 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
 }
 
 /*
- * World matrix of a revolute joint about a coordinate axis. R mixes two rows
- * (a, b) of whatever follows it and leaves the third alone:
- *     Rz: (a, b) = (0, 1)   Rx: (1, 2)   Ry: (2, 0)
- * so L . P costs 4 + 2 row products instead of a full 3x3 product, and
- * the translation T(-p) . R . T(p) contributes (p - p.R) . P_lin.
+ * World matrix W and pivot position of a node, from its parent's world
+ * matrix P (the identity for a root). Every node's local matrix has the form
+ * L = T(-p) . M . T(p) . T(t), with M its linear part (S.H.R of a free node,
+ * the rotation of a revolute joint, the identity for a prismatic one) and t
+ * its translation (zero for a revolute joint). The pivot is a fixed point of
+ * T(-p) . M . T(p), so (p, 1) . L = (p + t, 1), and
+ *     pos   = (p + t) . P_lin + P_t
+ *     W_lin = M . P_lin
+ *     W_t   = pos - p . W_lin            (pos = (p, 1) . W)
+ * with W_t taken from pos's exact sum before it is rounded: three products a
+ * column where forming L's translation p - p.M + t and then L . P costs six.
+ * The rounded W maps the pivot onto pos within half an LSB, so a child's
+ * position errs by its offset from this pivot times W's rounding, not by its
+ * distance from the origin. Each entry is one sum of exact products rounded
+ * once (fix.h's kernel); when a sum does not fit, node_world_sat() redoes
+ * the node with the saturating sums, which give the same bits otherwise.
  */
-static void revolute_world_sat(struct mot_mat *w, const struct mot_mat *parent, unsigned a,
-			       unsigned b, const mot_q32 p[3], mot_q32 s, mot_q32 c, uint32_t *sat)
+static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
+			   const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],
+			   uint32_t *sat)
 {
-	mot_q32 ta, tb, r[4][3];
-	unsigned j;
+	mot_q32 r[4][3], q[3], np[3];
+	unsigned i, j;
 
-	/* the saturating twin of the fast path below, for absurd inputs */
-	ta = mot_sub_sat(p[a], mot_acc_round(mot_acc_mac(mot_acc_mul(c, p[a]), -s, p[b]), 32, sat),
-			 sat);
-	tb = mot_sub_sat(p[b], mot_acc_round(mot_acc_mac(mot_acc_mul(s, p[a]), c, p[b]), 32, sat),
-			 sat);
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++) {
+			const mot_q32 y[3] = { par->m[0][j], par->m[1][j], par->m[2][j] };
+
+			r[i][j] = mot_sum_prod(m->m[i], y, 3, sat);
+		}
+	for (j = 0; j < 3; j++)
+		np[j] = mot_sub_sat(0, p[j], sat);
 	for (j = 0; j < 3; j++) {
-		mot_q32 pa = parent->m[a][j], pb = parent->m[b][j];
-		mot_acc t = mot_acc_from(parent->m[3][j], 32);
+		const mot_q32 x[10] = { p[0], p[1], p[2], t[0], t[1], t[2], par->m[3][j],
+					np[0], np[1], np[2] };
+		const mot_q32 y[10] = { par->m[0][j], par->m[1][j], par->m[2][j], par->m[0][j],
+					par->m[1][j], par->m[2][j], ONE, r[0][j], r[1][j], r[2][j] };
 
-		t = mot_acc_mac(mot_acc_mac(t, ta, pa), tb, pb);
-		r[3][j] = mot_acc_round(t, 32, sat);
-		r[a][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(c, pa), s, pb), 32, sat);
-		r[b][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(-s, pa), c, pb), 32, sat);
+		q[j] = mot_sum_prod(x, y, 7, sat);
+		r[3][j] = mot_sum_prod(x, y, 10, sat);
 	}
 	for (j = 0; j < 3; j++) {
-		w->m[3][j] = r[3][j];
-		w->m[a][j] = r[a][j];
-		w->m[b][j] = r[b][j];
-	}
-}
-
-/* The three columns of the fast path, for constant row indices (one copy
- * per axis: the rows are then fixed offsets, not computed ones). */
-static inline __attribute__((always_inline)) void
-revolute_cols(struct mot_mat *w, const struct mot_mat *parent, unsigned a, unsigned b,
-	      unsigned o, mot_q32 s, mot_q32 c, mot_q32 ta, mot_q32 tb, uint64_t *ov)
-{
-	unsigned j;
-
-	for (j = 0; j < 3; j++) {
-		mot_q32 pa = parent->m[a][j], pb = parent->m[b][j];
-
-		w->m[3][j] = mot_sum2_ov(ta, pa, tb, pb, parent->m[3][j], 32, ov);
-		w->m[a][j] = mot_sum2_ov(c, pa, s, pb, 0, 32, ov);
-		w->m[b][j] = mot_sum2_ov(-s, pa, c, pb, 0, 32, ov);
-		w->m[o][j] = parent->m[o][j];
+		pos[j] = q[j];
+		for (i = 0; i < 4; i++)
+			w->m[i][j] = r[i][j];
 	}
 }
 
-/* w must not alias parent (a root passes NULL). */
-static void revolute_world(struct mot_mat *w, const struct mot_mat *parent, unsigned axis,
-			   const mot_q32 p[3], mot_q32 turns, uint32_t *sat)
+/* Any linear part M (free nodes, tilted joints); M must not alias W. */
+static void node_world(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
+		       const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],
+		       uint32_t *sat)
 {
-	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
-	const unsigned a = ab[axis][0], b = ab[axis][1];
-	mot_q32 s, c, ta, tb;
+	const mot_q32(*y)[3] = par->m;
+	mot_q32 q[3];
 	uint64_t ov = 0;
+	unsigned i, j;
+
+	for (i = 0; i < 3; i++)
+		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			w->m[i][j] = mot_sum3_ov(m->m[i][0], y[0][j], m->m[i][1], y[1][j],
+						 m->m[i][2], y[2][j], 0, 32, &ov);
+	for (j = 0; j < 3; j++) {
+		/* at most three products and an addend, then three more from a
+		 * sum that fits (else ov is set already): no wrap goes unseen */
+		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), q[0], y[0][j]);
+
+		x = mot_acc_mac(mot_acc_mac(x, q[1], y[1][j]), q[2], y[2][j]);
+		pos[j] = mot_acc_floor_ov(x, 32, &ov);
+		x = mot_acc_sub(x, mot_acc_mul(p[0], w->m[0][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[1], w->m[1][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[2], w->m[2][j]));
+		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+	}
+	if (ov)
+		node_world_sat(w, pos, par, m, p, t, sat);
+}
+
+/* M = I (prismatic joints, free nodes without rotation, scale or shear):
+ * W = T(t) . P, P's linear part and translation t . P_lin + P_t, and
+ * pos = W_t + p . P_lin. */
+static void translate_world(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
+			    const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
+{
+	const mot_q32(*y)[3] = par->m;
+	uint64_t ov = 0;
+	unsigned j;
+
+	for (j = 0; j < 3; j++) {
+		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), t[0], y[0][j]);
+
+		x = mot_acc_mac(mot_acc_mac(x, t[1], y[1][j]), t[2], y[2][j]);
+		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+		x = mot_acc_mac(mot_acc_mac(x, p[0], y[0][j]), p[1], y[1][j]);
+		pos[j] = mot_acc_floor_ov(mot_acc_mac(x, p[2], y[2][j]), 32, &ov);
+		w->m[0][j] = y[0][j];
+		w->m[1][j] = y[1][j];
+		w->m[2][j] = y[2][j];
+	}
+	if (ov)
+		node_world_sat(w, pos, par, &mat_id, p, t, sat);
+}
+
+/*
+ * A revolute joint about a coordinate axis o: R mixes two rows (a, b) of
+ * whatever follows it and leaves the third alone,
+ *     Rz: (a, b) = (0, 1)   Rx: (1, 2)   Ry: (2, 0)
+ * so W_lin costs 4 row products instead of 9, and in
+ * W_t = pos - p . W_lin the term p_o P_o cancels: with
+ * U = P_t + p_a P_a + p_b P_b, pos = U + p_o P_o and W_t = U - p_a W_a -
+ * p_b W_b. Nine products a column.
+ */
+static const unsigned rev_rows[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
+
+/* R about coordinate axis o as a matrix (the local matrix, the slow path) */
+static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
+{
+	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
+
+	*m = mat_id;
+	m->m[a][a] = c;
+	m->m[a][b] = s;
+	m->m[b][a] = -s;
+	m->m[b][b] = c;
+}
+
+static void revolute_world(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
+			   unsigned o, const mot_q32 p[3], mot_q32 turns, uint32_t *sat)
+{
+	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
+	const mot_q32(*y)[3] = par->m;
+	mot_q32 s, c;
+	uint64_t ov = 0;
+	unsigned j;
 
 	mot_sincos(turns, &s, &c);
-	if (!parent)
-		parent = &mat_id;
-	/* p - p.R, components a and b (component o is 0) */
-	ov |= (uint64_t)__builtin_sub_overflow(p[a], mot_sum2_ov(c, p[a], -s, p[b], 0, 32, &ov),
-					       &ta);
-	ov |= (uint64_t)__builtin_sub_overflow(p[b], mot_sum2_ov(s, p[a], c, p[b], 0, 32, &ov),
-					       &tb);
-	revolute_cols(w, parent, a, b, axis, s, c, ta, tb, &ov);
-	if (ov)
-		revolute_world_sat(w, parent, a, b, p, s, c, sat);
+	for (j = 0; j < 3; j++) {
+		mot_q32 pa = y[a][j], pb = y[b][j];
+		mot_q32 wa = mot_sum2_ov(c, pa, s, pb, 0, 32, &ov);
+		mot_q32 wb = mot_sum2_ov(-s, pa, c, pb, 0, 32, &ov);
+		mot_acc u = mot_acc_mac(mot_acc_start(y[3][j], 32), p[a], pa);
+
+		u = mot_acc_mac(u, p[b], pb);
+		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
+		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, p[o], y[o][j]), 32, &ov);
+		u = mot_acc_sub(u, mot_acc_mul(p[a], wa));
+		w->m[3][j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(p[b], wb)), 32, &ov);
+		w->m[a][j] = wa;
+		w->m[b][j] = wb;
+		w->m[o][j] = y[o][j];
+	}
+	if (ov) {
+		struct mot_mat m;
+		static const mot_q32 zero[3] = { 0, 0, 0 };
+
+		axis_rot(&m, o, s, c);
+		node_world_sat(w, pos, par, &m, p, zero, sat);
+	}
+}
+
+/* t = v . axis, the offset of a prismatic joint */
+static void joint_offset(mot_q32 t[3], mot_q32 v, const mot_q32 axis[3], uint32_t *sat)
+{
+	unsigned k;
+
+	for (k = 0; k < 3; k++)
+		t[k] = mot_mul(v, axis[k], sat);
 }
 
 void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
 		    uint32_t node, mot_q32 frame, mot_q32 *value, mot_q32 *rpm)
 {
 	const struct mot_node *n = &sc->nodes[node];
-	mot_q32 v = 0, r = 0, t[3];
-	uint32_t k;
+	mot_q32 v = 0, r = 0, t[3], s, c;
 
 	switch (n->kind) {
 	case MOT_NODE_REVOLUTE:
 		v = joint_value(sc, ev, n, frame, &r);
 		if (n->axis_id == MOT_AXIS_VEC) {
 			tilted_rot(out, n, v);
-			mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		} else {
-			revolute_world(out, NULL, n->axis_id, n->pivot, v, &ev->sat);
+			mot_sincos(v, &s, &c);
+			axis_rot(out, n->axis_id, s, c);
 		}
+		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
 		v = joint_value(sc, ev, n, frame, &r);
-		for (k = 0; k < 3; k++)
-			t[k] = mot_mul(v, n->axis[k], &ev->sat);
+		joint_offset(t, v, n->axis, &ev->sat);
 		mot_mat_translate(out, t);
 		break;
 	default:
@@ -347,66 +444,42 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 		*rpm = r;
 }
 
-/* W = T(t) . P: P's linear part, translation t . P_lin + P_t (P = NULL: a
- * root, W = T(t)). */
-static void translate_world(struct mot_mat *w, const struct mot_mat *parent, const mot_q32 t[3],
-			    uint32_t *sat)
-{
-	if (!parent) {
-		mot_mat_translate(w, t);
-		return;
-	}
-	*w = *parent;
-	mot_mat_apply(w->m[3], t, parent, sat);
-}
-
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out)
 {
 	static const mot_q32 zero[3] = { 0, 0, 0 };
-	uint32_t i, k;
+	uint32_t i;
 
 	for (i = 0; i < sc->nnodes; i++) {
 		const struct mot_node *n = &sc->nodes[i];
-		const struct mot_mat *parent = n->parent >= 0 ? &out->world[n->parent] : NULL;
+		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
 		struct mot_mat *w = &out->world[i], local;
-		mot_q32 v = 0, r = 0, t[3];
+		mot_q32 *pos = out->pos[i], v = 0, r = 0, t[3];
 
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
 			v = joint_value(sc, ev, n, frame, &r);
 			if (n->axis_id != MOT_AXIS_VEC) {
-				revolute_world(w, parent, n->axis_id, n->pivot, v, &ev->sat);
-				break;
+				revolute_world(w, pos, par, n->axis_id, n->pivot, v, &ev->sat);
+			} else {
+				tilted_rot(&local, n, v);
+				node_world(w, pos, par, &local, n->pivot, zero, &ev->sat);
 			}
-			tilted_rot(&local, n, v);
-			mot_mat_about_pivot(&local, &local, n->pivot, &ev->sat);
-			if (parent)
-				mot_mat_mul(w, &local, parent, &ev->sat);
-			else
-				*w = local;
 			break;
 		case MOT_NODE_PRISMATIC:
 			v = joint_value(sc, ev, n, frame, &r);
-			for (k = 0; k < 3; k++)
-				t[k] = mot_mul(v, n->axis[k], &ev->sat);
-			translate_world(w, parent, t, &ev->sat);
+			joint_offset(t, v, n->axis, &ev->sat);
+			translate_world(w, pos, par, n->pivot, t, &ev->sat);
 			break;
 		default:
-			if (n->strand < 0) {
-				translate_world(w, parent, zero, &ev->sat);
-			} else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame)) {
-				translate_world(w, parent, t, &ev->sat);
-			} else {
-				mot_mat_about_pivot(&local, &local, n->pivot, &ev->sat);
-				if (parent)
-					mot_mat_mul(w, &local, parent, &ev->sat);
-				else
-					*w = local;
-			}
+			if (n->strand < 0)
+				translate_world(w, pos, par, n->pivot, zero, &ev->sat);
+			else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
+				translate_world(w, pos, par, n->pivot, t, &ev->sat);
+			else
+				node_world(w, pos, par, &local, n->pivot, t, &ev->sat);
 			break;
 		}
-		mot_mat_apply(out->pos[i], n->pivot, w, &ev->sat);
 		out->value[i] = v;
 		out->rpm[i] = r;
 	}

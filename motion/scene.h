@@ -11,8 +11,11 @@
  *     L = T(position . axis)                    prismatic joint
  *     W(root) = L, W(child) = L . W(parent)
  * and a node's reported position is its pivot in world space, (p, 1) . W.
- * Both are computed for every node on every evaluation (scene.c says how
- * they share their products); each entry is rounded once from the parent's.
+ * Both are computed for every node on every evaluation, each entry rounded
+ * once from the parent's world matrix: the position as (p + t) . W(parent)
+ * (t: the node's translation), which the rounded W maps the pivot onto
+ * within half an LSB (scene.c's node_world explains why and how W's
+ * translation shares its products).
  *
  * All arrays are owned by the caller (the scene loader packs them into one
  * block, see arena.h); the scene itself is read-only while it plays. The
