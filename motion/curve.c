@@ -21,6 +21,8 @@
  */
 #include "curve.h"
 
+#include "trig_table.h" /* the seed of 1/x (mot_trig_recip_q14) */
+
 #define ONE62 MOT_Q62_ONE
 
 /* Newton start rules (seg->start). */
@@ -108,7 +110,7 @@ static int64_t round_shift(int64_t x, int sh, uint32_t *sat)
 /* ref + round(p / 2^sh), saturating only when the sum does not fit: p / 2^sh
  * alone may exceed int64 by a little where ref brings it back (a piece from
  * -2^62 to 2^62). */
-static mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
+static mot_q32 value_of_wide(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
 {
 	mot_acc a;
 	uint64_t lo;
@@ -125,6 +127,19 @@ static mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
 		return mot_acc_is_neg(a) ? MOT_Q32_MIN : MOT_Q32_MAX;
 	}
 	return (mot_q32)lo;
+}
+
+/* The same in int64 when nothing overflows: scales are positive and the
+ * polynomials stay below 2^62, so this is the path every valid curve takes. */
+static inline mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
+{
+	int64_t q;
+	mot_q32 r;
+
+	if (sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
+	    !__builtin_add_overflow(ref, q >> sh, &r))
+		return r;
+	return value_of_wide(ref, p, sh, sat);
 }
 
 /*
@@ -163,9 +178,9 @@ static bool acc_div_round(int64_t *out, mot_acc num, int sh, uint64_t den)
  * saturation test): one Horner or de Casteljau step with u in Q2.62. */
 static inline int64_t mul62(int64_t a, int64_t u)
 {
-	mot_acc p = mot_acc_add(mot_acc_mul(a, u), mot_acc_make(0, (uint64_t)1 << 61));
+	uint64_t ov = 0; /* |a u| < 2^125: the result fits */
 
-	return (int64_t)((mot_acc_lo(p) >> 62) | (mot_acc_hi(p) << 2));
+	return mot_acc_round_ov(mot_acc_mul(a, u), 62, &ov);
 }
 
 /*
@@ -294,24 +309,27 @@ static uint32_t locate_key(const struct mot_curve *c, struct mot_cursor *cur, mo
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-29, with |q| < 2^62;
+ * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-30, with |q| < 2^62;
  * false when it would not fit. The reciprocal of d comes from Newton-Raphson
- * on its top 31 bits (the 48/17 - 32/17 y start, three steps, Hacker's
- * Delight / Goldschmidt), products only: a Newton step of the curve solve
- * needs only a good direction and size, the solve's own convergence makes up
- * the rest, and no target has to divide at run time.
+ * on its top 31 bits: trig.c's table of 1/x (within 2^-8), then two steps,
+ * 2^-16 and 2^-32 (Hacker's Delight / Goldschmidt), products only. A Newton
+ * step of the curve solve needs only a good direction and size, the solve's
+ * own convergence makes up the rest, and no target has to divide at run
+ * time. Each step is a dependent product chain in a latency-bound loop:
+ * the table saves the third step of a linear seed.
  */
 static bool ratio62(int64_t r, int64_t d, int64_t *q)
 {
 	unsigned n = mot_clz64((uint64_t)d);
 	uint64_t y = ((uint64_t)d << n) >> 33; /* d = y 2^(33 - n), y in [2^30, 2^31) */
-	int64_t z = 6063483241 - (int64_t)((4042322161u * y) >> 31); /* 2^62 / y, Q31 */
+	/* 2^62 / y in Q31: the Q14 seed of 1 / (y / 2^31) */
+	int64_t z = (int64_t)mot_trig_recip_q14[(y >> 22) & 255] << 17;
 	mot_acc p;
 	int it;
 
-	/* e = 2^62 (1 - y z), |e| < 2^62 / 17: z e / 2^62 in two shifts (>> of a
+	/* e = 2^62 (1 - y z), |e| <= 2^54: z e / 2^62 in two shifts (>> of a
 	 * negative int64 is arithmetic in gcc and clang, as fix.h relies on) */
-	for (it = 0; it < 3; it++) {
+	for (it = 0; it < 2; it++) {
 		int64_t e = ((int64_t)1 << 62) - (int64_t)y * z;
 
 		z += (z * (e >> 31)) >> 31;

@@ -290,9 +290,9 @@ static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_m
 }
 
 /* Any linear part M (free nodes, tilted joints); M must not alias W. */
-static void node_world(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
-		       const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],
-		       uint32_t *sat)
+static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		       const struct mot_mat *restrict par, const struct mot_mat *restrict m,
+		       const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
 {
 	const mot_q32(*y)[3] = par->m;
 	mot_q32 q[3];
@@ -324,8 +324,9 @@ static void node_world(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *
 /* M = I (prismatic joints, free nodes without rotation, scale or shear):
  * W = T(t) . P, P's linear part and translation t . P_lin + P_t, and
  * pos = W_t + p . P_lin. */
-static void translate_world(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
-			    const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
+static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			    const struct mot_mat *restrict par, const mot_q32 p[3],
+			    const mot_q32 t[3], uint32_t *sat)
 {
 	const mot_q32(*y)[3] = par->m;
 	uint64_t ov = 0;
@@ -369,30 +370,34 @@ static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
 	m->m[b][b] = c;
 }
 
-static void revolute_world(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
-			   unsigned o, const mot_q32 p[3], mot_q32 turns, uint32_t *sat)
+static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
+			   mot_q32 turns, uint32_t *sat)
 {
 	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
-	const mot_q32(*y)[3] = par->m;
+	const mot_q32 *restrict ya = par->m[a], *restrict yb = par->m[b];
+	const mot_q32 *restrict yo = par->m[o], *restrict yt = par->m[3];
+	mot_q32 *restrict wa = w->m[a], *restrict wb = w->m[b];
+	mot_q32 *restrict wo = w->m[o], *restrict wt = w->m[3];
+	const mot_q32 pa = p[a], pb = p[b], po = p[o];
 	mot_q32 s, c;
 	uint64_t ov = 0;
 	unsigned j;
 
 	mot_sincos(turns, &s, &c);
 	for (j = 0; j < 3; j++) {
-		mot_q32 pa = y[a][j], pb = y[b][j];
-		mot_q32 wa = mot_sum2_ov(c, pa, s, pb, 0, 32, &ov);
-		mot_q32 wb = mot_sum2_ov(-s, pa, c, pb, 0, 32, &ov);
-		mot_acc u = mot_acc_mac(mot_acc_start(y[3][j], 32), p[a], pa);
+		mot_q32 ra = mot_sum2_ov(c, ya[j], s, yb[j], 0, 32, &ov);
+		mot_q32 rb = mot_sum2_ov(-s, ya[j], c, yb[j], 0, 32, &ov);
+		mot_acc u = mot_acc_mac(mot_acc_start(yt[j], 32), pa, ya[j]);
 
-		u = mot_acc_mac(u, p[b], pb);
+		u = mot_acc_mac(u, pb, yb[j]);
 		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
-		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, p[o], y[o][j]), 32, &ov);
-		u = mot_acc_sub(u, mot_acc_mul(p[a], wa));
-		w->m[3][j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(p[b], wb)), 32, &ov);
-		w->m[a][j] = wa;
-		w->m[b][j] = wb;
-		w->m[o][j] = y[o][j];
+		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, po, yo[j]), 32, &ov);
+		u = mot_acc_sub(u, mot_acc_mul(pa, ra));
+		wt[j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(pb, rb)), 32, &ov);
+		wa[j] = ra;
+		wb[j] = rb;
+		wo[j] = yo[j];
 	}
 	if (ov) {
 		struct mot_mat m;
