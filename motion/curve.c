@@ -13,7 +13,7 @@
  * all done here at init; evaluation multiplies.
  *
  * Real time. mot_curve_eval() and mot_curve_integral() touch only the curve,
- * its keys and segments, and a small stack frame (bezier: 32 int64);
+ * its keys and segments, and a small stack frame (bezier: 62 int64);
  * they allocate nothing, take no lock and run in bounded time: a segment
  * lookup is O(1) for a cursor that moved to the same or next segment and
  * O(log n) otherwise; the Newton solve of the approximating kinds stops
@@ -375,7 +375,52 @@ struct solve {
 	const struct mot_curve_seg *s;
 	int64_t d;        /* target: frame - fref, scaled by 2^fsh */
 	int it;           /* iterations taken (mot_curve_newton_iterations) */
+	const int64_t *pw; /* bezier in power form: the coefficients, else NULL */
 };
+
+/*
+ * Bezier in power form. With x_i the offsets of the keys from the first,
+ *     B(u) = sum x_i C(m, i) u^i (1 - u)^(m - i) = sum a_k u^k,
+ *     a_k = C(m, k) Delta^k x_0,     m = n - 1, a_0 = 0,
+ * (Delta^k: the k-th forward difference), so Horner's rule gives the frame
+ * and its derivative for 2m - 1 products and the value for m, where de
+ * Casteljau's algorithm takes m (m + 1) / 2 for each. The power form is
+ * ill-conditioned: sum |a_k| can reach 3^m max |x_i| while the curve stays
+ * within max |x_i|, and Horner's rounding is relative to sum |a_k|. So the
+ * coefficients are kept as exact integers (raw Q32.32 units) scaled by 2^sh,
+ * sum k |a_k| 2^sh < 2^61 for the frame (its derivative's partial sums too)
+ * and sum |a_k| 2^sh < 2^61 for the value, and the form is used only when
+ * sh >= 8: Horner's m roundings of half a unit stay below 1/16 LSB. Other
+ * curves (many keys, or keys far apart: 12 keys over +-1000 units, 32 keys
+ * of any size) keep de Casteljau. The coefficients live in seg[].bz[]: the
+ * frame's a_1 .. a_m in slots 0 .. m - 1, the value's in m .. 2m - 1, slot
+ * j at seg[j / 8].bz[j % 8] (the n - 1 entries of a Bezier curve hold
+ * 8 (n - 1) >= 2m slots).
+ */
+#define POWER_MIN_SHIFT 8
+
+static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int64_t *df)
+{
+	int64_t r = a[m - 1], d = (int64_t)m * a[m - 1];
+	uint32_t k;
+
+	for (k = m - 1; k >= 1; k--) {
+		r = mul62(r, u) + a[k - 1];
+		d = mul62(d, u) + (int64_t)k * a[k - 1];
+	}
+	*f = mul62(r, u);
+	*df = d;
+}
+
+static int64_t power_value(const int64_t *a, uint32_t m, int64_t u)
+{
+	int64_t r = a[m - 1];
+	uint32_t k;
+
+	for (k = m - 1; k >= 1; k--)
+		r = mul62(r, u) + a[k - 1];
+	return mul62(r, u);
+}
 
 /* Bezier: de Casteljau at u on the keys' frames (or values) relative to the
  * first key, scaled by 2^fsh (2^vsh), until `left` points remain in w[]. */
@@ -443,7 +488,9 @@ static int64_t solve_u(struct solve *sv, int64_t u)
 		int64_t f, df, du = 0, un = 0, tol;
 		bool newton;
 
-		if (bezier) {
+		if (sv->pw) {
+			power_frame(sv->pw, sv->c->nkeys - 1, u, &f, &df);
+		} else if (bezier) {
 			bezier_frame(sv->c, u, &f, &df);
 		} else {
 			f = poly_eval(s->fc, u);
@@ -501,11 +548,19 @@ static mot_q32 approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 {
 	const struct mot_curve_seg *s;
 	struct solve sv;
-	int64_t u;
+	int64_t u, pw[2 * (MOT_BEZIER_MAX_KEYS - 1)];
+	uint32_t m = c->nkeys - 1, j;
 
 	sv.c = c;
+	sv.pw = NULL;
 	if (c->kind == MOT_INTERP_BEZIER) {
 		s = &c->seg[0];
+		if (c->power) {
+			/* contiguous for the iterations */
+			for (j = 0; j < 2 * m; j++)
+				pw[j] = c->seg[j / 8].bz[j % 8];
+			sv.pw = pw;
+		}
 	} else {
 		s = &c->seg[locate_seg(c, cur, f)];
 	}
@@ -518,6 +573,8 @@ static mot_q32 approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		u = ONE62 - cbrt62(ONE62 - u);
 	u = solve_u(&sv, u);
 	*iters = sv.it;
+	if (sv.pw)
+		return value_of(s->vref, power_value(pw + m, m, u), s->vsh, sat);
 	if (c->kind == MOT_INTERP_BEZIER)
 		return bezier_value(c, u, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
@@ -898,6 +955,54 @@ static int bezier_shift(int64_t maxdiff)
 	return maxdiff == 0 ? 0 : 58 - (int)bitlen64((uint64_t)maxdiff);
 }
 
+/* The power form of a Bezier curve when it keeps its precision (see
+ * power_frame): exact coefficients and their scales, or c->power false. */
+static void prep_power(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, m = n - 1, i, j, side;
+	int64_t a[2][MOT_BEZIER_MAX_KEYS - 1];
+	unsigned len[2];
+
+	c->power = false;
+	for (side = 0; side < 2; side++) {
+		mot_acc d[MOT_BEZIER_MAX_KEYS];
+		uint64_t b = 1, sum = 0;
+
+		for (i = 0; i < n; i++)
+			d[i] = mot_acc_from(side ? k[i].value - k[0].value
+						 : k[i].frame - k[0].frame, 0);
+		for (j = 1; j <= m; j++) {
+			/* d[0] = Delta^j x_0 (|.| < 2^(63 + j)), b = C(m, j) */
+			for (i = 0; i + j < n; i++)
+				d[i] = mot_acc_sub(d[i + 1], d[i]);
+			b = b * (m - j + 1) / j;
+			if (acc_bitlen(d[0]) + bitlen64(b) > 54)
+				return; /* |a_j| may reach 2^54: out of the form's range */
+			a[side][j - 1] = (int64_t)mot_acc_lo(d[0]) * (int64_t)b;
+			/* below 32 * 31 * 2^54 */
+			sum += (side ? 1 : j) * (uint64_t)mot_abs(a[side][j - 1]);
+		}
+		len[side] = bitlen64(sum);
+		if (len[side] > 61 - POWER_MIN_SHIFT)
+			return;
+	}
+	for (side = 0; side < 2; side++) {
+		int sh = 61 - (int)len[side];
+
+		for (j = 0; j < m; j++) {
+			uint32_t slot = side * m + j;
+
+			c->seg[slot / 8].bz[slot % 8] = a[side][j] * ((int64_t)1 << sh);
+		}
+		if (side)
+			c->seg[0].vsh = (int16_t)sh;
+		else
+			c->seg[0].fsh = (int16_t)sh;
+	}
+	c->power = true;
+}
+
 static int prep_bezier(struct mot_curve *c)
 {
 	const struct mot_key *k = c->keys;
@@ -917,6 +1022,7 @@ static int prep_bezier(struct mot_curve *c)
 	s->vref = k[0].value;
 	s->f1 = k[c->nkeys - 1].frame;
 	s->start = START_CHORD;
+	prep_power(c);
 	return mot_recip_init(&s->inv_w, s->f1 - s->f0);
 }
 
@@ -1057,7 +1163,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	c->kind = (uint32_t)kind;
 	c->keys = keys;
 	c->seg = seg;
-	c->seg_ease = c->span_ease = c->integral = false;
+	c->seg_ease = c->span_ease = c->integral = c->power = false;
 	if (!opts)
 		opts = &defaults;
 	if (mot_curve_seg_count(kind, 1) == 0 || (nkeys > 0 && !keys))

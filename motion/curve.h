@@ -37,8 +37,9 @@
  * Cost per evaluation, playing 10 keys at 1 kHz ticks with a cursor (x86_64,
  * AMD EPYC, -O2; random access adds 10-30 ns): step 5 ns, linear 8 ns,
  * hermite 10 ns, bspline 70-85 ns, beta 80-95 ns (about 3.5 Newton
- * iterations), bezier O(n^2) per iteration: 130 ns for 4 keys, 400 ns for
- * 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
+ * iterations); bezier O(n) per iteration in power form (a few keys, not
+ * too far apart: 150 ns for 10 keys over 100 units and 200 frames), else
+ * O(n^2) by de Casteljau: 130 ns for 4 keys, 400 ns for 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
  * ratios of 1e4 and more, beta1 < 0.01, beta2 > 100) flatten a piece's frame
  * near its ends and take up to about 20 iterations; the solve never exceeds
  * 64 (NEWTON_MAX_IT in curve.c).
@@ -58,8 +59,9 @@ enum mot_interp {
 	MOT_INTERP_BEZIER,
 };
 
-/* Most keys a Bezier curve may have: it is one curve of degree n-1 and is
- * evaluated by de Casteljau's algorithm, O(n^2) per evaluation. */
+/* Most keys a Bezier curve may have: it is one curve of degree n-1,
+ * evaluated in power form (O(n)) where that keeps its precision and by de
+ * Casteljau's algorithm (O(n^2)) otherwise. */
 #define MOT_BEZIER_MAX_KEYS 32
 
 struct mot_key {
@@ -100,10 +102,17 @@ struct mot_curve_opts {
 struct mot_curve_seg {
 	mot_q32 f0, f1;          /* frames covered by piece j: [f0, f1) */
 	mot_q32 vref, fref;      /* reference value and frame of the polynomials */
-	int64_t c[4];            /* value polynomial P */
 	union {
-		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
-		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
+		struct {
+			int64_t c[4];            /* value polynomial P */
+			union {
+				int64_t fc[4];   /* frame polynomial F (bspline, beta) */
+				int64_t ic[4];   /* c[p] / (p + 1): the mean value
+						  * (hermite integral) */
+			};
+		};
+		int64_t bz[8];   /* bezier in power form: coefficients 8j .. 8j + 7
+				  * of both polynomials (curve.c) */
 	};
 	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
 	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
@@ -118,6 +127,7 @@ struct mot_curve {
 	uint32_t nkeys;
 	uint32_t nseg;          /* entries of seg[] in use */
 	bool seg_ease;          /* some key interval has a non-zero ease fraction */
+	bool power;             /* bezier evaluated in power form (curve.c) */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
 	const struct mot_key *keys;
