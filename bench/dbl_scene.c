@@ -403,7 +403,7 @@ static bool free_linear(struct dbl_mat *m, double t[3], const struct dbl_scene *
 {
 	struct dbl_decomp d;
 	double v[MOT_FREE_NCHANNELS], g = warp_apply(&fs->warp, frame);
-	bool lin = fs->rot >= 0;
+	bool rot = fs->rot >= 0, shs = false;
 	uint32_t k;
 
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
@@ -411,20 +411,33 @@ static bool free_linear(struct dbl_mat *m, double t[3], const struct dbl_scene *
 
 		if (c >= 0) {
 			v[k] = dbl_curve_eval(&sc->curves[c], &ev->cursors[c], g);
-			lin = lin || k >= MOT_FREE_SX;
+			shs = shs || k >= MOT_FREE_SX;
 		} else {
 			v[k] = k >= MOT_FREE_SX && k <= MOT_FREE_SZ;
 		}
 	}
 	for (k = 0; k < 3; k++)
 		t[k] = v[MOT_FREE_TX + k];
-	if (!lin)
+	if (!rot && !shs)
 		return false;
-	if (fs->rot >= 0)
-		rot_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
-			 g);
-	else
-		d.rot = (struct dbl_quat){ 1, 0, 0, 0 };
+	if (!rot) {
+		/* S . H */
+		const double *sv = v + MOT_FREE_SX, *hv = v + MOT_FREE_HXY;
+
+		*m = (struct dbl_mat){ { { sv[0], 0, 0 },
+					 { sv[1] * hv[0], sv[1], 0 },
+					 { sv[2] * hv[1], sv[2] * hv[2], sv[2] },
+					 { t[0], t[1], t[2] } } };
+		return true;
+	}
+	rot_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g);
+	if (!shs) {
+		/* R */
+		dbl_quat_to_mat(m, &d.rot);
+		for (k = 0; k < 3; k++)
+			m->m[3][k] = t[k];
+		return true;
+	}
 	for (k = 0; k < 3; k++) {
 		d.translate[k] = t[k];
 		d.scale[k] = v[MOT_FREE_SX + k];

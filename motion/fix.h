@@ -390,6 +390,18 @@ static inline mot_q32 mot_sum_prod(const mot_q32 *a, const mot_q32 *b, unsigned 
 	bool small = n <= 8;
 	unsigned i;
 
+	if (n <= 3) {
+		/* up to three products: the kernel's overflow test sees every
+		 * sum that does not fit, wrapped or not, with any factors */
+		uint64_t ov = 0;
+		mot_q32 r;
+
+		acc = mot_acc_start(0, MOT_Q32_FRAC);
+		for (i = 0; i < n; i++)
+			acc = mot_acc_mac(acc, a[i], b[i]);
+		r = mot_acc_floor_ov(acc, MOT_Q32_FRAC, &ov);
+		return ov ? mot_sum_prod_wide(a, b, n, sat) : r;
+	}
 	for (i = 0; i < n; i++)
 		small = small && a[i] < lim && a[i] > -lim && b[i] < lim && b[i] > -lim;
 	if (!small)

@@ -154,28 +154,49 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 {
 	struct mot_decomp d;
 	mot_q32 v[MOT_FREE_NCHANNELS], g = mot_warp_apply(&fs->warp, frame, &ev->sat);
-	bool lin = fs->rot >= 0;
-	uint32_t k;
+	bool rot = fs->rot >= 0, shs = false;
+	int64_t r[3][3];
+	uint64_t ov = 0;
+	uint32_t k, j;
 
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
 		int32_t c = fs->channel[k];
 
 		if (c >= 0) {
 			v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g, &ev->sat);
-			lin = lin || k >= MOT_FREE_SX;
+			shs = shs || k >= MOT_FREE_SX;
 		} else {
 			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
 		}
 	}
-	for (k = 0; k < 3; k++)
+	for (k = 0; k < 3; k++) {
 		t[k] = v[MOT_FREE_TX + k];
-	if (!lin)
+		m->m[3][k] = t[k];
+	}
+	if (!rot && !shs)
 		return false;
-	if (fs->rot >= 0)
-		mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
-				   &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g, &ev->sat);
-	else
-		mot_quat_identity(&d.rot);
+	/* What mot_mat_compose() would give, bit for bit, with the absent part
+	 * left out: without a rotation track R = I and the linear part is S . H
+	 * itself; without scale and shear channels it is R rounded once from
+	 * Q2.62. */
+	if (!rot) {
+		const mot_q32 *sv = v + MOT_FREE_SX, *hv = v + MOT_FREE_HXY;
+
+		*m = (struct mot_mat){ { { sv[0], 0, 0 },
+					 { mot_mul(sv[1], hv[0], &ev->sat), sv[1], 0 },
+					 { mot_mul(sv[2], hv[1], &ev->sat),
+					   mot_mul(sv[2], hv[2], &ev->sat), sv[2] },
+					 { t[0], t[1], t[2] } } };
+		return true;
+	}
+	mot_rot_track_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
+			   g, &ev->sat);
+	if (!shs && mot_quat_to_rot_q62(r, &d.rot, &ev->sat) == MOT_OK) {
+		for (k = 0; k < 3; k++)
+			for (j = 0; j < 3; j++)
+				m->m[k][j] = mot_acc_round_ov(mot_acc_from(r[k][j], 0), 30, &ov);
+		return true; /* |r| < 2^63: ov stays 0 */
+	}
 	for (k = 0; k < 3; k++) {
 		d.translate[k] = t[k];
 		d.scale[k] = v[MOT_FREE_SX + k];
