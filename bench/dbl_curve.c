@@ -82,15 +82,20 @@ static inline double start_of(const struct dbl_curve *c, bool keys, uint32_t j)
 	return keys ? c->frame[j] : c->seg[j].f0;
 }
 
+static inline double end_of(const struct dbl_curve *c, bool keys, uint32_t j)
+{
+	return keys ? c->frame[j + 1] : c->seg[j].f1;
+}
+
 /* curve.c's locate(): the hint, its successor, else a binary search */
 static uint32_t locate(const struct dbl_curve *c, bool keys, uint32_t n, uint32_t hint, double f)
 {
 	uint32_t lo = 0, hi = n;
 
 	if (hint < n && start_of(c, keys, hint) <= f) {
-		if (hint + 1 == n || f < start_of(c, keys, hint + 1))
+		if (hint + 1 == n || f < end_of(c, keys, hint))
 			return hint;
-		if (hint + 2 == n || f < start_of(c, keys, hint + 2))
+		if (hint + 2 == n || f < end_of(c, keys, hint + 1))
 			return hint + 1;
 		lo = hint + 2;
 	}
@@ -266,16 +271,16 @@ static double eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, 
 	uint32_t n = c->nkeys;
 	double u;
 
-	if (f <= c->frame[0])
+	if (f <= c->span_f0)
 		return c->value[0];
-	if (f >= c->frame[n - 1])
+	if (f >= c->span_f1)
 		return c->value[n - 1];
 	if (c->span_ease) {
 		u = dbl_ease_apply(&c->span, frac(f - c->span_f0, c->span_inv));
 		f = c->span_f0 + u * (c->span_f1 - c->span_f0);
-		if (f <= c->frame[0])
+		if (f <= c->span_f0)
 			return c->value[0];
-		if (f >= c->frame[n - 1])
+		if (f >= c->span_f1)
 			return c->value[n - 1];
 	}
 	if (c->kind >= MOT_INTERP_BSPLINE) {
@@ -286,9 +291,9 @@ static double eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, 
 			if (!dbl_ease_is_identity(&s->ease)) {
 				u = dbl_ease_apply(&s->ease, frac(f - c->frame[i], s->inv_h));
 				f = c->frame[i] + u * (c->frame[i + 1] - c->frame[i]);
-				if (f <= c->frame[0])
+				if (f <= c->span_f0)
 					return c->value[0];
-				if (f >= c->frame[n - 1])
+				if (f >= c->span_f1)
 					return c->value[n - 1];
 			}
 		}

@@ -254,6 +254,13 @@ static inline mot_q32 start_of(const struct mot_curve *c, bool keys, uint32_t j)
 	return keys ? c->keys[j].frame : c->seg[j].f0;
 }
 
+/* The start of interval or piece j + 1 (j + 1 < n): a piece's own f1, so
+ * that the cursor's test reads one segment entry, not two. */
+static inline mot_q32 end_of(const struct mot_curve *c, bool keys, uint32_t j)
+{
+	return keys ? c->keys[j + 1].frame : c->seg[j].f1;
+}
+
 /*
  * The last index j in [0, n) whose start is at or before f, given a
  * non-decreasing array of starts with start(0) <= f: the key intervals (n =
@@ -267,9 +274,9 @@ static uint32_t locate(const struct mot_curve *c, bool keys, uint32_t n, uint32_
 	uint32_t lo = 0, hi = n;
 
 	if (hint < n && start_of(c, keys, hint) <= f) {
-		if (hint + 1 == n || f < start_of(c, keys, hint + 1))
+		if (hint + 1 == n || f < end_of(c, keys, hint))
 			return hint;
-		if (hint + 2 == n || f < start_of(c, keys, hint + 2))
+		if (hint + 2 == n || f < end_of(c, keys, hint + 1))
 			return hint + 1;
 		lo = hint + 2;
 	}
@@ -392,12 +399,19 @@ struct solve {
  * and sum |a_k| 2^sh < 2^61 for the value, and the form is used only when
  * sh >= 8: Horner's m roundings of half a unit stay below 1/16 LSB. Other
  * curves (many keys, or keys far apart: 12 keys over +-1000 units, 32 keys
- * of any size) keep de Casteljau. The coefficients live in seg[].bz[]: the
- * frame's a_1 .. a_m in slots 0 .. m - 1, the value's in m .. 2m - 1, slot
- * j at seg[j / 8].bz[j % 8] (the n - 1 entries of a Bezier curve hold
- * 8 (n - 1) >= 2m slots).
+ * of any size) keep de Casteljau. The coefficients live in the c[] and
+ * fc[] of the curve's entries, which a Bezier curve does not otherwise use:
+ * the frame's a_1 .. a_m in slots 0 .. m - 1, the value's in m .. 2m - 1
+ * (the n - 1 entries hold 8 (n - 1) >= 2m slots).
  */
 #define POWER_MIN_SHIFT 8
+
+static inline int64_t *power_slot(const struct mot_curve *c, uint32_t j)
+{
+	struct mot_curve_seg *s = &c->seg[j / 8];
+
+	return j % 8 < 4 ? &s->c[j % 4] : &s->fc[j % 4];
+}
 
 static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int64_t *df)
 {
@@ -558,7 +572,7 @@ static mot_q32 approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		if (c->power) {
 			/* contiguous for the iterations */
 			for (j = 0; j < 2 * m; j++)
-				pw[j] = c->seg[j / 8].bz[j % 8];
+				pw[j] = *power_slot(c, j);
 			sv.pw = pw;
 		}
 	} else {
@@ -607,15 +621,15 @@ static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f
 	}
 	k = c->keys;
 	n = c->nkeys;
-	if (frame <= k[0].frame)
+	if (frame <= c->span_f0)
 		return k[0].value;
-	if (frame >= k[n - 1].frame)
+	if (frame >= c->span_f1)
 		return k[n - 1].value;
 	if (c->span_ease) {
 		frame = span_warp(c, frame);
-		if (frame <= k[0].frame)
+		if (frame <= c->span_f0)
 			return k[0].value;
-		if (frame >= k[n - 1].frame)
+		if (frame >= c->span_f1)
 			return k[n - 1].value;
 	}
 	if (c->kind >= MOT_INTERP_BSPLINE) {
@@ -630,9 +644,9 @@ static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f
 				u = frac62(frame - k[i].frame, &s->inv_h);
 				u = mot_ease_apply62(&s->ease, u);
 				frame = k[i].frame + mot_acc_round(mot_acc_mul(u, h), 62, NULL);
-				if (frame <= k[0].frame)
+				if (frame <= c->span_f0)
 					return k[0].value;
-				if (frame >= k[n - 1].frame)
+				if (frame >= c->span_f1)
 					return k[n - 1].value;
 			}
 		}
@@ -993,7 +1007,7 @@ static void prep_power(struct mot_curve *c)
 		for (j = 0; j < m; j++) {
 			uint32_t slot = side * m + j;
 
-			c->seg[slot / 8].bz[slot % 8] = a[side][j] * ((int64_t)1 << sh);
+			*power_slot(c, slot) = a[side][j] * ((int64_t)1 << sh);
 		}
 		if (side)
 			c->seg[0].vsh = (int16_t)sh;

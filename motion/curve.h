@@ -89,7 +89,8 @@ struct mot_curve_opts {
  *
  * Piece j of the curve: for step/linear/hermite the key interval j; for
  * bspline/beta the cubic on extended control points j..j+3; for bezier only
- * entry 0 (the whole curve). A polynomial P is kept as int64 coefficients of
+ * entry 0 (the whole curve), and the c[] and fc[] of every entry hold its
+ * power form (curve.c). A polynomial P is kept as int64 coefficients of
  * powers of a parameter u in Q2.62, scaled by 2^sh so that their magnitudes
  * add up to at most 2^61 (block floating point: ~60 significant bits however
  * small or large the segment):
@@ -100,23 +101,18 @@ struct mot_curve_opts {
  * the approximating kinds, the reciprocal of its width.
  */
 struct mot_curve_seg {
+	/* in the order evaluation reads them: an interpolating piece's first 88
+	 * bytes */
 	mot_q32 f0, f1;          /* frames covered by piece j: [f0, f1) */
 	mot_q32 vref, fref;      /* reference value and frame of the polynomials */
-	union {
-		struct {
-			int64_t c[4];            /* value polynomial P */
-			union {
-				int64_t fc[4];   /* frame polynomial F (bspline, beta) */
-				int64_t ic[4];   /* c[p] / (p + 1): the mean value
-						  * (hermite integral) */
-			};
-		};
-		int64_t bz[8];   /* bezier in power form: coefficients 8j .. 8j + 7
-				  * of both polynomials (curve.c) */
-	};
+	int64_t c[4];            /* value polynomial P */
 	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
 	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
 	uint8_t start;           /* Newton start rule (curve.c) */
+	union {
+		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
+		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
+	};
 	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
 	struct mot_ease ease;    /* slow-in/out of key interval j */
 	mot_acc area;            /* integral from frame 0 to key j, value x frames, Q64.64 */
@@ -132,8 +128,8 @@ struct mot_curve {
 	bool integral;
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
-	mot_q32 beta1, beta2;
 	mot_q32 span_f0, span_f1;    /* first and last key frame */
+	mot_q32 beta1, beta2;
 	struct mot_recip span_inv;   /* 1 / (span_f1 - span_f0) */
 	struct mot_ease span;
 	mot_acc area_first;          /* integral from frame 0 to the first key */

@@ -48,15 +48,17 @@ enum mot_axis {
 };
 
 struct mot_node {
+	/* What every node reads on every evaluation comes first: a joint about
+	 * a coordinate axis reads the first 56 bytes (128 in all). */
 	int32_t parent;   /* index of the parent, -1 for a root; < own index */
 	uint32_t kind;    /* enum mot_node_kind */
 	uint32_t axis_id; /* enum mot_axis (joints) */
-	mot_q32 pivot[3]; /* rest coordinates shared with the parent */
-	mot_q32 axis[3];  /* joints: unit axis (set for every axis_id) */
-	mot_q32 rest;     /* joints: value when no strand moves it */
 	int32_t curve;    /* joints: curve of the value, or -1 */
 	int32_t spin;     /* revolute joints: rpm curve (prepared with integral), or -1 */
 	int32_t strand;   /* free nodes: index into scene->free, or -1 */
+	mot_q32 pivot[3]; /* rest coordinates shared with the parent */
+	mot_q32 rest;     /* joints: value when no strand moves it */
+	mot_q32 axis[3];  /* joints: unit axis (set for every axis_id) */
 	/* Derived from axis by mot_node_prepare(), for revolute joints about a
 	 * tilted axis (zero otherwise): the constant parts of the rotation
 	 * matrix, in Q2.62, with (k, j, l) = (k, k+1, k+2) mod 3:
