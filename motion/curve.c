@@ -237,13 +237,20 @@ static inline int64_t poly_deriv(const int64_t c[4], int64_t u)
  * Q2.62 of an offset x in [0, d]. (Only d = 1 has a shift of 30.) */
 static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 {
+	unsigned sh = r->shift - 30; /* 1 .. 63 past the test below */
+	uint64_t ov = 0;             /* below 2^64 / 2^63: never set */
 	int64_t s;
 
 	if (r->shift <= 30)
 		return x <= 0 ? 0 : ONE62;
-	s = mot_acc_round(mot_acc_mul(x, r->m), r->shift - 30, NULL);
-
-	return s < 0 ? 0 : s > ONE62 ? ONE62 : s;
+	if (x <= 0)
+		return 0;
+	if ((uint64_t)x >> sh)
+		return ONE62; /* x / d >= m / 2^62 >= 1 */
+	/* round(x m / 2^sh) with x moved up to 63 bits: the shift of the
+	 * rounding is then a constant */
+	s = mot_acc_round_ov(mot_acc_mul(x * ((int64_t)1 << (63 - sh)), r->m), 63, &ov);
+	return s > ONE62 ? ONE62 : s;
 }
 
 /* ---- segment lookup -------------------------------------------------------- */

@@ -455,6 +455,14 @@ static inline mot_q32 mot_abs(mot_q32 a)
 }
 
 /* Number of leading zero bits of x (64 for 0). */
+#if UINTPTR_MAX > 0xffffffffu
+/* one instruction on 64-bit targets */
+static inline unsigned mot_clz64(uint64_t x)
+{
+	return x ? (unsigned)__builtin_clzll(x) : 64;
+}
+#else
+/* 32-bit targets: two 32-bit counts, no libgcc call */
 static inline unsigned mot_clz64(uint64_t x)
 {
 	unsigned n = 0;
@@ -467,6 +475,7 @@ static inline unsigned mot_clz64(uint64_t x)
 	}
 	return n + (unsigned)__builtin_clz((unsigned)(x >> 32));
 }
+#endif
 
 /*
  * Exact divisions, rounded to nearest with ties toward +inf like everything
