@@ -265,7 +265,8 @@ static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 
 /* ---- evaluation (curve.c's eval()) ----------------------------------------------- */
 
-static double eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, int *it)
+static inline __attribute__((always_inline)) double eval(const struct dbl_curve *c,
+							   struct dbl_cursor *cur, double f, int *it)
 {
 	const struct dbl_seg *s;
 	uint32_t n = c->nkeys;

@@ -613,8 +613,8 @@ static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
 }
 
-static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
-		    int *iters, uint32_t *sat)
+static inline __attribute__((always_inline)) mot_q32
+eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iters, uint32_t *sat)
 {
 	const struct mot_key *k;
 	const struct mot_curve_seg *s;

@@ -147,7 +147,7 @@ static mot_q32 joint_value(const struct mot_scene *sc, struct mot_eval *ev,
  * The linear part S . H . R and the translation of a free node (channels
  * without keys at their rest values). Returns false when the node has no
  * rotation, scale or shear channel: its linear part is then the identity,
- * exactly, and m is not written.
+ * exactly, and only m's translation row is written.
  */
 static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene *sc,
 			struct mot_eval *ev, const struct mot_free_strand *fs, mot_q32 frame)
