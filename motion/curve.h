@@ -35,10 +35,10 @@
  * bits on every target (__int128 or not).
  *
  * Cost per evaluation, playing 10 keys at 1 kHz ticks with a cursor (x86_64,
- * AMD EPYC, -O2; random access adds 10-30 ns): step 5 ns, linear 8 ns,
- * hermite 10 ns, bspline 70-85 ns, beta 80-95 ns (about 3.5 Newton
+ * AMD EPYC, -O2; random access adds 10-30 ns): step 4 ns, linear 7 ns,
+ * hermite 8 ns, bspline 60-70 ns, beta 70-80 ns (about 3.5 Newton
  * iterations); bezier O(n) per iteration in power form (a few keys, not
- * too far apart: 150 ns for 10 keys over 100 units and 200 frames), else
+ * too far apart: 145 ns for 10 keys over 100 units and 200 frames), else
  * O(n^2) by de Casteljau: 130 ns for 4 keys, 400 ns for 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
  * ratios of 1e4 and more, beta1 < 0.01, beta2 > 100) flatten a piece's frame
  * near its ends and take up to about 20 iterations; the solve never exceeds
