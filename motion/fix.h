@@ -307,7 +307,8 @@ static inline int64_t mot_acc_round(mot_acc x, unsigned shift, uint32_t *sat)
  * fits, so it is reported too (tests/test_fix.c checks both paths). Longer
  * sums must bound their terms (see each caller).
  *
- * The shift is a constant in every caller (32 or 62), 1 <= shift <= 63.
+ * The shift is a constant in every caller, 1 <= shift <= 63 (32 for
+ * Q32.32 products, 62 for products with a factor in Q2.62).
  */
 static inline mot_acc mot_acc_start(int64_t c, unsigned shift)
 {
