@@ -456,16 +456,11 @@ static inline mot_q32 mot_abs(mot_q32 a)
 }
 
 /* Number of leading zero bits of x (64 for 0). */
-#if UINTPTR_MAX > 0xffffffffu
-/* one instruction on 64-bit targets */
 static inline unsigned mot_clz64(uint64_t x)
 {
-	return x ? (unsigned)__builtin_clzll(x) : 64;
-}
-#else
-/* 32-bit targets: two 32-bit counts, no libgcc call */
-static inline unsigned mot_clz64(uint64_t x)
-{
+	/* two 32-bit counts: on x86_64 a 64-bit __builtin_clzll made atan2
+	 * and rsqrt twice as slow (make bench, prim_*), and 32-bit targets
+	 * need no libgcc call */
 	unsigned n = 0;
 
 	if (x == 0)
@@ -476,7 +471,6 @@ static inline unsigned mot_clz64(uint64_t x)
 	}
 	return n + (unsigned)__builtin_clz((unsigned)(x >> 32));
 }
-#endif
 
 /*
  * Exact divisions, rounded to nearest with ties toward +inf like everything
