@@ -82,15 +82,20 @@ static inline double start_of(const struct dbl_curve *c, bool keys, uint32_t j)
 	return keys ? c->frame[j] : c->seg[j].f0;
 }
 
+static inline double end_of(const struct dbl_curve *c, bool keys, uint32_t j)
+{
+	return keys ? c->frame[j + 1] : c->seg[j].f1;
+}
+
 /* curve.c's locate(): the hint, its successor, else a binary search */
 static uint32_t locate(const struct dbl_curve *c, bool keys, uint32_t n, uint32_t hint, double f)
 {
 	uint32_t lo = 0, hi = n;
 
 	if (hint < n && start_of(c, keys, hint) <= f) {
-		if (hint + 1 == n || f < start_of(c, keys, hint + 1))
+		if (hint + 1 == n || f < end_of(c, keys, hint))
 			return hint;
-		if (hint + 2 == n || f < start_of(c, keys, hint + 2))
+		if (hint + 2 == n || f < end_of(c, keys, hint + 1))
 			return hint + 1;
 		lo = hint + 2;
 	}
@@ -138,12 +143,40 @@ static void bezier_reduce(const struct dbl_curve *c, const double *k, double u, 
 			w[i] += (w[i + 1] - w[i]) * u;
 }
 
+/* curve.c's power_frame() and power_value(): a[k - 1] multiplies u^k */
+static void power_frame(const double *a, uint32_t m, double u, double *f, double *df)
+{
+	double r = a[m - 1], d = m * a[m - 1];
+	uint32_t k;
+
+	for (k = m - 1; k >= 1; k--) {
+		r = r * u + a[k - 1];
+		d = d * u + k * a[k - 1];
+	}
+	*f = r * u;
+	*df = d;
+}
+
+static double power_value(const double *a, uint32_t m, double u)
+{
+	double r = a[m - 1];
+	uint32_t k;
+
+	for (k = m - 1; k >= 1; k--)
+		r = r * u + a[k - 1];
+	return r * u;
+}
+
 /* frame(u) - fref and its derivative on piece s */
 static void frame_at(const struct dbl_curve *c, const struct dbl_seg *s, double u, double *f,
 		     double *df)
 {
 	double w[MOT_BEZIER_MAX_KEYS];
 
+	if (c->pw) {
+		power_frame(c->pw, c->nkeys - 1, u, f, df);
+		return;
+	}
 	if (c->kind != MOT_INTERP_BEZIER) {
 		*f = poly_eval(s->fc, u);
 		*df = poly_deriv(s->fc, u);
@@ -222,6 +255,8 @@ static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 	else if (s->start == START_CUBE1)
 		u = 1 - cbrt(1 - u);
 	u = solve_u(c, s, f - s->fref, u, it);
+	if (c->pw)
+		return s->vref + power_value(c->pw + c->nkeys - 1, c->nkeys - 1, u);
 	if (c->kind != MOT_INTERP_BEZIER)
 		return s->vref + poly_eval(s->c, u);
 	bezier_reduce(c, c->value, u, 1, w);
@@ -230,22 +265,23 @@ static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 
 /* ---- evaluation (curve.c's eval()) ----------------------------------------------- */
 
-static double eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, int *it)
+static inline __attribute__((always_inline)) double eval(const struct dbl_curve *c,
+							   struct dbl_cursor *cur, double f, int *it)
 {
 	const struct dbl_seg *s;
 	uint32_t n = c->nkeys;
 	double u;
 
-	if (f <= c->frame[0])
+	if (f <= c->span_f0)
 		return c->value[0];
-	if (f >= c->frame[n - 1])
+	if (f >= c->span_f1)
 		return c->value[n - 1];
 	if (c->span_ease) {
 		u = dbl_ease_apply(&c->span, frac(f - c->span_f0, c->span_inv));
 		f = c->span_f0 + u * (c->span_f1 - c->span_f0);
-		if (f <= c->frame[0])
+		if (f <= c->span_f0)
 			return c->value[0];
-		if (f >= c->frame[n - 1])
+		if (f >= c->span_f1)
 			return c->value[n - 1];
 	}
 	if (c->kind >= MOT_INTERP_BSPLINE) {
@@ -256,9 +292,9 @@ static double eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f, 
 			if (!dbl_ease_is_identity(&s->ease)) {
 				u = dbl_ease_apply(&s->ease, frac(f - c->frame[i], s->inv_h));
 				f = c->frame[i] + u * (c->frame[i + 1] - c->frame[i]);
-				if (f <= c->frame[0])
+				if (f <= c->span_f0)
 					return c->value[0];
-				if (f >= c->frame[n - 1])
+				if (f >= c->span_f1)
 					return c->value[n - 1];
 			}
 		}
@@ -318,6 +354,43 @@ double dbl_curve_integral(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 }
 
 /* ---- preparation ---------------------------------------------------------------- */
+
+/* curve.c's prep_power(): the power form's coefficients, exact in raw
+ * Q32.32 units, and the same rule for taking it (sum k |a_k| and sum |a_k|
+ * below 2^53; no |a_k| of 2^54 or more) */
+static void prep_power(struct dbl_curve *c)
+{
+	uint32_t n = c->nkeys, m = n - 1, i, j, side;
+	double a[2][MOT_BEZIER_MAX_KEYS - 1];
+
+	for (side = 0; side < 2; side++) {
+		const double *x = side ? c->value : c->frame;
+		__int128 d[MOT_BEZIER_MAX_KEYS];
+		uint64_t b = 1;
+		unsigned __int128 sum = 0;
+
+		for (i = 0; i < n; i++)
+			d[i] = (__int128)((x[i] - x[0]) * 4294967296.0); /* exact: quantised */
+		for (j = 1; j <= m; j++) {
+			__int128 aj;
+
+			for (i = 0; i + j < n; i++)
+				d[i] = d[i + 1] - d[i];
+			b = b * (m - j + 1) / j;
+			aj = d[0] * (__int128)b;
+			if (aj >= (__int128)1 << 54 || aj <= -((__int128)1 << 54))
+				return;
+			sum += (side ? 1 : j) * (unsigned __int128)(aj < 0 ? -aj : aj);
+			a[side][j - 1] = (double)aj / 4294967296.0;
+		}
+		if (sum >= (unsigned __int128)1 << 53)
+			return;
+	}
+	c->pw = (double *)(c->seg + c->nseg); /* dbl_curve_size() counts them */
+	for (side = 0; side < 2; side++)
+		for (j = 0; j < m; j++)
+			c->pw[side * m + j] = a[side][j];
+}
 
 /* curve.c's basis(): weights of E(j)..E(j+3) on u^p over den */
 static void basis(const struct dbl_curve *c, double b1, double b2, double nb[4][4], double *den)
@@ -423,6 +496,7 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 		s->f1 = c->frame[n - 1];
 		s->inv_w = 1 / (s->f1 - s->f0);
 		s->start = START_CHORD;
+		prep_power(c);
 		return;
 	}
 	if (c->kind >= MOT_INTERP_BSPLINE) {
@@ -476,7 +550,9 @@ size_t dbl_curve_size(const struct sd_curve *sd)
 {
 	uint32_t nseg = mot_curve_seg_count(sd->interp, sd->nkeys);
 
-	return 2 * sd->nkeys * sizeof(double) + nseg * sizeof(struct dbl_seg);
+	uint32_t npw = sd->interp == MOT_INTERP_BEZIER && sd->nkeys > 1 ? 2 * (sd->nkeys - 1) : 0;
+
+	return (2 * sd->nkeys + npw) * sizeof(double) + nseg * sizeof(struct dbl_seg);
 }
 
 int dbl_curve_init(struct dbl_curve *c, const struct sd_curve *sd, double scale, bool integral,
@@ -495,6 +571,7 @@ int dbl_curve_init(struct dbl_curve *c, const struct sd_curve *sd, double scale,
 	c->value = c->frame + n;
 	c->seg = (struct dbl_seg *)(c->value + n);
 	memset(c->seg, 0, c->nseg * sizeof(*c->seg));
+	c->pw = NULL;
 	for (i = 0; i < n; i++)
 		if (!dbl_quantize(sd->keys[i].frame, &c->frame[i]) ||
 		    !dbl_quantize(sd->keys[i].value * scale, &c->value[i]))

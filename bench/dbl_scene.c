@@ -262,6 +262,14 @@ static int node_init(struct dbl_scene *sc, uint32_t i, const struct sd_node *sn,
 	}
 	if (!dbl_quantize(sn->rest * scale, &n->rest))
 		return -1;
+	for (k = 0; k < 3; k++) {
+		const double *a = n->axis;
+		uint32_t j = (k + 1) % 3, l = (k + 2) % 3;
+		bool tilted = sn->kind == MOT_NODE_REVOLUTE && sn->axis_id == MOT_AXIS_VEC;
+
+		n->rot_sq[k] = tilted ? a[j] * a[j] + a[l] * a[l] : 0;
+		n->rot_pr[k] = tilted ? a[j] * a[l] : 0;
+	}
 	if (sn->kind != MOT_NODE_FREE)
 		return curve_take(sc, ci, &n->curve, &sn->value, scale, false, p) ||
 			       curve_take(sc, ci, &n->spin, &sn->spin, 1.0, true, p) ?
@@ -388,113 +396,171 @@ static double warp_apply(const struct dbl_warp *w, double f)
 	return w->f0 + dbl_ease_apply(&w->ease, (f - w->f0) / span) * span;
 }
 
-/* T(-p) . S . H . R . T(p) . T(t) */
-static void free_local(struct dbl_mat *out, const struct dbl_scene *sc, struct dbl_eval *ev,
-		       const struct dbl_node *n, double frame)
+/* scene.c's free_linear(): S . H . R and t; false when the node has no
+ * rotation, scale or shear channel (the linear part is the identity) */
+static bool free_linear(struct dbl_mat *m, double t[3], const struct dbl_scene *sc,
+			struct dbl_eval *ev, const struct dbl_free *fs, double frame)
 {
-	const struct dbl_free *fs;
 	struct dbl_decomp d;
-	double v[MOT_FREE_NCHANNELS], g;
+	double v[MOT_FREE_NCHANNELS], g = warp_apply(&fs->warp, frame);
+	bool rot = fs->rot >= 0, shs = false;
 	uint32_t k;
 
-	if (n->strand < 0) {
-		dbl_mat_identity(out);
-		return;
-	}
-	fs = &sc->free[n->strand];
-	g = warp_apply(&fs->warp, frame);
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
 		int32_t c = fs->ch[k];
 
-		v[k] = c >= 0 ? dbl_curve_eval(&sc->curves[c], &ev->cursors[c], g) :
-				k >= MOT_FREE_SX && k <= MOT_FREE_SZ;
+		if (c >= 0) {
+			v[k] = dbl_curve_eval(&sc->curves[c], &ev->cursors[c], g);
+			shs = shs || k >= MOT_FREE_SX;
+		} else {
+			v[k] = k >= MOT_FREE_SX && k <= MOT_FREE_SZ;
+		}
 	}
-	if (fs->rot >= 0)
-		rot_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
-			 g);
-	else
-		d.rot = (struct dbl_quat){ 1, 0, 0, 0 };
+	for (k = 0; k < 3; k++)
+		t[k] = v[MOT_FREE_TX + k];
+	if (!rot && !shs)
+		return false;
+	if (!rot) {
+		/* S . H */
+		const double *sv = v + MOT_FREE_SX, *hv = v + MOT_FREE_HXY;
+
+		*m = (struct dbl_mat){ { { sv[0], 0, 0 },
+					 { sv[1] * hv[0], sv[1], 0 },
+					 { sv[2] * hv[1], sv[2] * hv[2], sv[2] },
+					 { t[0], t[1], t[2] } } };
+		return true;
+	}
+	rot_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g);
+	if (!shs) {
+		/* R */
+		dbl_quat_to_mat(m, &d.rot);
+		for (k = 0; k < 3; k++)
+			m->m[3][k] = t[k];
+		return true;
+	}
 	for (k = 0; k < 3; k++) {
-		d.translate[k] = v[MOT_FREE_TX + k];
+		d.translate[k] = t[k];
 		d.scale[k] = v[MOT_FREE_SX + k];
 		d.shear[k] = v[MOT_FREE_HXY + k];
 	}
-	dbl_mat_compose(out, &d);
-	dbl_mat_about_pivot(out, out, n->pivot);
+	dbl_mat_compose(m, &d);
+	return true;
 }
 
-/* scene.c's revolute_world(): R mixes rows a and b of the parent */
-static void revolute_world(struct dbl_mat *w, const struct dbl_mat *parent, unsigned axis,
-			   const double p[3], double turns)
+/* scene.c's tilted_rot(): Rodrigues on the prepared squares and products */
+static void tilted_rot(struct dbl_mat *r, const struct dbl_node *n, double turns)
+{
+	const double *a = n->axis, *sq = n->rot_sq, *pr = n->rot_pr;
+	double s, c, omc;
+
+	sincos(2 * M_PI * turns, &s, &c);
+	omc = 1 - c;
+	*r = (struct dbl_mat){ {
+		{ 1 - omc * sq[0], omc * pr[2] + s * a[2], omc * pr[1] - s * a[1] },
+		{ omc * pr[2] - s * a[2], 1 - omc * sq[1], omc * pr[0] + s * a[0] },
+		{ omc * pr[1] + s * a[1], omc * pr[0] - s * a[0], 1 - omc * sq[2] },
+		{ 0, 0, 0 },
+	} };
+}
+
+/* scene.c's node_world(): pos = (p + t) . P_lin + P_t, W_lin = M . P_lin,
+ * W_t = pos - p . W_lin */
+static void node_world(struct dbl_mat *w, double pos[3], const struct dbl_mat *par,
+		       const struct dbl_mat *m, const double p[3], const double t[3])
+{
+	const double q[3] = { p[0] + t[0], p[1] + t[1], p[2] + t[2] };
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			w->m[i][j] = m->m[i][0] * par->m[0][j] + m->m[i][1] * par->m[1][j] +
+				     m->m[i][2] * par->m[2][j];
+	for (j = 0; j < 3; j++) {
+		pos[j] = q[0] * par->m[0][j] + q[1] * par->m[1][j] + q[2] * par->m[2][j] +
+			 par->m[3][j];
+		w->m[3][j] = pos[j] - (p[0] * w->m[0][j] + p[1] * w->m[1][j] + p[2] * w->m[2][j]);
+	}
+}
+
+/* scene.c's translate_world(): W = T(t) . P, pos = W_t + p . P_lin */
+static void translate_world(struct dbl_mat *w, double pos[3], const struct dbl_mat *par,
+			    const double p[3], const double t[3])
+{
+	int j;
+
+	for (j = 0; j < 3; j++) {
+		double y0 = par->m[0][j], y1 = par->m[1][j], y2 = par->m[2][j];
+
+		w->m[3][j] = t[0] * y0 + t[1] * y1 + t[2] * y2 + par->m[3][j];
+		pos[j] = w->m[3][j] + p[0] * y0 + p[1] * y1 + p[2] * y2;
+		w->m[0][j] = y0;
+		w->m[1][j] = y1;
+		w->m[2][j] = y2;
+	}
+}
+
+/* scene.c's revolute_world(): R mixes rows a and b of the parent; with
+ * U = P_t + p_a P_a + p_b P_b, pos = U + p_o P_o and W_t = U - p_a W_a - p_b W_b */
+static void revolute_world(struct dbl_mat *w, double pos[3], const struct dbl_mat *par,
+			   unsigned o, const double p[3], double turns)
 {
 	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
-	static const struct dbl_mat id = { { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0, 0, 0 } } };
-	const unsigned a = ab[axis][0], b = ab[axis][1], o = axis;
-	double s, c, ta, tb;
+	const unsigned a = ab[o][0], b = ab[o][1];
+	double s, c;
 	unsigned j;
 
 	sincos(2 * M_PI * turns, &s, &c);
-	ta = p[a] - (c * p[a] - s * p[b]);
-	tb = p[b] - (s * p[a] + c * p[b]);
-	if (!parent)
-		parent = &id;
 	for (j = 0; j < 3; j++) {
-		double pa = parent->m[a][j], pb = parent->m[b][j];
+		double pa = par->m[a][j], pb = par->m[b][j];
+		double wa = c * pa + s * pb, wb = c * pb - s * pa;
+		double u = par->m[3][j] + p[a] * pa + p[b] * pb;
 
-		w->m[3][j] = parent->m[3][j] + ta * pa + tb * pb;
-		w->m[a][j] = c * pa + s * pb;
-		w->m[b][j] = c * pb - s * pa;
-		w->m[o][j] = parent->m[o][j];
+		pos[j] = u + p[o] * par->m[o][j];
+		w->m[3][j] = u - p[a] * wa - p[b] * wb;
+		w->m[a][j] = wa;
+		w->m[b][j] = wb;
+		w->m[o][j] = par->m[o][j];
 	}
 }
 
 void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double frame,
 		    struct dbl_pose *out)
 {
+	static const struct dbl_mat id = { { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0, 0, 0 } } };
+	static const double zero[3] = { 0, 0, 0 };
 	uint32_t i, k;
 
 	for (i = 0; i < sc->nnodes; i++) {
 		const struct dbl_node *n = &sc->nodes[i];
-		const struct dbl_mat *parent = n->parent >= 0 ? &out->world[n->parent] : NULL;
-		struct dbl_mat *w = &out->world[i];
-		double v = 0, r = 0;
+		const struct dbl_mat *par = n->parent >= 0 ? &out->world[n->parent] : &id;
+		struct dbl_mat *w = &out->world[i], local;
+		double *pos = out->pos[i], v = 0, r = 0, t[3];
 
-		if (n->kind == MOT_NODE_REVOLUTE && n->axis_id != MOT_AXIS_VEC) {
+		switch (n->kind) {
+		case MOT_NODE_REVOLUTE:
 			v = joint_value(sc, ev, n, frame, &r);
-			revolute_world(w, parent, n->axis_id, n->pivot, v);
-		} else if (n->kind == MOT_NODE_PRISMATIC) {
-			double t[3];
-
+			if (n->axis_id != MOT_AXIS_VEC) {
+				revolute_world(w, pos, par, n->axis_id, n->pivot, v);
+			} else {
+				tilted_rot(&local, n, v);
+				node_world(w, pos, par, &local, n->pivot, zero);
+			}
+			break;
+		case MOT_NODE_PRISMATIC:
 			v = joint_value(sc, ev, n, frame, &r);
 			for (k = 0; k < 3; k++)
 				t[k] = v * n->axis[k];
-			if (parent) {
-				*w = *parent;
-				dbl_mat_apply(w->m[3], t, parent);
-			} else {
-				dbl_mat_identity(w);
-				for (k = 0; k < 3; k++)
-					w->m[3][k] = t[k];
-			}
-		} else {
-			struct dbl_mat local;
-
-			if (n->kind == MOT_NODE_REVOLUTE) {
-				struct dbl_quat q;
-
-				v = joint_value(sc, ev, n, frame, &r);
-				dbl_quat_from_axis_angle(&q, n->axis, 2 * M_PI * v);
-				dbl_quat_to_mat(&local, &q);
-				dbl_mat_about_pivot(&local, &local, n->pivot);
-			} else {
-				free_local(&local, sc, ev, n, frame);
-			}
-			if (parent)
-				dbl_mat_mul(w, &local, parent);
+			translate_world(w, pos, par, n->pivot, t);
+			break;
+		default:
+			if (n->strand < 0)
+				translate_world(w, pos, par, n->pivot, zero);
+			else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
+				translate_world(w, pos, par, n->pivot, t);
 			else
-				*w = local;
+				node_world(w, pos, par, &local, n->pivot, t);
+			break;
 		}
-		dbl_mat_apply(out->pos[i], n->pivot, w);
 		out->value[i] = v;
 		out->rpm[i] = r;
 	}

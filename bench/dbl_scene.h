@@ -12,10 +12,13 @@
  *   - rotation tracks: slerp prepared per key interval (and squad's inner
  *     slerp), one sincos per in-between, squad's outer slerp per tick as in
  *     strand.c;
- *   - the hierarchy in one pass in index order: revolute joints about x, y
- *     or z with scene.c's specialised world update (six row products and a
- *     copy), prismatic joints as a translated parent, free nodes and tilted
- *     axes as a composed local matrix times the parent, 4x3 affine products.
+ *   - the hierarchy in one pass in index order, as scene.c: the pivot's
+ *     world position (p + t) . P_lin + P_t and the world translation
+ *     pos - p . W_lin from it; revolute joints about x, y or z mixing two
+ *     rows of the parent, prismatic joints and free nodes without rotation,
+ *     scale or shear as a translated parent, free nodes and tilted axes as
+ *     their linear part times the parent's; tilted axes by Rodrigues'
+ *     formula on the axis' squares and products prepared per node.
  * Built from the same scene description, quantised as scene_build() does, in
  * one block. Compiled -O2 like the core, without -ffast-math.
  *
@@ -61,6 +64,7 @@ struct dbl_node {
 	enum mot_axis axis_id;
 	double pivot[3], axis[3], rest;
 	int32_t curve, spin, strand;
+	double rot_sq[3], rot_pr[3]; /* tilted axis: struct mot_node's */
 };
 
 struct dbl_scene {

@@ -222,6 +222,7 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 			}
 			if (!sd_to_q32(sn->rest * scale, &n->rest))
 				return set_err(e, MOT_E_RANGE, (int)i, "rest", UINT32_MAX);
+			mot_node_prepare(n);
 		}
 		if (sn->kind != MOT_NODE_FREE) {
 			if (curve_used(&sn->value)) {

@@ -6,8 +6,10 @@
 #   make bench-fixmath   libfixmath's Q16.16 against double (fix.h's choice)
 #   make bench-motion    the core against its double twin (bench/motion_bench.c)
 #   make bench-play      the play loop against cyclictest, CPU per tick (mk/bench-play.sh)
+#   make bench-count     instructions per node per tick of every scene, core
+#                        and twin, counted by callgrind (bench/scene_count.c)
 
-.PHONY: bench-fixmath bench-motion bench-play
+.PHONY: bench-fixmath bench-motion bench-play bench-count
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench
 
@@ -66,3 +68,26 @@ $(BUILD)/.deps-bench-play: mk/deps.sh $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_BENCH_PLAY) && touch $@
 bench-play: $(BUILD)/strand | $(BUILD)/.deps-bench-play
 	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play
+
+# ---- instruction counts ------------------------------------------------------------
+# The scenes of scene_bench.c played once under callgrind, which counts only
+# scene_count_play(): instructions per node per tick, steadier than any
+# timing on a shared machine. Needs valgrind (not installed by mk/deps.sh:
+# a developer's tool, not part of the build).
+SC_SRC := bench/scene_count.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c tests/synth.c
+SC_OBJ := $(SC_SRC:%.c=$(BUILD)/bench/%.o)
+COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_hermite1000 \
+                kind_bspline1000 kind_beta1000 kind_bezier1000
+
+$(BUILD)/bench/scene_count: $(SC_OBJ) $(MB_LINK)
+	$(Q)$(CC) $^ -lm -o $@
+
+bench-count: $(BUILD)/bench/scene_count
+	$(Q)for s in $(COUNT_SCENES); do for side in fixed double; do \
+		out=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+			--toggle-collect=scene_count_play $< $$s $$side 2>&1) || exit 1; \
+		units=$$(echo "$$out" | awk '/^COUNT/ { print $$5 }'); \
+		ir=$$(echo "$$out" | awk '/Collected :/ { print $$4 }'); \
+		echo "$$s $$side $$ir $$units" | \
+			awk '{ printf "COUNT %s_%s %.0f instructions/node/tick\n", $$1, $$2, $$3 / $$4 }'; \
+	done; done

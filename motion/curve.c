@@ -13,13 +13,15 @@
  * all done here at init; evaluation multiplies.
  *
  * Real time. mot_curve_eval() and mot_curve_integral() touch only the curve,
- * its keys and segments, and a small stack frame (bezier: 32 int64);
+ * its keys and segments, and a small stack frame (bezier: 62 int64);
  * they allocate nothing, take no lock and run in bounded time: a segment
  * lookup is O(1) for a cursor that moved to the same or next segment and
  * O(log n) otherwise; the Newton solve of the approximating kinds stops
  * after at most NEWTON_MAX_IT iterations.
  */
 #include "curve.h"
+
+#include "trig_table.h" /* the seed of 1/x (mot_trig_recip_q14) */
 
 #define ONE62 MOT_Q62_ONE
 
@@ -108,7 +110,7 @@ static int64_t round_shift(int64_t x, int sh, uint32_t *sat)
 /* ref + round(p / 2^sh), saturating only when the sum does not fit: p / 2^sh
  * alone may exceed int64 by a little where ref brings it back (a piece from
  * -2^62 to 2^62). */
-static mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
+static mot_q32 value_of_wide(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
 {
 	mot_acc a;
 	uint64_t lo;
@@ -125,6 +127,19 @@ static mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
 		return mot_acc_is_neg(a) ? MOT_Q32_MIN : MOT_Q32_MAX;
 	}
 	return (mot_q32)lo;
+}
+
+/* The same in int64 when nothing overflows: scales are positive and the
+ * polynomials stay below 2^62, so this is the path every valid curve takes. */
+static inline mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
+{
+	int64_t q;
+	mot_q32 r;
+
+	if (sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
+	    !__builtin_add_overflow(ref, q >> sh, &r))
+		return r;
+	return value_of_wide(ref, p, sh, sat);
 }
 
 /*
@@ -163,9 +178,9 @@ static bool acc_div_round(int64_t *out, mot_acc num, int sh, uint64_t den)
  * saturation test): one Horner or de Casteljau step with u in Q2.62. */
 static inline int64_t mul62(int64_t a, int64_t u)
 {
-	mot_acc p = mot_acc_add(mot_acc_mul(a, u), mot_acc_make(0, (uint64_t)1 << 61));
+	uint64_t ov = 0; /* |a u| < 2^125: the result fits */
 
-	return (int64_t)((mot_acc_lo(p) >> 62) | (mot_acc_hi(p) << 2));
+	return mot_acc_round_ov(mot_acc_mul(a, u), 62, &ov);
 }
 
 /*
@@ -222,13 +237,20 @@ static inline int64_t poly_deriv(const int64_t c[4], int64_t u)
  * Q2.62 of an offset x in [0, d]. (Only d = 1 has a shift of 30.) */
 static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 {
+	unsigned sh = r->shift - 30; /* 1 .. 63 past the test below */
+	uint64_t ov = 0;             /* below 2^64 / 2^63: never set */
 	int64_t s;
 
 	if (r->shift <= 30)
 		return x <= 0 ? 0 : ONE62;
-	s = mot_acc_round(mot_acc_mul(x, r->m), r->shift - 30, NULL);
-
-	return s < 0 ? 0 : s > ONE62 ? ONE62 : s;
+	if (x <= 0)
+		return 0;
+	if ((uint64_t)x >> sh)
+		return ONE62; /* x / d >= m / 2^62 >= 1 */
+	/* round(x m / 2^sh) with x moved up to 63 bits: the shift of the
+	 * rounding is then a constant */
+	s = mot_acc_round_ov(mot_acc_mul(x * ((int64_t)1 << (63 - sh)), r->m), 63, &ov);
+	return s > ONE62 ? ONE62 : s;
 }
 
 /* ---- segment lookup -------------------------------------------------------- */
@@ -237,6 +259,13 @@ static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 static inline mot_q32 start_of(const struct mot_curve *c, bool keys, uint32_t j)
 {
 	return keys ? c->keys[j].frame : c->seg[j].f0;
+}
+
+/* The start of interval or piece j + 1 (j + 1 < n): a piece's own f1, so
+ * that the cursor's test reads one segment entry, not two. */
+static inline mot_q32 end_of(const struct mot_curve *c, bool keys, uint32_t j)
+{
+	return keys ? c->keys[j + 1].frame : c->seg[j].f1;
 }
 
 /*
@@ -252,9 +281,9 @@ static uint32_t locate(const struct mot_curve *c, bool keys, uint32_t n, uint32_
 	uint32_t lo = 0, hi = n;
 
 	if (hint < n && start_of(c, keys, hint) <= f) {
-		if (hint + 1 == n || f < start_of(c, keys, hint + 1))
+		if (hint + 1 == n || f < end_of(c, keys, hint))
 			return hint;
-		if (hint + 2 == n || f < start_of(c, keys, hint + 2))
+		if (hint + 2 == n || f < end_of(c, keys, hint + 1))
 			return hint + 1;
 		lo = hint + 2;
 	}
@@ -294,24 +323,27 @@ static uint32_t locate_key(const struct mot_curve *c, struct mot_cursor *cur, mo
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-29, with |q| < 2^62;
+ * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-30, with |q| < 2^62;
  * false when it would not fit. The reciprocal of d comes from Newton-Raphson
- * on its top 31 bits (the 48/17 - 32/17 y start, three steps, Hacker's
- * Delight / Goldschmidt), products only: a Newton step of the curve solve
- * needs only a good direction and size, the solve's own convergence makes up
- * the rest, and no target has to divide at run time.
+ * on its top 31 bits: trig.c's table of 1/x (within 2^-8), then two steps,
+ * 2^-16 and 2^-32 (Hacker's Delight / Goldschmidt), products only. A Newton
+ * step of the curve solve needs only a good direction and size, the solve's
+ * own convergence makes up the rest, and no target has to divide at run
+ * time. Each step is a dependent product chain in a latency-bound loop:
+ * the table saves the third step of a linear seed.
  */
 static bool ratio62(int64_t r, int64_t d, int64_t *q)
 {
 	unsigned n = mot_clz64((uint64_t)d);
 	uint64_t y = ((uint64_t)d << n) >> 33; /* d = y 2^(33 - n), y in [2^30, 2^31) */
-	int64_t z = 6063483241 - (int64_t)((4042322161u * y) >> 31); /* 2^62 / y, Q31 */
+	/* 2^62 / y in Q31: the Q14 seed of 1 / (y / 2^31) */
+	int64_t z = (int64_t)mot_trig_recip_q14[(y >> 22) & 255] << 17;
 	mot_acc p;
 	int it;
 
-	/* e = 2^62 (1 - y z), |e| < 2^62 / 17: z e / 2^62 in two shifts (>> of a
+	/* e = 2^62 (1 - y z), |e| <= 2^54: z e / 2^62 in two shifts (>> of a
 	 * negative int64 is arithmetic in gcc and clang, as fix.h relies on) */
-	for (it = 0; it < 3; it++) {
+	for (it = 0; it < 2; it++) {
 		int64_t e = ((int64_t)1 << 62) - (int64_t)y * z;
 
 		z += (z * (e >> 31)) >> 31;
@@ -357,7 +389,59 @@ struct solve {
 	const struct mot_curve_seg *s;
 	int64_t d;        /* target: frame - fref, scaled by 2^fsh */
 	int it;           /* iterations taken (mot_curve_newton_iterations) */
+	const int64_t *pw; /* bezier in power form: the coefficients, else NULL */
 };
+
+/*
+ * Bezier in power form. With x_i the offsets of the keys from the first,
+ *     B(u) = sum x_i C(m, i) u^i (1 - u)^(m - i) = sum a_k u^k,
+ *     a_k = C(m, k) Delta^k x_0,     m = n - 1, a_0 = 0,
+ * (Delta^k: the k-th forward difference), so Horner's rule gives the frame
+ * and its derivative for 2m - 1 products and the value for m, where de
+ * Casteljau's algorithm takes m (m + 1) / 2 for each. The power form is
+ * ill-conditioned: sum |a_k| can reach 3^m max |x_i| while the curve stays
+ * within max |x_i|, and Horner's rounding is relative to sum |a_k|. So the
+ * coefficients are kept as exact integers (raw Q32.32 units) scaled by 2^sh,
+ * sum k |a_k| 2^sh < 2^61 for the frame (its derivative's partial sums too)
+ * and sum |a_k| 2^sh < 2^61 for the value, and the form is used only when
+ * sh >= 8: Horner's m roundings of half a unit stay below 1/16 LSB. Other
+ * curves (many keys, or keys far apart: 12 keys over +-1000 units, 32 keys
+ * of any size) keep de Casteljau. The coefficients live in the c[] and
+ * fc[] of the curve's entries, which a Bezier curve does not otherwise use:
+ * the frame's a_1 .. a_m in slots 0 .. m - 1, the value's in m .. 2m - 1
+ * (the n - 1 entries hold 8 (n - 1) >= 2m slots).
+ */
+#define POWER_MIN_SHIFT 8
+
+static inline int64_t *power_slot(const struct mot_curve *c, uint32_t j)
+{
+	struct mot_curve_seg *s = &c->seg[j / 8];
+
+	return j % 8 < 4 ? &s->c[j % 4] : &s->fc[j % 4];
+}
+
+static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int64_t *df)
+{
+	int64_t r = a[m - 1], d = (int64_t)m * a[m - 1];
+	uint32_t k;
+
+	for (k = m - 1; k >= 1; k--) {
+		r = mul62(r, u) + a[k - 1];
+		d = mul62(d, u) + (int64_t)k * a[k - 1];
+	}
+	*f = mul62(r, u);
+	*df = d;
+}
+
+static int64_t power_value(const int64_t *a, uint32_t m, int64_t u)
+{
+	int64_t r = a[m - 1];
+	uint32_t k;
+
+	for (k = m - 1; k >= 1; k--)
+		r = mul62(r, u) + a[k - 1];
+	return mul62(r, u);
+}
 
 /* Bezier: de Casteljau at u on the keys' frames (or values) relative to the
  * first key, scaled by 2^fsh (2^vsh), until `left` points remain in w[]. */
@@ -425,7 +509,9 @@ static int64_t solve_u(struct solve *sv, int64_t u)
 		int64_t f, df, du = 0, un = 0, tol;
 		bool newton;
 
-		if (bezier) {
+		if (sv->pw) {
+			power_frame(sv->pw, sv->c->nkeys - 1, u, &f, &df);
+		} else if (bezier) {
 			bezier_frame(sv->c, u, &f, &df);
 		} else {
 			f = poly_eval(s->fc, u);
@@ -483,11 +569,19 @@ static mot_q32 approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 {
 	const struct mot_curve_seg *s;
 	struct solve sv;
-	int64_t u;
+	int64_t u, pw[2 * (MOT_BEZIER_MAX_KEYS - 1)];
+	uint32_t m = c->nkeys - 1, j;
 
 	sv.c = c;
+	sv.pw = NULL;
 	if (c->kind == MOT_INTERP_BEZIER) {
 		s = &c->seg[0];
+		if (c->power) {
+			/* contiguous for the iterations */
+			for (j = 0; j < 2 * m; j++)
+				pw[j] = *power_slot(c, j);
+			sv.pw = pw;
+		}
 	} else {
 		s = &c->seg[locate_seg(c, cur, f)];
 	}
@@ -500,6 +594,8 @@ static mot_q32 approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		u = ONE62 - cbrt62(ONE62 - u);
 	u = solve_u(&sv, u);
 	*iters = sv.it;
+	if (sv.pw)
+		return value_of(s->vref, power_value(pw + m, m, u), s->vsh, sat);
 	if (c->kind == MOT_INTERP_BEZIER)
 		return bezier_value(c, u, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
@@ -517,8 +613,8 @@ static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
 }
 
-static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
-		    int *iters, uint32_t *sat)
+static inline __attribute__((always_inline)) mot_q32
+eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iters, uint32_t *sat)
 {
 	const struct mot_key *k;
 	const struct mot_curve_seg *s;
@@ -532,15 +628,15 @@ static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f
 	}
 	k = c->keys;
 	n = c->nkeys;
-	if (frame <= k[0].frame)
+	if (frame <= c->span_f0)
 		return k[0].value;
-	if (frame >= k[n - 1].frame)
+	if (frame >= c->span_f1)
 		return k[n - 1].value;
 	if (c->span_ease) {
 		frame = span_warp(c, frame);
-		if (frame <= k[0].frame)
+		if (frame <= c->span_f0)
 			return k[0].value;
-		if (frame >= k[n - 1].frame)
+		if (frame >= c->span_f1)
 			return k[n - 1].value;
 	}
 	if (c->kind >= MOT_INTERP_BSPLINE) {
@@ -555,9 +651,9 @@ static mot_q32 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f
 				u = frac62(frame - k[i].frame, &s->inv_h);
 				u = mot_ease_apply62(&s->ease, u);
 				frame = k[i].frame + mot_acc_round(mot_acc_mul(u, h), 62, NULL);
-				if (frame <= k[0].frame)
+				if (frame <= c->span_f0)
 					return k[0].value;
-				if (frame >= k[n - 1].frame)
+				if (frame >= c->span_f1)
 					return k[n - 1].value;
 			}
 		}
@@ -880,6 +976,54 @@ static int bezier_shift(int64_t maxdiff)
 	return maxdiff == 0 ? 0 : 58 - (int)bitlen64((uint64_t)maxdiff);
 }
 
+/* The power form of a Bezier curve when it keeps its precision (see
+ * power_frame): exact coefficients and their scales, or c->power false. */
+static void prep_power(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, m = n - 1, i, j, side;
+	int64_t a[2][MOT_BEZIER_MAX_KEYS - 1];
+	unsigned len[2];
+
+	c->power = false;
+	for (side = 0; side < 2; side++) {
+		mot_acc d[MOT_BEZIER_MAX_KEYS];
+		uint64_t b = 1, sum = 0;
+
+		for (i = 0; i < n; i++)
+			d[i] = mot_acc_from(side ? k[i].value - k[0].value
+						 : k[i].frame - k[0].frame, 0);
+		for (j = 1; j <= m; j++) {
+			/* d[0] = Delta^j x_0 (|.| < 2^(63 + j)), b = C(m, j) */
+			for (i = 0; i + j < n; i++)
+				d[i] = mot_acc_sub(d[i + 1], d[i]);
+			b = b * (m - j + 1) / j;
+			if (acc_bitlen(d[0]) + bitlen64(b) > 54)
+				return; /* |a_j| may reach 2^54: out of the form's range */
+			a[side][j - 1] = (int64_t)mot_acc_lo(d[0]) * (int64_t)b;
+			/* below 32 * 31 * 2^54 */
+			sum += (side ? 1 : j) * (uint64_t)mot_abs(a[side][j - 1]);
+		}
+		len[side] = bitlen64(sum);
+		if (len[side] > 61 - POWER_MIN_SHIFT)
+			return;
+	}
+	for (side = 0; side < 2; side++) {
+		int sh = 61 - (int)len[side];
+
+		for (j = 0; j < m; j++) {
+			uint32_t slot = side * m + j;
+
+			*power_slot(c, slot) = a[side][j] * ((int64_t)1 << sh);
+		}
+		if (side)
+			c->seg[0].vsh = (int16_t)sh;
+		else
+			c->seg[0].fsh = (int16_t)sh;
+	}
+	c->power = true;
+}
+
 static int prep_bezier(struct mot_curve *c)
 {
 	const struct mot_key *k = c->keys;
@@ -899,6 +1043,7 @@ static int prep_bezier(struct mot_curve *c)
 	s->vref = k[0].value;
 	s->f1 = k[c->nkeys - 1].frame;
 	s->start = START_CHORD;
+	prep_power(c);
 	return mot_recip_init(&s->inv_w, s->f1 - s->f0);
 }
 
@@ -1039,7 +1184,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	c->kind = (uint32_t)kind;
 	c->keys = keys;
 	c->seg = seg;
-	c->seg_ease = c->span_ease = c->integral = false;
+	c->seg_ease = c->span_ease = c->integral = c->power = false;
 	if (!opts)
 		opts = &defaults;
 	if (mot_curve_seg_count(kind, 1) == 0 || (nkeys > 0 && !keys))

@@ -35,10 +35,11 @@
  * bits on every target (__int128 or not).
  *
  * Cost per evaluation, playing 10 keys at 1 kHz ticks with a cursor (x86_64,
- * AMD EPYC, -O2; random access adds 10-30 ns): step 5 ns, linear 8 ns,
- * hermite 10 ns, bspline 70-85 ns, beta 80-95 ns (about 3.5 Newton
- * iterations), bezier O(n^2) per iteration: 130 ns for 4 keys, 400 ns for
- * 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
+ * AMD EPYC, -O2; random access adds 10-30 ns): step 4 ns, linear 7 ns,
+ * hermite 8 ns, bspline 60-70 ns, beta 70-80 ns (about 3.5 Newton
+ * iterations); bezier O(n) per iteration in power form (a few keys, not
+ * too far apart: 145 ns for 10 keys over 100 units and 200 frames), else
+ * O(n^2) by de Casteljau: 130 ns for 4 keys, 400 ns for 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
  * ratios of 1e4 and more, beta1 < 0.01, beta2 > 100) flatten a piece's frame
  * near its ends and take up to about 20 iterations; the solve never exceeds
  * 64 (NEWTON_MAX_IT in curve.c).
@@ -58,8 +59,9 @@ enum mot_interp {
 	MOT_INTERP_BEZIER,
 };
 
-/* Most keys a Bezier curve may have: it is one curve of degree n-1 and is
- * evaluated by de Casteljau's algorithm, O(n^2) per evaluation. */
+/* Most keys a Bezier curve may have: it is one curve of degree n-1,
+ * evaluated in power form (O(n)) where that keeps its precision and by de
+ * Casteljau's algorithm (O(n^2)) otherwise. */
 #define MOT_BEZIER_MAX_KEYS 32
 
 struct mot_key {
@@ -87,7 +89,8 @@ struct mot_curve_opts {
  *
  * Piece j of the curve: for step/linear/hermite the key interval j; for
  * bspline/beta the cubic on extended control points j..j+3; for bezier only
- * entry 0 (the whole curve). A polynomial P is kept as int64 coefficients of
+ * entry 0 (the whole curve), and the c[] and fc[] of every entry hold its
+ * power form (curve.c). A polynomial P is kept as int64 coefficients of
  * powers of a parameter u in Q2.62, scaled by 2^sh so that their magnitudes
  * add up to at most 2^61 (block floating point: ~60 significant bits however
  * small or large the segment):
@@ -98,16 +101,18 @@ struct mot_curve_opts {
  * the approximating kinds, the reciprocal of its width.
  */
 struct mot_curve_seg {
+	/* in the order evaluation reads them: an interpolating piece's first 88
+	 * bytes */
 	mot_q32 f0, f1;          /* frames covered by piece j: [f0, f1) */
 	mot_q32 vref, fref;      /* reference value and frame of the polynomials */
 	int64_t c[4];            /* value polynomial P */
+	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
+	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
+	uint8_t start;           /* Newton start rule (curve.c) */
 	union {
 		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
 	};
-	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
-	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
-	uint8_t start;           /* Newton start rule (curve.c) */
 	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
 	struct mot_ease ease;    /* slow-in/out of key interval j */
 	mot_acc area;            /* integral from frame 0 to key j, value x frames, Q64.64 */
@@ -118,12 +123,13 @@ struct mot_curve {
 	uint32_t nkeys;
 	uint32_t nseg;          /* entries of seg[] in use */
 	bool seg_ease;          /* some key interval has a non-zero ease fraction */
+	bool power;             /* bezier evaluated in power form (curve.c) */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
-	mot_q32 beta1, beta2;
 	mot_q32 span_f0, span_f1;    /* first and last key frame */
+	mot_q32 beta1, beta2;
 	struct mot_recip span_inv;   /* 1 / (span_f1 - span_f0) */
 	struct mot_ease span;
 	mot_acc area_first;          /* integral from frame 0 to the first key */

@@ -163,13 +163,14 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 				   { mot_mul(s[2], h[1], sat), mot_mul(s[2], h[2], sat), s[2] } };
 	int64_t r[3][3];
 	struct mot_mat m;
-	bool small = true;
+	uint64_t ov = 0, big = 0;
 	int i, j;
 
+	/* every |sh| below 2^62: the OR of their magnitudes is */
 	for (i = 0; i < 3; i++)
-		for (j = 0; j < 3; j++)
-			small = small && sh[i][j] < lim && sh[i][j] > -lim;
-	if (!small || mot_quat_to_rot_q62(r, &d->rot, sat) != MOT_OK) {
+		for (j = 0; j <= i; j++)
+			big |= sh[i][j] < 0 ? 0 - (uint64_t)sh[i][j] : (uint64_t)sh[i][j];
+	if (big >= (uint64_t)lim || mot_quat_to_rot_q62(r, &d->rot, sat) != MOT_OK) {
 		struct mot_mat a = { { { sh[0][0], 0, 0 }, { sh[1][0], sh[1][1], 0 },
 				       { sh[2][0], sh[2][1], sh[2][2] }, { 0, 0, 0 } } };
 
@@ -180,7 +181,16 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 		mot_mat_mul(out, &a, &m, sat);
 		return;
 	}
-	for (i = 0; i < 3; i++)
+	/* S . H is lower-triangular: row i has i + 1 products (fix.h's kernel,
+	 * the saturating rounding only when an entry does not fit) */
+	for (j = 0; j < 3; j++) {
+		m.m[0][j] = mot_acc_floor_ov(mot_acc_mac(mot_acc_start(0, 62), sh[0][0], r[0][j]), 62,
+					     &ov);
+		m.m[1][j] = mot_sum2_ov(sh[1][0], r[0][j], sh[1][1], r[1][j], 0, 62, &ov);
+		m.m[2][j] = mot_sum3_ov(sh[2][0], r[0][j], sh[2][1], r[1][j], sh[2][2], r[2][j], 0,
+					62, &ov);
+	}
+	for (i = 0; ov && i < 3; i++)
 		for (j = 0; j < 3; j++) {
 			mot_acc acc = mot_acc_mul(sh[i][0], r[0][j]);
 

@@ -289,6 +289,72 @@ static inline int64_t mot_acc_round(mot_acc x, unsigned shift, uint32_t *sat)
 	return (int64_t)lo;
 }
 
+/*
+ * The kernel of the hot paths (matrix products, joint updates): a short sum
+ * of exact products rounded once, with the overflow test taken out of the
+ * sum's way. A sum starts at mot_acc_start(c, shift), an addend c at the
+ * sum's scale 2^shift plus the half unit that makes the final floor a
+ * rounding to nearest (ties toward +inf, as mot_acc_round); products join
+ * with mot_acc_mac(); mot_acc_floor_ov() ends it without a branch and
+ * without saturating: it ORs a nonzero value into *ov when the result does
+ * not fit int64. A caller checks ov once for a whole matrix and, only then,
+ * redoes the matrix with the saturating functions. Results are those of
+ * mot_acc_round() bit for bit whenever they fit.
+ *
+ * Wrap-around. With up to three products of any int64 factors and an
+ * addend c (any c at shift 32, |c| <= 2^62 at shift 62) a true sum that
+ * leaves the signed 128-bit range lands, after wrapping, far outside what
+ * fits, so it is reported too (tests/test_fix.c checks both paths). Longer
+ * sums must bound their terms (see each caller).
+ *
+ * The shift is a constant in every caller, 1 <= shift <= 63 (32 for
+ * Q32.32 products, 62 for products with a factor in Q2.62).
+ */
+static inline mot_acc mot_acc_start(int64_t c, unsigned shift)
+{
+	/* c * 2^shift has shift zero low bits: the half unit just fills one */
+	return mot_acc_make((uint64_t)(c >> (64 - shift)),
+			    ((uint64_t)c << shift) | ((uint64_t)1 << (shift - 1)));
+}
+
+static inline int64_t mot_acc_floor_ov(mot_acc x, unsigned shift, uint64_t *ov)
+{
+	uint64_t hi = mot_acc_hi(x);
+
+	/* floor(x / 2^shift) fits int64 iff hi is in [-2^(shift-1), 2^(shift-1)) */
+	*ov |= (hi + ((uint64_t)1 << (shift - 1))) >> shift;
+#if MOT_HAVE_INT128
+	return (int64_t)((mot_uacc)x >> shift); /* one double-word shift */
+#else
+	return (int64_t)((hi << (64 - shift)) | (x.lo >> shift));
+#endif
+}
+
+/* round(x / 2^shift), the kernel's way: mot_acc_round() without saturation */
+static inline int64_t mot_acc_round_ov(mot_acc x, unsigned shift, uint64_t *ov)
+{
+	return mot_acc_floor_ov(mot_acc_add(x, mot_acc_start(0, shift)), shift, ov);
+}
+
+/* round(a0*b0 + a1*b1 + c * 2^shift) / 2^shift and the like: the sums the
+ * hot paths are made of, each rounded once (see above). */
+static inline int64_t mot_sum2_ov(int64_t a0, int64_t b0, int64_t a1, int64_t b1, int64_t c,
+				  unsigned shift, uint64_t *ov)
+{
+	mot_acc s = mot_acc_mac(mot_acc_start(c, shift), a0, b0);
+
+	return mot_acc_floor_ov(mot_acc_mac(s, a1, b1), shift, ov);
+}
+
+static inline int64_t mot_sum3_ov(int64_t a0, int64_t b0, int64_t a1, int64_t b1, int64_t a2,
+				  int64_t b2, int64_t c, unsigned shift, uint64_t *ov)
+{
+	mot_acc s = mot_acc_mac(mot_acc_start(c, shift), a0, b0);
+
+	s = mot_acc_mac(s, a1, b1);
+	return mot_acc_floor_ov(mot_acc_mac(s, a2, b2), shift, ov);
+}
+
 /* ---- Q32.32 arithmetic ---------------------------------------------------- */
 
 /* a * b, rounded, saturating. */
@@ -325,6 +391,18 @@ static inline mot_q32 mot_sum_prod(const mot_q32 *a, const mot_q32 *b, unsigned 
 	bool small = n <= 8;
 	unsigned i;
 
+	if (n <= 3) {
+		/* up to three products: the kernel's overflow test sees every
+		 * sum that does not fit, wrapped or not, with any factors */
+		uint64_t ov = 0;
+		mot_q32 r;
+
+		acc = mot_acc_start(0, MOT_Q32_FRAC);
+		for (i = 0; i < n; i++)
+			acc = mot_acc_mac(acc, a[i], b[i]);
+		r = mot_acc_floor_ov(acc, MOT_Q32_FRAC, &ov);
+		return ov ? mot_sum_prod_wide(a, b, n, sat) : r;
+	}
 	for (i = 0; i < n; i++)
 		small = small && a[i] < lim && a[i] > -lim && b[i] < lim && b[i] > -lim;
 	if (!small)
@@ -380,6 +458,9 @@ static inline mot_q32 mot_abs(mot_q32 a)
 /* Number of leading zero bits of x (64 for 0). */
 static inline unsigned mot_clz64(uint64_t x)
 {
+	/* two 32-bit counts: on x86_64 a 64-bit __builtin_clzll made atan2
+	 * and rsqrt twice as slow (make bench, prim_*), and 32-bit targets
+	 * need no libgcc call */
 	unsigned n = 0;
 
 	if (x == 0)

@@ -111,38 +111,29 @@ static void mat_mul_wide(mot_q32 r[4][3], const struct mot_mat *a, const struct 
 	}
 }
 
-/* One row of a product: round(x . B + c) for the three columns. */
-static inline void row_mul(mot_q32 r[3], const mot_q32 x[3], const mot_q32 (*b)[3], mot_acc c0,
-			   mot_acc c1, mot_acc c2, uint32_t *ov)
+/* One row of a product: round(x . B + c) for the three columns, with
+ * overflow left in *ov (fix.h's kernel). */
+static inline void row_mul(mot_q32 r[3], const mot_q32 x[3], const mot_q32 (*b)[3],
+			   const mot_q32 c[3], uint64_t *ov)
 {
-	mot_acc s0 = mot_acc_mac(c0, x[0], b[0][0]);
-	mot_acc s1 = mot_acc_mac(c1, x[0], b[0][1]);
-	mot_acc s2 = mot_acc_mac(c2, x[0], b[0][2]);
-
-	s0 = mot_acc_mac(s0, x[1], b[1][0]);
-	s1 = mot_acc_mac(s1, x[1], b[1][1]);
-	s2 = mot_acc_mac(s2, x[1], b[1][2]);
-	s0 = mot_acc_mac(s0, x[2], b[2][0]);
-	s1 = mot_acc_mac(s1, x[2], b[2][1]);
-	s2 = mot_acc_mac(s2, x[2], b[2][2]);
-	r[0] = mot_acc_round(s0, MOT_Q32_FRAC, ov);
-	r[1] = mot_acc_round(s1, MOT_Q32_FRAC, ov);
-	r[2] = mot_acc_round(s2, MOT_Q32_FRAC, ov);
+	r[0] = mot_sum3_ov(x[0], b[0][0], x[1], b[1][0], x[2], b[2][0], c[0], 32, ov);
+	r[1] = mot_sum3_ov(x[0], b[0][1], x[1], b[1][1], x[2], b[2][1], c[1], 32, ov);
+	r[2] = mot_sum3_ov(x[0], b[0][2], x[1], b[1][2], x[2], b[2][2], c[2], 32, ov);
 }
+
+static const mot_q32 zero3[3] = { 0, 0, 0 };
 
 void mot_mat_mul(struct mot_mat *out, const struct mot_mat *a, const struct mot_mat *b,
 		 uint32_t *sat)
 {
 	const mot_q32(*y)[3] = b->m;
-	mot_acc z = mot_acc_zero();
 	mot_q32 r[4][3];
-	uint32_t ov = 0;
+	uint64_t ov = 0;
 
-	row_mul(r[0], a->m[0], y, z, z, z, &ov);
-	row_mul(r[1], a->m[1], y, z, z, z, &ov);
-	row_mul(r[2], a->m[2], y, z, z, z, &ov);
-	row_mul(r[3], a->m[3], y, mot_acc_from(y[3][0], MOT_Q32_FRAC),
-		mot_acc_from(y[3][1], MOT_Q32_FRAC), mot_acc_from(y[3][2], MOT_Q32_FRAC), &ov);
+	row_mul(r[0], a->m[0], y, zero3, &ov);
+	row_mul(r[1], a->m[1], y, zero3, &ov);
+	row_mul(r[2], a->m[2], y, zero3, &ov);
+	row_mul(r[3], a->m[3], y, y[3], &ov);
 	if (ov)
 		mat_mul_wide(r, a, b, sat);
 	*out = (struct mot_mat){ { { r[0][0], r[0][1], r[0][2] },
@@ -155,17 +146,11 @@ void mot_mat_mul(struct mot_mat *out, const struct mot_mat *a, const struct mot_
 static void apply(mot_q32 out[3], const mot_q32 p[3], const struct mot_mat *m, bool point,
 		  uint32_t *sat)
 {
-	mot_acc z = mot_acc_zero();
 	mot_q32 r[3];
-	uint32_t ov = 0;
+	uint64_t ov = 0;
 	int j;
 
-	if (point)
-		row_mul(r, p, m->m, mot_acc_from(m->m[3][0], MOT_Q32_FRAC),
-			mot_acc_from(m->m[3][1], MOT_Q32_FRAC), mot_acc_from(m->m[3][2], MOT_Q32_FRAC),
-			&ov);
-	else
-		row_mul(r, p, m->m, z, z, z, &ov);
+	row_mul(r, p, m->m, point ? m->m[3] : zero3, &ov);
 	for (j = 0; ov && j < 3; j++) {
 		mot_q32 x[4] = { p[0], p[1], p[2], m->m[3][j] };
 		mot_q32 y[4] = { m->m[0][j], m->m[1][j], m->m[2][j], ONE };
@@ -459,12 +444,30 @@ static void vec_neg(mot_q32 out[3], const mot_q32 v[3], uint32_t *sat)
 void mot_mat_about_pivot(struct mot_mat *out, const struct mot_mat *a, const mot_q32 p[3],
 			 uint32_t *sat)
 {
-	/* T(-p) . a . T(p): linear part a's, translation -p.A + t + p */
-	mot_q32 np[3];
+	/* T(-p) . a . T(p): linear part a's, translation -p.A + t + p, each
+	 * entry three products and two addends below 2^96 (fix.h's kernel);
+	 * the saturating sums when that overflows, or when -p does not exist */
+	mot_q32 np[3], t[3];
 	struct mot_mat r = *a;
+	uint64_t ov = p[0] == MOT_Q32_MIN || p[1] == MOT_Q32_MIN || p[2] == MOT_Q32_MIN;
+	int j;
 
-	vec_neg(np, p, sat);
-	pivot_row(r.m[3], np, a, a->m[3], p, sat);
+	for (j = 0; j < 3; j++) {
+		mot_acc x = mot_acc_add(mot_acc_start(a->m[3][j], MOT_Q32_FRAC),
+					mot_acc_from(p[j], MOT_Q32_FRAC));
+
+		x = mot_acc_sub(x, mot_acc_mul(p[0], a->m[0][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[1], a->m[1][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[2], a->m[2][j]));
+		t[j] = mot_acc_floor_ov(x, MOT_Q32_FRAC, &ov);
+	}
+	if (ov) {
+		vec_neg(np, p, sat);
+		pivot_row(t, np, a, a->m[3], p, sat);
+	}
+	r.m[3][0] = t[0];
+	r.m[3][1] = t[1];
+	r.m[3][2] = t[2];
 	*out = r;
 }
 

@@ -86,7 +86,8 @@ void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat
  * R(q) of FORMULAS section 4 as exact Q64.64 sums, when every component is
  * below 2^62 in magnitude (then nothing can wrap); false otherwise.
  */
-static bool rot_exact(mot_acc e[3][3], const struct mot_quat *q)
+static inline __attribute__((always_inline)) bool rot_exact(mot_acc e[3][3],
+							     const struct mot_quat *q)
 {
 	const mot_q32 lim = (mot_q32)1 << 62;
 	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
@@ -124,7 +125,14 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 	int i;
 
 	if (rot_exact(e, q)) {
-		for (i = 0; i < 9; i++)
+		uint64_t ov = 0;
+		int j;
+
+		/* saturating only when an entry does not fit (fix.h's kernel) */
+		for (i = 0; i < 3; i++)
+			for (j = 0; j < 3; j++)
+				r.m[i][j] = mot_acc_round_ov(e[i][j], MOT_Q32_FRAC, &ov);
+		for (i = 0; ov && i < 9; i++)
 			r.m[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], MOT_Q32_FRAC, sat);
 	} else {
 		const mot_q32 nx = neg(x, sat), ny = neg(y, sat), nz = neg(z, sat);
@@ -151,11 +159,15 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
 {
 	mot_acc e[3][3];
-	int i;
+	uint64_t ov = 0;
+	int i, j;
 
 	if (!rot_exact(e, q))
 		return MOT_E_RANGE;
-	for (i = 0; i < 9; i++)
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			r[i][j] = mot_acc_round_ov(e[i][j], 2, &ov);
+	for (i = 0; ov && i < 9; i++)
 		r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
 	return MOT_OK;
 }

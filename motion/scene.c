@@ -4,6 +4,12 @@
 #include "decomp.h"
 #include "trig.h"
 
+#define ONE MOT_Q32_ONE
+
+static const struct mot_mat mat_id = {
+	{ { ONE, 0, 0 }, { 0, ONE, 0 }, { 0, 0, ONE }, { 0, 0, 0 } },
+};
+
 static bool in_range(int32_t idx, uint32_t n)
 {
 	return idx >= 0 && (uint32_t)idx < n;
@@ -21,6 +27,35 @@ static bool axis_is_unit(const mot_q32 a[3])
 	int64_t q = mot_acc_round(n2, 64 - 24, NULL); /* Q40.24 */
 
 	return q >= ((int64_t)1 << 24) - 1 && q <= ((int64_t)1 << 24) + 1;
+}
+
+void mot_node_prepare(struct mot_node *n)
+{
+	const mot_q32 *a = n->axis;
+	bool tilted = n->kind == MOT_NODE_REVOLUTE && n->axis_id == MOT_AXIS_VEC;
+	unsigned k;
+
+	for (k = 0; k < 3; k++) {
+		unsigned j = (k + 1) % 3, l = (k + 2) % 3;
+		mot_acc sq = mot_acc_mac(mot_acc_mul(a[j], a[j]), a[l], a[l]);
+
+		/* Q64.64 products rounded to Q2.62 */
+		n->rot_sq[k] = tilted ? mot_acc_round(sq, 2, NULL) : 0;
+		n->rot_pr[k] = tilted ? mot_acc_round(mot_acc_mul(a[j], a[l]), 2, NULL) : 0;
+	}
+}
+
+/* The derived fields are those mot_node_prepare() gives. */
+static bool node_prepared(const struct mot_node *n)
+{
+	struct mot_node p = *n;
+	unsigned k;
+
+	mot_node_prepare(&p);
+	for (k = 0; k < 3; k++)
+		if (p.rot_sq[k] != n->rot_sq[k] || p.rot_pr[k] != n->rot_pr[k])
+			return false;
+	return true;
 }
 
 int mot_scene_validate(const struct mot_scene *sc)
@@ -55,6 +90,8 @@ int mot_scene_validate(const struct mot_scene *sc)
 		default:
 			return MOT_E_KIND;
 		}
+		if (!node_prepared(n))
+			return MOT_E_INVAL;
 	}
 	for (i = 0; i < sc->nfree; i++) {
 		for (k = 0; k < MOT_FREE_NCHANNELS; k++)
@@ -106,104 +143,321 @@ static mot_q32 joint_value(const struct mot_scene *sc, struct mot_eval *ev,
 	return n->rest;
 }
 
+/*
+ * The linear part S . H . R and the translation of a free node (channels
+ * without keys at their rest values). Returns false when the node has no
+ * rotation, scale or shear channel: its linear part is then the identity,
+ * exactly, and only m's translation row is written.
+ */
+static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene *sc,
+			struct mot_eval *ev, const struct mot_free_strand *fs, mot_q32 frame)
+{
+	struct mot_decomp d;
+	mot_q32 v[MOT_FREE_NCHANNELS], g = mot_warp_apply(&fs->warp, frame, &ev->sat);
+	bool rot = fs->rot >= 0, shs = false;
+	int64_t r[3][3];
+	uint64_t ov = 0;
+	uint32_t k, j;
+
+	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+		int32_t c = fs->channel[k];
+
+		if (c >= 0) {
+			v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g, &ev->sat);
+			shs = shs || k >= MOT_FREE_SX;
+		} else {
+			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
+		}
+	}
+	for (k = 0; k < 3; k++) {
+		t[k] = v[MOT_FREE_TX + k];
+		m->m[3][k] = t[k];
+	}
+	if (!rot && !shs)
+		return false;
+	/* What mot_mat_compose() would give, bit for bit, with the absent part
+	 * left out: without a rotation track R = I and the linear part is S . H
+	 * itself; without scale and shear channels it is R rounded once from
+	 * Q2.62. */
+	if (!rot) {
+		const mot_q32 *sv = v + MOT_FREE_SX, *hv = v + MOT_FREE_HXY;
+
+		*m = (struct mot_mat){ { { sv[0], 0, 0 },
+					 { mot_mul(sv[1], hv[0], &ev->sat), sv[1], 0 },
+					 { mot_mul(sv[2], hv[1], &ev->sat),
+					   mot_mul(sv[2], hv[2], &ev->sat), sv[2] },
+					 { t[0], t[1], t[2] } } };
+		return true;
+	}
+	mot_rot_track_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
+			   g, &ev->sat);
+	if (!shs && mot_quat_to_rot_q62(r, &d.rot, &ev->sat) == MOT_OK) {
+		for (k = 0; k < 3; k++)
+			for (j = 0; j < 3; j++)
+				m->m[k][j] = mot_acc_round_ov(mot_acc_from(r[k][j], 0), 30, &ov);
+		return true; /* |r| < 2^63: ov stays 0 */
+	}
+	for (k = 0; k < 3; k++) {
+		d.translate[k] = t[k];
+		d.scale[k] = v[MOT_FREE_SX + k];
+		d.shear[k] = v[MOT_FREE_HXY + k];
+	}
+	mot_mat_compose(m, &d, &ev->sat);
+	return true;
+}
+
+/*
+ * The rotation of a revolute joint about a tilted unit axis a by an angle
+ * with cosine c and sine s: the matrix of the quaternion (cos/2, a sin/2)
+ * of FORMULAS section 4 multiplied out (Rodrigues' formula in the
+ * row-vector convention),
+ *     R[k][k] = 1 - (1 - c)(a_j^2 + a_l^2)
+ *     R[j][l] = (1 - c) a_j a_l + s a_k,   R[l][j] = (1 - c) a_j a_l - s a_k
+ * for (k, j, l) = (k, k+1, k+2) mod 3. The squares and products of the axis
+ * are constant and prepared in Q2.62 (mot_node_prepare), so a tick costs
+ * one sincos and nine products, each entry rounded once from Q34.94; the
+ * quaternion route costs a half-angle sincos, three roundings of the
+ * quaternion and fifteen products.
+ */
+static void tilted_rot(struct mot_mat *r, const struct mot_node *n, mot_q32 turns)
+{
+	mot_q32 s, c, omc;
+	uint64_t ov = 0; /* terms below 2^96: never set */
+	unsigned k;
+
+	mot_sincos(turns, &s, &c);
+	omc = ONE - c; /* exact, in [0, 2] */
+	for (k = 0; k < 3; k++) {
+		unsigned j = (k + 1) % 3, l = (k + 2) % 3;
+		/* a_k in Q2.62, exactly (|a_k| <= 1 + 2^-25, validated) */
+		int64_t ak = (int64_t)((uint64_t)n->axis[k] << 30);
+		mot_acc x = mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[k]);
+		mot_acc y = mot_acc_mul(s, ak);
+
+		r->m[k][k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
+							  mot_acc_mul(omc, n->rot_sq[k])),
+					      62, &ov);
+		r->m[j][l] = mot_acc_floor_ov(mot_acc_add(x, y), 62, &ov);
+		r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(x, y), 62, &ov);
+	}
+	r->m[3][0] = r->m[3][1] = r->m[3][2] = 0;
+}
+
 /* Local matrix of a free node: T(-p) . S . H . R . T(p) . T(t). */
 static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
 		       const struct mot_node *n, mot_q32 frame)
 {
-	struct mot_decomp d;
-	mot_q32 v[MOT_FREE_NCHANNELS];
-	uint32_t k;
+	mot_q32 t[3];
 
 	if (n->strand < 0) {
 		mot_mat_identity(out);
 		return;
 	}
-	{
-		const struct mot_free_strand *fs = &sc->free[n->strand];
-		mot_q32 g = mot_warp_apply(&fs->warp, frame, &ev->sat);
-
-		for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
-			int32_t c = fs->channel[k];
-
-			if (c >= 0)
-				v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g,
-						      &ev->sat);
-			else
-				v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
-		}
-		if (fs->rot >= 0)
-			mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
-					   &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g,
-					   &ev->sat);
-		else
-			mot_quat_identity(&d.rot);
+	if (!free_linear(out, t, sc, ev, &sc->free[n->strand], frame)) {
+		/* T(-p) . T(p) . T(t) = T(t), exactly */
+		mot_mat_translate(out, t);
+		return;
 	}
-	for (k = 0; k < 3; k++) {
-		d.translate[k] = v[MOT_FREE_TX + k];
-		d.scale[k] = v[MOT_FREE_SX + k];
-		d.shear[k] = v[MOT_FREE_HXY + k];
-	}
-	mot_mat_compose(out, &d, &ev->sat);
 	mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 }
 
 /*
- * World matrix of a revolute joint about a coordinate axis. R mixes two rows
- * (a, b) of whatever follows it and leaves the third alone:
- *     Rz: (a, b) = (0, 1)   Rx: (1, 2)   Ry: (2, 0)
- * so L . P costs 4 + 2 row products instead of a full 3x3 product, and
- * the translation T(-p) . R . T(p) contributes (p - p.R) . P_lin.
+ * World matrix W and pivot position of a node, from its parent's world
+ * matrix P (the identity for a root). Every node's local matrix has the form
+ * L = T(-p) . M . T(p) . T(t), with M its linear part (S.H.R of a free node,
+ * the rotation of a revolute joint, the identity for a prismatic one) and t
+ * its translation (zero for a revolute joint). The pivot is a fixed point of
+ * T(-p) . M . T(p), so (p, 1) . L = (p + t, 1), and
+ *     pos   = (p + t) . P_lin + P_t
+ *     W_lin = M . P_lin
+ *     W_t   = pos - p . W_lin            (pos = (p, 1) . W)
+ * with W_t taken from pos's exact sum before it is rounded: three products a
+ * column where forming L's translation p - p.M + t and then L . P costs six.
+ * The rounded W maps the pivot onto pos within half an LSB, so a child's
+ * position errs by its offset from this pivot times W's rounding, not by its
+ * distance from the origin. Each entry is one sum of exact products rounded
+ * once (fix.h's kernel); when a sum does not fit, node_world_sat() redoes
+ * the node with the saturating sums, which give the same bits otherwise.
  */
-static void revolute_world(struct mot_mat *w, const struct mot_mat *parent, unsigned axis,
-			   const mot_q32 p[3], mot_q32 turns, uint32_t *sat)
+static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
+			   const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],
+			   uint32_t *sat)
 {
-	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
-	const unsigned a = ab[axis][0], b = ab[axis][1], o = axis;
-	struct mot_mat id;
-	mot_q32 s, c, ta, tb;
+	mot_q32 r[4][3], q[3], np[3];
+	unsigned i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++) {
+			const mot_q32 y[3] = { par->m[0][j], par->m[1][j], par->m[2][j] };
+
+			r[i][j] = mot_sum_prod(m->m[i], y, 3, sat);
+		}
+	for (j = 0; j < 3; j++)
+		np[j] = mot_sub_sat(0, p[j], sat);
+	for (j = 0; j < 3; j++) {
+		const mot_q32 x[10] = { p[0], p[1], p[2], t[0], t[1], t[2], par->m[3][j],
+					np[0], np[1], np[2] };
+		const mot_q32 y[10] = { par->m[0][j], par->m[1][j], par->m[2][j], par->m[0][j],
+					par->m[1][j], par->m[2][j], ONE, r[0][j], r[1][j], r[2][j] };
+
+		q[j] = mot_sum_prod(x, y, 7, sat);
+		r[3][j] = mot_sum_prod(x, y, 10, sat);
+	}
+	for (j = 0; j < 3; j++) {
+		pos[j] = q[j];
+		for (i = 0; i < 4; i++)
+			w->m[i][j] = r[i][j];
+	}
+}
+
+/* Any linear part M (free nodes, tilted joints); M must not alias W. */
+static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		       const struct mot_mat *restrict par, const struct mot_mat *restrict m,
+		       const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
+{
+	const mot_q32(*y)[3] = par->m;
+	mot_q32 q[3];
+	uint64_t ov = 0;
+	unsigned i, j;
+
+	for (i = 0; i < 3; i++)
+		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			w->m[i][j] = mot_sum3_ov(m->m[i][0], y[0][j], m->m[i][1], y[1][j],
+						 m->m[i][2], y[2][j], 0, 32, &ov);
+	for (j = 0; j < 3; j++) {
+		/* at most three products and an addend, then three more from a
+		 * sum that fits (else ov is set already): no wrap goes unseen */
+		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), q[0], y[0][j]);
+
+		x = mot_acc_mac(mot_acc_mac(x, q[1], y[1][j]), q[2], y[2][j]);
+		pos[j] = mot_acc_floor_ov(x, 32, &ov);
+		x = mot_acc_sub(x, mot_acc_mul(p[0], w->m[0][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[1], w->m[1][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[2], w->m[2][j]));
+		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+	}
+	if (ov)
+		node_world_sat(w, pos, par, m, p, t, sat);
+}
+
+/* M = I (prismatic joints, free nodes without rotation, scale or shear):
+ * W = T(t) . P, P's linear part and translation t . P_lin + P_t, and
+ * pos = W_t + p . P_lin. */
+static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			    const struct mot_mat *restrict par, const mot_q32 p[3],
+			    const mot_q32 t[3], uint32_t *sat)
+{
+	const mot_q32(*y)[3] = par->m;
+	uint64_t ov = 0;
+	unsigned j;
+
+	for (j = 0; j < 3; j++) {
+		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), t[0], y[0][j]);
+
+		x = mot_acc_mac(mot_acc_mac(x, t[1], y[1][j]), t[2], y[2][j]);
+		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+		x = mot_acc_mac(mot_acc_mac(x, p[0], y[0][j]), p[1], y[1][j]);
+		pos[j] = mot_acc_floor_ov(mot_acc_mac(x, p[2], y[2][j]), 32, &ov);
+		w->m[0][j] = y[0][j];
+		w->m[1][j] = y[1][j];
+		w->m[2][j] = y[2][j];
+	}
+	if (ov)
+		node_world_sat(w, pos, par, &mat_id, p, t, sat);
+}
+
+/*
+ * A revolute joint about a coordinate axis o: R mixes two rows (a, b) of
+ * whatever follows it and leaves the third alone,
+ *     Rz: (a, b) = (0, 1)   Rx: (1, 2)   Ry: (2, 0)
+ * so W_lin costs 4 row products instead of 9, and in
+ * W_t = pos - p . W_lin the term p_o P_o cancels: with
+ * U = P_t + p_a P_a + p_b P_b, pos = U + p_o P_o and W_t = U - p_a W_a -
+ * p_b W_b. Nine products a column.
+ */
+static const unsigned rev_rows[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
+
+/* R about coordinate axis o as a matrix (the local matrix, the slow path) */
+static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
+{
+	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
+
+	*m = mat_id;
+	m->m[a][a] = c;
+	m->m[a][b] = s;
+	m->m[b][a] = -s;
+	m->m[b][b] = c;
+}
+
+static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
+			   mot_q32 turns, uint32_t *sat)
+{
+	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
+	const mot_q32 *restrict ya = par->m[a], *restrict yb = par->m[b];
+	const mot_q32 *restrict yo = par->m[o], *restrict yt = par->m[3];
+	mot_q32 *restrict wa = w->m[a], *restrict wb = w->m[b];
+	mot_q32 *restrict wo = w->m[o], *restrict wt = w->m[3];
+	const mot_q32 pa = p[a], pb = p[b], po = p[o];
+	mot_q32 s, c;
+	uint64_t ov = 0;
 	unsigned j;
 
 	mot_sincos(turns, &s, &c);
-	/* p - p.R, components a and b (component o is 0) */
-	ta = p[a] - mot_acc_round(mot_acc_mac(mot_acc_mul(c, p[a]), -s, p[b]), 32, sat);
-	tb = p[b] - mot_acc_round(mot_acc_mac(mot_acc_mul(s, p[a]), c, p[b]), 32, sat);
-	if (!parent) {
-		mot_mat_identity(&id);
-		parent = &id;
-	}
 	for (j = 0; j < 3; j++) {
-		mot_q32 pa = parent->m[a][j], pb = parent->m[b][j];
-		mot_acc t = mot_acc_from(parent->m[3][j], 32);
+		mot_q32 ra = mot_sum2_ov(c, ya[j], s, yb[j], 0, 32, &ov);
+		mot_q32 rb = mot_sum2_ov(-s, ya[j], c, yb[j], 0, 32, &ov);
+		mot_acc u = mot_acc_mac(mot_acc_start(yt[j], 32), pa, ya[j]);
 
-		t = mot_acc_mac(mot_acc_mac(t, ta, pa), tb, pb);
-		w->m[3][j] = mot_acc_round(t, 32, sat);
-		w->m[a][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(c, pa), s, pb), 32, sat);
-		w->m[b][j] = mot_acc_round(mot_acc_mac(mot_acc_mul(-s, pa), c, pb), 32, sat);
-		w->m[o][j] = parent->m[o][j];
+		u = mot_acc_mac(u, pb, yb[j]);
+		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
+		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, po, yo[j]), 32, &ov);
+		u = mot_acc_sub(u, mot_acc_mul(pa, ra));
+		wt[j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(pb, rb)), 32, &ov);
+		wa[j] = ra;
+		wb[j] = rb;
+		wo[j] = yo[j];
 	}
+	if (ov) {
+		struct mot_mat m;
+		static const mot_q32 zero[3] = { 0, 0, 0 };
+
+		axis_rot(&m, o, s, c);
+		node_world_sat(w, pos, par, &m, p, zero, sat);
+	}
+}
+
+/* t = v . axis, the offset of a prismatic joint */
+static void joint_offset(mot_q32 t[3], mot_q32 v, const mot_q32 axis[3], uint32_t *sat)
+{
+	unsigned k;
+
+	for (k = 0; k < 3; k++)
+		t[k] = mot_mul(v, axis[k], sat);
 }
 
 void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
 		    uint32_t node, mot_q32 frame, mot_q32 *value, mot_q32 *rpm)
 {
 	const struct mot_node *n = &sc->nodes[node];
-	mot_q32 v = 0, r = 0, t[3];
-	uint32_t k;
+	mot_q32 v = 0, r = 0, t[3], s, c;
 
 	switch (n->kind) {
 	case MOT_NODE_REVOLUTE:
 		v = joint_value(sc, ev, n, frame, &r);
 		if (n->axis_id == MOT_AXIS_VEC) {
-			mot_mat_rot_axis(out, n->axis, v, &ev->sat);
-			mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
+			tilted_rot(out, n, v);
 		} else {
-			revolute_world(out, NULL, n->axis_id, n->pivot, v, &ev->sat);
+			mot_sincos(v, &s, &c);
+			axis_rot(out, n->axis_id, s, c);
 		}
+		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
 		v = joint_value(sc, ev, n, frame, &r);
-		for (k = 0; k < 3; k++)
-			t[k] = mot_mul(v, n->axis[k], &ev->sat);
+		joint_offset(t, v, n->axis, &ev->sat);
 		mot_mat_translate(out, t);
 		break;
 	default:
@@ -219,41 +473,39 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out)
 {
+	static const mot_q32 zero[3] = { 0, 0, 0 };
 	uint32_t i;
 
 	for (i = 0; i < sc->nnodes; i++) {
 		const struct mot_node *n = &sc->nodes[i];
-		const struct mot_mat *parent = n->parent >= 0 ? &out->world[n->parent] : NULL;
-		struct mot_mat *w = &out->world[i];
-		mot_q32 v = 0, r = 0;
+		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
+		struct mot_mat *w = &out->world[i], local;
+		mot_q32 *pos = out->pos[i], v = 0, r = 0, t[3];
 
-		if (n->kind == MOT_NODE_REVOLUTE && n->axis_id != MOT_AXIS_VEC) {
+		switch (n->kind) {
+		case MOT_NODE_REVOLUTE:
 			v = joint_value(sc, ev, n, frame, &r);
-			revolute_world(w, parent, n->axis_id, n->pivot, v, &ev->sat);
-		} else if (n->kind == MOT_NODE_PRISMATIC) {
-			mot_q32 t[3];
-			uint32_t k;
-
-			v = joint_value(sc, ev, n, frame, &r);
-			for (k = 0; k < 3; k++)
-				t[k] = mot_mul(v, n->axis[k], &ev->sat);
-			if (parent) {
-				/* T(t) . P: P's linear part, translation t.P_lin + P_t */
-				*w = *parent;
-				mot_mat_apply(w->m[3], t, parent, &ev->sat);
+			if (n->axis_id != MOT_AXIS_VEC) {
+				revolute_world(w, pos, par, n->axis_id, n->pivot, v, &ev->sat);
 			} else {
-				mot_mat_translate(w, t);
+				tilted_rot(&local, n, v);
+				node_world(w, pos, par, &local, n->pivot, zero, &ev->sat);
 			}
-		} else {
-			struct mot_mat local;
-
-			mot_node_local(&local, sc, ev, i, frame, &v, &r);
-			if (parent)
-				mot_mat_mul(w, &local, parent, &ev->sat);
+			break;
+		case MOT_NODE_PRISMATIC:
+			v = joint_value(sc, ev, n, frame, &r);
+			joint_offset(t, v, n->axis, &ev->sat);
+			translate_world(w, pos, par, n->pivot, t, &ev->sat);
+			break;
+		default:
+			if (n->strand < 0)
+				translate_world(w, pos, par, n->pivot, zero, &ev->sat);
+			else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
+				translate_world(w, pos, par, n->pivot, t, &ev->sat);
 			else
-				*w = local;
+				node_world(w, pos, par, &local, n->pivot, t, &ev->sat);
+			break;
 		}
-		mot_mat_apply(out->pos[i], n->pivot, w, &ev->sat);
 		out->value[i] = v;
 		out->rpm[i] = r;
 	}

@@ -11,6 +11,11 @@
  *     L = T(position . axis)                    prismatic joint
  *     W(root) = L, W(child) = L . W(parent)
  * and a node's reported position is its pivot in world space, (p, 1) . W.
+ * Both are computed for every node on every evaluation, each entry rounded
+ * once from the parent's world matrix: the position as (p + t) . W(parent)
+ * (t: the node's translation), which the rounded W maps the pivot onto
+ * within half an LSB (scene.c's node_world explains why and how W's
+ * translation shares its products).
  *
  * All arrays are owned by the caller (the scene loader packs them into one
  * block, see arena.h); the scene itself is read-only while it plays. The
@@ -43,15 +48,24 @@ enum mot_axis {
 };
 
 struct mot_node {
+	/* What every node reads on every evaluation comes first: a joint about
+	 * a coordinate axis reads the first 56 bytes (128 in all). */
 	int32_t parent;   /* index of the parent, -1 for a root; < own index */
 	uint32_t kind;    /* enum mot_node_kind */
 	uint32_t axis_id; /* enum mot_axis (joints) */
-	mot_q32 pivot[3]; /* rest coordinates shared with the parent */
-	mot_q32 axis[3];  /* joints: unit axis (set for every axis_id) */
-	mot_q32 rest;     /* joints: value when no strand moves it */
 	int32_t curve;    /* joints: curve of the value, or -1 */
 	int32_t spin;     /* revolute joints: rpm curve (prepared with integral), or -1 */
 	int32_t strand;   /* free nodes: index into scene->free, or -1 */
+	mot_q32 pivot[3]; /* rest coordinates shared with the parent */
+	mot_q32 rest;     /* joints: value when no strand moves it */
+	mot_q32 axis[3];  /* joints: unit axis (set for every axis_id) */
+	/* Derived from axis by mot_node_prepare(), for revolute joints about a
+	 * tilted axis (zero otherwise): the constant parts of the rotation
+	 * matrix, in Q2.62, with (k, j, l) = (k, k+1, k+2) mod 3:
+	 *     R[j][j] = 1 - (1 - cos) rot_sq[j],  rot_sq[j] = a_k^2 + a_l^2
+	 *     R[j][l], R[l][j] = (1 - cos) rot_pr[k] +- sin a_k, rot_pr[k] = a_j a_l */
+	int64_t rot_sq[3];
+	int64_t rot_pr[3];
 };
 
 struct mot_scene {
@@ -91,9 +105,17 @@ struct mot_pose {
 };
 
 /*
+ * Fill the derived fields of a node (rot_sq, rot_pr) from its kind, axis_id
+ * and axis. Whoever builds the node array calls it for every node once
+ * those are set, before mot_scene_validate(). Init only.
+ */
+void mot_node_prepare(struct mot_node *n);
+
+/*
  * Check the scene's structure: every parent before its child (MOT_E_PARENT),
  * every index in range and of the right kind for its node (MOT_E_KIND,
- * MOT_E_INVAL), every joint axis unit length. Init only.
+ * MOT_E_INVAL), every joint axis unit length and every node's derived fields
+ * those of mot_node_prepare() (MOT_E_INVAL). Init only.
  */
 int mot_scene_validate(const struct mot_scene *sc);
 

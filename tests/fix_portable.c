@@ -33,3 +33,9 @@ int64_t fixp_muldiv(int64_t a, int64_t m, int64_t d)
 {
 	return fixp_muldiv_(a, m, d, NULL);
 }
+
+int64_t fixp_sum3_ov(const int64_t a[3], const int64_t b[3], int64_t c, unsigned shift,
+		     uint64_t *ov)
+{
+	return mot_sum3_ov(a[0], b[0], a[1], b[1], a[2], b[2], c, shift, ov);
+}

@@ -249,6 +249,45 @@ static void test_bezier_max(void **state)
 }
 
 /*
+ * Bezier curves that curve.c evaluates in power form (the form's range: a
+ * few keys close together; test_bezier's sets mostly fall outside it)
+ * against the reference, with the same bound, and the power form taken for
+ * most of these sets.
+ */
+static void test_bezier_power(void **state)
+{
+	static struct keyset ks;
+	struct tu_rng rng;
+	struct tu_worst w = { 0, 0 };
+	int set, i, npower = 0;
+
+	tu_seed(&rng, 141);
+	for (set = 0; set < 400; set++) {
+		gen(&rng, &ks, MOT_INTERP_BEZIER, set % 2);
+		ks.n = 2 + (uint32_t)(tu_u64(&rng) % 9);
+		for (i = 1; i < (int)ks.n; i++)
+			ks.k[i].frame = ks.k[i - 1].frame + d2q(log_uniform(&rng, 0.1, 100));
+		for (i = 0; i < (int)ks.n; i++)
+			ks.k[i].value = d2q(tu_uniform(&rng, -10, 10));
+		ks.o.ease_in_frames = ks.o.ease_out_frames = 0;
+		init_ok(&ks, MOT_INTERP_BEZIER);
+		npower += ks.c.power;
+		for (i = 0; i < 250; i++) {
+			mot_q32 f = sample(&rng, &ks);
+			ref_t want = ref_curve_eval(MOT_INTERP_BEZIER, ks.k, ks.n, &ks.o, ref_q(f));
+			ref_t err = (ref_q(mot_curve_eval(&ks.c, NULL, f, NULL)) - want) * LSB;
+
+			if (fabsl(err) > 0.5L)
+				err /= 1 + error_slope(MOT_INTERP_BEZIER, &ks, ref_q(f));
+			tu_worst_add(&w, (double)err, (double)ref_q(f));
+		}
+	}
+	tu_bound("curve.bezier_power_vs_ref", &w, 1, "LSB per (1 + |dv/df|)");
+	printf("INFO curve.bezier_power: %d of 400 key sets in power form\n", npower);
+	assert_true(npower >= 300);
+}
+
+/*
  * Adversarial pieces for the Newton solve: key gaps log-uniform over 12
  * decades (1e-6 to 1e6 frames next to each other) and Beta-spline shapes at
  * their extremes (beta1 in {0, 1e-6, 0.01, 1, 5, 256}, beta2 in {0, 1e-6,
@@ -920,6 +959,7 @@ int main(void)
 		cmocka_unit_test(test_beta),
 		cmocka_unit_test(test_bezier),
 		cmocka_unit_test(test_bezier_max),
+		cmocka_unit_test(test_bezier_power),
 		cmocka_unit_test(test_newton_adversarial),
 		cmocka_unit_test(test_through_keys),
 		cmocka_unit_test(test_convex_hull),

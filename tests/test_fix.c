@@ -57,6 +57,52 @@ static void test_mul_round(void **state)
 	assert_int_equal(bad, 0);
 }
 
+/* The hot-path kernel: round(a0 b0 + a1 b1 + a2 b2 + c 2^shift) / 2^shift,
+ * and an overflow word that is nonzero exactly when the result does not fit,
+ * for any factors (wrap-around of the 128-bit sum included), on both paths. */
+static void test_sum3_ov(void **state)
+{
+	static const unsigned shifts[2] = { 32, 62 };
+	struct tu_rng rng;
+	long bad = 0, ovs = 0;
+	int i, k;
+
+	tu_seed(&rng, 5);
+	for (i = 0; i < N; i++) {
+		int64_t a[3], b[3], c = tu_i64(&rng), got, got2;
+		unsigned sh = shifts[i % 2];
+		i128 q, r = (i128)1 << (sh - 1);
+		uint64_t ov = 0, ov2 = 0;
+		bool fits;
+
+		/* the addend bound of fix.h at shift 62, |c| <= 2^62 */
+		if (sh == 62)
+			c /= 2;
+		/* the exact floor, each product split as q 2^sh + r, 0 <= r < 2^sh */
+		q = c;
+		for (k = 0; k < 3; k++) {
+			i128 p;
+
+			a[k] = tu_i64(&rng);
+			b[k] = tu_i64(&rng);
+			p = (i128)a[k] * b[k];
+			q += p >> sh;
+			r += p & (((i128)1 << sh) - 1);
+		}
+		q += r >> sh;
+		fits = q >= INT64_MIN && q <= INT64_MAX;
+		got = mot_sum3_ov(a[0], b[0], a[1], b[1], a[2], b[2], c, sh, &ov);
+		got2 = fixp_sum3_ov(a, b, c, sh, &ov2);
+		ovs += !fits;
+		if ((ov != 0) != !fits || (ov2 != 0) != !fits || got2 != got ||
+		    (fits && got != (int64_t)q))
+			bad++;
+	}
+	assert_int_equal(bad, 0);
+	/* tu_i64 spreads magnitudes over every bit length: both outcomes occur */
+	assert_true(ovs > N / 10 && ovs < N - N / 10);
+}
+
 static void test_udiv(void **state)
 {
 	struct tu_rng rng;
@@ -184,7 +230,8 @@ static void test_sat(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(test_mul_round), cmocka_unit_test(test_udiv),
+		cmocka_unit_test(test_mul_round), cmocka_unit_test(test_sum3_ov),
+		cmocka_unit_test(test_udiv),
 		cmocka_unit_test(test_muldiv_div), cmocka_unit_test(test_recip),
 		cmocka_unit_test(test_floordiv), cmocka_unit_test(test_sat),
 	};

@@ -365,6 +365,18 @@ static void test_bad_input(void **state)
 		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_PARENT);
 		nodes[1].parent = 0;
 		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
+		/* the claw's tilted axis with derived fields that do not match it
+		 * (an axis edited without mot_node_prepare), then prepared again */
+		nodes[4].axis[0] = nodes[4].axis[2];
+		nodes[4].axis[2] = -nodes[4].axis[0];
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_INVAL);
+		mot_node_prepare(&nodes[4]);
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
+		/* derived fields on a node that has none */
+		nodes[1].rot_pr[0] = 1;
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_INVAL);
+		mot_node_prepare(&nodes[1]);
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
 	}
 	/* too few cursors for the scene */
 	ev.cursors = cur;
@@ -400,6 +412,101 @@ static void test_bad_input(void **state)
 }
 
 /* A strand without keys is refused by every prepare function. */
+/* Build a small scene and evaluate it once at frame 0; the nodes may be
+ * patched in between (values the loader would refuse). */
+static void eval_once(struct scene_built *b, struct mot_eval *ev, struct mot_pose *p,
+		      const struct sd_node *nodes, uint32_t n,
+		      void (*patch)(struct mot_node *nodes))
+{
+	struct scene_desc d;
+	struct scene_build_err e;
+
+	memset(&d, 0, sizeof(d));
+	d.rate_num = 24;
+	d.rate_den = 1;
+	d.tick_hz = 1000;
+	d.frame_last = 1;
+	d.nnodes = n;
+	d.nodes = nodes;
+	assert_int_equal(scene_build(b, &d, &e), 0);
+	patch((struct mot_node *)b->sc.nodes);
+	assert_int_equal(scene_eval_new(ev, &b->sc), 0);
+	assert_int_equal(scene_pose_new(p, &b->sc), 0);
+	mot_scene_eval(&b->sc, ev, 0, p);
+}
+
+static void patch_prismatic(struct mot_node *nodes)
+{
+	nodes[1].pivot[0] = INT64_MAX - ((int64_t)1 << 60);
+}
+
+static void patch_revolute(struct mot_node *nodes)
+{
+	nodes[0].pivot[0] = (int64_t)1 << 62;
+}
+
+/*
+ * The hot path sums products in 128 bits and checks the results once per
+ * node; what does not fit is redone with the saturating sums. A pivot plus
+ * an offset beyond int64 whose image does fit (under a parent scaled by
+ * 1/2) comes out exact and unflagged; a translation that cannot fit
+ * saturates with its sign and is flagged, next to exact entries.
+ */
+static void test_wide_sums(void **state)
+{
+	static const struct sd_key half[] = { { 0, 0.5, 0, 0 } };
+	static const struct sd_key far[] = { { 0, 536870912, 0, 0 } }; /* 2^29 units */
+	struct sd_node n[2];
+	struct scene_built b;
+	struct mot_eval ev;
+	struct mot_pose p;
+	__int128 want;
+	int k;
+
+	memset(n, 0, sizeof(n));
+	n[0].name = "half";
+	n[0].parent = -1;
+	n[0].kind = MOT_NODE_FREE;
+	n[0].has_free = true;
+	for (k = MOT_FREE_SX; k <= MOT_FREE_SZ; k++)
+		n[0].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 1, half, 1, 0, 0, 0 };
+	n[1].name = "slide";
+	n[1].parent = 0;
+	n[1].kind = MOT_NODE_PRISMATIC;
+	n[1].axis_id = MOT_AXIS_X;
+	n[1].axis[0] = 1;
+	n[1].value = (struct sd_curve){ MOT_INTERP_LINEAR, 1, far, 1, 0, 0, 0 };
+	eval_once(&b, &ev, &p, n, 2, patch_prismatic);
+	/* pos = (p + t) / 2, rounded half up; W_t = t / 2 */
+	want = ((__int128)b.sc.nodes[1].pivot[0] + ((int64_t)1 << 61) + 1) >> 1;
+	assert_true(p.pos[1][0] == (int64_t)want);
+	assert_int_equal(p.world[1].m[3][0], (int64_t)1 << 60);
+	assert_int_equal(p.world[1].m[0][0], MOT_Q32_HALF);
+	assert_int_equal(ev.sat, 0);
+	scene_pose_free(&p);
+	scene_eval_free(&ev);
+	scene_built_free(&b);
+
+	/* half a turn about z at (2^30 units, 0, 0): W_t = 2 p does not fit */
+	memset(n, 0, sizeof(n));
+	n[0].name = "turn";
+	n[0].parent = -1;
+	n[0].kind = MOT_NODE_REVOLUTE;
+	n[0].axis_id = MOT_AXIS_Z;
+	n[0].axis[2] = 1;
+	n[0].rest = 180;
+	eval_once(&b, &ev, &p, n, 1, patch_revolute);
+	assert_true(ev.sat & MOT_SAT_OVERFLOW);
+	assert_int_equal(p.world[0].m[3][0], MOT_Q32_MAX);
+	assert_int_equal(p.world[0].m[3][1], 0);
+	assert_int_equal(p.pos[0][0], (int64_t)1 << 62);
+	assert_int_equal(p.world[0].m[0][0], -MOT_Q32_ONE);
+	assert_int_equal(p.world[0].m[1][1], -MOT_Q32_ONE);
+	scene_pose_free(&p);
+	scene_eval_free(&ev);
+	scene_built_free(&b);
+}
+
 static void test_no_keys(void **state)
 {
 	struct mot_rot_track rt;
@@ -419,7 +526,7 @@ int main(void)
 		cmocka_unit_test(test_robot_arm),   cmocka_unit_test(test_random),
 		cmocka_unit_test(test_random_access), cmocka_unit_test(test_spin_day),
 		cmocka_unit_test(test_camera_pan),  cmocka_unit_test(test_bad_input),
-		cmocka_unit_test(test_no_keys),
+		cmocka_unit_test(test_no_keys),     cmocka_unit_test(test_wide_sums),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

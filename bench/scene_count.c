@@ -1,0 +1,113 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * scene_count.c - one scene of scene_bench.c played once, by the core or by
+ * the double twin, for counting instructions instead of timing them (the
+ * build machine is a shared VM where perf counters are not available):
+ *
+ *     valgrind --tool=callgrind --toggle-collect=scene_count_play \
+ *         build/bench/scene_count joints1000 fixed
+ *
+ * counts exactly the ticks scene_bench.c times; the program prints the
+ * divisor (ticks x nodes) so that a script can print instructions per node
+ * per tick (`make bench-count` does, for every scene and both sides).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dbl_scene.h"
+#include "scene_desc.h"
+#include "synth.h"
+
+#define NODES 1000
+#define FRAMES_1000 96
+#define TICK_STRIDE 16 /* as scene_bench.c */
+
+/* The timed loop of scene_bench.c's play_fixed / play_double; not inlined,
+ * so that callgrind can collect exactly it. */
+__attribute__((noinline)) void scene_count_play(const struct scene_built *b, struct mot_eval *ev,
+						struct mot_pose *pose, const struct dbl_scene *ds,
+						struct dbl_eval *dev, struct dbl_pose *dp,
+						const mot_q32 *frame, uint32_t nticks, bool fixed);
+
+void scene_count_play(const struct scene_built *b, struct mot_eval *ev, struct mot_pose *pose,
+		      const struct dbl_scene *ds, struct dbl_eval *dev, struct dbl_pose *dp,
+		      const mot_q32 *frame, uint32_t nticks, bool fixed)
+{
+	uint32_t k;
+
+	for (k = 0; k < nticks; k++) {
+		if (fixed)
+			mot_scene_eval(&b->sc, ev, frame[k], pose);
+		else
+			dbl_scene_eval(ds, dev, (double)frame[k] / 4294967296.0, dp);
+	}
+}
+
+int main(int argc, char **argv)
+{
+	static const char *const kind[] = { "step", "linear", "hermite", "bspline", "beta",
+					    "bezier" };
+	struct synth sy;
+	struct scene_built b;
+	struct scene_build_err e;
+	struct mot_eval ev;
+	struct mot_pose pose;
+	struct dbl_scene ds;
+	struct dbl_eval dev;
+	struct dbl_pose dp;
+	const struct mot_timing *t;
+	int64_t stride = TICK_STRIDE, k0, k1, k;
+	mot_q32 *frame;
+	uint32_t nticks, i;
+	bool fixed;
+
+	if (argc != 3 || (strcmp(argv[2], "fixed") && strcmp(argv[2], "double"))) {
+		fprintf(stderr, "usage: scene_count arm|random1000|joints1000|kind_<k>1000 "
+				"fixed|double\n");
+		return 2;
+	}
+	fixed = !strcmp(argv[2], "fixed");
+	if (!strcmp(argv[1], "arm")) {
+		synth_robot_arm(&sy, 1, 240);
+		stride = 1;
+	} else if (!strcmp(argv[1], "random1000")) {
+		synth_random(&sy, 1, NODES, FRAMES_1000);
+	} else if (!strcmp(argv[1], "joints1000")) {
+		synth_joints(&sy, 1, NODES, FRAMES_1000,
+			     1u << MOT_INTERP_LINEAR | 1u << MOT_INTERP_HERMITE);
+	} else {
+		for (i = 0; i < 6; i++) {
+			char name[32];
+
+			snprintf(name, sizeof(name), "kind_%s1000", kind[i]);
+			if (!strcmp(argv[1], name))
+				break;
+		}
+		if (i == 6) {
+			fprintf(stderr, "scene_count: no scene %s\n", argv[1]);
+			return 2;
+		}
+		synth_joints(&sy, 1, NODES, FRAMES_1000, 1u << i);
+	}
+	if (scene_build(&b, &sy.d, &e) || scene_eval_new(&ev, &b.sc) ||
+	    scene_pose_new(&pose, &b.sc) || dbl_scene_new(&ds, &sy.d) || dbl_eval_new(&dev, &ds) ||
+	    dbl_pose_new(&dp, &ds)) {
+		fprintf(stderr, "scene_count: cannot set up %s\n", argv[1]);
+		return 1;
+	}
+	t = &b.sc.timing;
+	k0 = mot_timing_trigger_tick(t, (int64_t)sy.d.frame_first);
+	k1 = mot_timing_trigger_tick(t, (int64_t)sy.d.frame_last);
+	nticks = (uint32_t)((k1 - k0) / stride + 1);
+	frame = calloc(nticks, sizeof(*frame));
+	if (!frame)
+		return 1;
+	for (k = 0; k < nticks; k++)
+		frame[k] = mot_timing_tick_frame(t, k0 + k * stride);
+	scene_count_play(&b, &ev, &pose, &ds, &dev, &dp, frame, nticks, fixed);
+	printf("COUNT %s %s units %llu\n", argv[1], argv[2],
+	       (unsigned long long)nticks * b.sc.nnodes);
+	free(frame);
+	return 0;
+}
