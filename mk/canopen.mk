@@ -1,0 +1,18 @@
+# mk/canopen.mk - the CANopen master (hal/canopen/): built like hal/ (the
+# pattern rules of mk/play.mk cover the sub-folder), into the program and
+# the tests' archive.
+
+CO_SRC := $(wildcard hal/canopen/*.c)
+CO_HDR := $(wildcard hal/canopen/*.h)
+CO_OBJ := $(CO_SRC:%.c=$(BUILD)/%.o)
+CO_SAN_OBJ := $(CO_SRC:%.c=$(BUILD)/san/%.o)
+
+$(BUILD)/san/libfw.a: $(CO_SAN_OBJ)
+$(BUILD)/strand: $(CO_OBJ)
+
+# Everything that may include the master's headers: its own objects, the
+# simulated drive in sim/, the rig and loader in firmware/, the tests.
+CO_USERS := $(CO_OBJ) $(CO_SAN_OBJ) \
+	$(patsubst %.c,$(BUILD)/%.o,$(wildcard sim/*.c firmware/*.c)) \
+	$(patsubst %.c,$(BUILD)/san/%.o,$(wildcard sim/*.c firmware/*.c tests/*.c))
+$(CO_USERS): $(CO_HDR)
