@@ -29,6 +29,20 @@ static int32_t clamp32(double v)
 	return (int32_t)lround(v);
 }
 
+/* The watch is kept current after everything that comes in from outside,
+ * so that a pointer to it stays a live view. */
+static void watch(struct co_slave *s)
+{
+	struct co_slave_watch *w = &s->w;
+
+	w->state = s->state;
+	w->mode = s->mode;
+	w->heartbeat_ms = s->heartbeat_ms;
+	w->error_code = s->error_code;
+	w->actual = s->actual_pos;
+	w->sw = s->sw;
+}
+
 /* ---- the plant ---- */
 
 /* The tick rate of the interpolation period 0x60C2. */
@@ -175,13 +189,13 @@ void co_slave_fault(struct co_slave *s, uint16_t code, int64_t now)
 	if (!s->powered)
 		return;
 	s->error_code = code;
-	s->w.error_code = code;
 	/* CiA 301: the generic bit is set whenever any error is */
 	s->error_register |= 0x01 | co_emcy_register_bit(code);
 	emcy(s, code);
 	enter(s, CO402_FAULT_REACTION, 0, now);
 	/* the reaction of a simulated drive: power stage off, done */
 	enter(s, CO402_FAULT, 0, now);
+	watch(s);
 }
 
 /* The quick stop ramp on the drive's own clock: brake at qs_dec from where
@@ -415,12 +429,14 @@ void co_slave_power_on(struct co_slave *s, int64_t now)
 	s->state = CO402_NOT_READY;
 	enter(s, CO402_DISABLED, 0, now); /* 1: self-test passed */
 	boot_up(s, now);
+	watch(s);
 }
 
 void co_slave_power_off(struct co_slave *s)
 {
 	plant_off(s);
 	s->powered = false;
+	watch(s);
 }
 
 bool co_slave_powered(const struct co_slave *s)
@@ -428,12 +444,10 @@ bool co_slave_powered(const struct co_slave *s)
 	return s->powered;
 }
 
-void co_slave_rx(struct co_slave *s, const struct co_frame *f, int64_t now)
+static void rx(struct co_slave *s, const struct co_frame *f, int64_t now)
 {
 	unsigned k;
 
-	if (!s->powered)
-		return;
 	if (f->id == CO_ID_NMT) {
 		if (f->len >= 2 && (f->data[1] == 0 || f->data[1] == s->cfg.node))
 			nmt(s, f->data[0], now);
@@ -455,6 +469,14 @@ void co_slave_rx(struct co_slave *s, const struct co_frame *f, int64_t now)
 			rpdo(s, k, f, now);
 }
 
+void co_slave_rx(struct co_slave *s, const struct co_frame *f, int64_t now)
+{
+	if (!s->powered)
+		return;
+	rx(s, f, now);
+	watch(s);
+}
+
 int64_t co_slave_poll(struct co_slave *s, int64_t now)
 {
 	int64_t next;
@@ -473,6 +495,7 @@ int64_t co_slave_poll(struct co_slave *s, int64_t now)
 	}
 	if (s->state == CO402_QUICK_STOP && s->plant)
 		quick_stop(s, now);
+	watch(s);
 	next = s->next_hb;
 	if (s->state == CO402_QUICK_STOP && s->plant && s->qs_next < next)
 		next = s->qs_next;
@@ -508,16 +531,9 @@ uint32_t co_slave_traced(const struct co_slave *s)
 	return s->traced;
 }
 
-const struct co_slave_watch *co_slave_watch(struct co_slave *s)
+const struct co_slave_watch *co_slave_watch(const struct co_slave *s)
 {
-	struct co_slave_watch *w = &s->w;
-
-	w->state = s->state;
-	w->mode = s->mode;
-	w->heartbeat_ms = s->heartbeat_ms;
-	w->error_code = s->error_code;
-	w->actual = s->actual_pos;
-	return w;
+	return &s->w;
 }
 
 uint8_t co_slave_node(const struct co_slave *s)

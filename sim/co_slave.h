@@ -106,7 +106,8 @@ void co_slave_stuck(struct co_slave *s, bool stuck);
 void co_slave_trace(struct co_slave *s, int32_t *buf, uint32_t cap);
 uint32_t co_slave_traced(const struct co_slave *s);
 
-const struct co_slave_watch *co_slave_watch(struct co_slave *s);
+/* What it did: a live view, current after every call into the drive. */
+const struct co_slave_watch *co_slave_watch(const struct co_slave *s);
 uint8_t co_slave_node(const struct co_slave *s);
 
 #endif /* CO_SLAVE_H */

@@ -305,7 +305,8 @@ static void reply_mux(struct co_slave *s, uint8_t cs, const uint8_t *data, uint3
 {
 	uint8_t d[7] = { (uint8_t)s->srv.index, (uint8_t)(s->srv.index >> 8), s->srv.sub };
 
-	memcpy(&d[3], data, n);
+	if (n)
+		memcpy(&d[3], data, n);
 	reply(s, cs, d, 7);
 }
 

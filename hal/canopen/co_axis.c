@@ -85,6 +85,10 @@ static int ca_start(struct hal_axis *ax)
 	int rc;
 
 	a->started = true;
+	/* what came before the start (boot-ups of drives powered on since
+	 * the interface opened) is not an answer to anything of this run */
+	while (co_bus_recv(a->bus, a->rx, CO_AXIS_RX_BATCH) == CO_AXIS_RX_BATCH)
+		;
 	co_master_start(&a->m, hal_clock_now(a->clk));
 	run_until_not(a, CO_MASTER_STARTING);
 	if (co_master_phase(&a->m) == CO_MASTER_RUNNING)

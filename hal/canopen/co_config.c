@@ -31,6 +31,7 @@ enum val {
 	V_QS_DEC,     /* quick stop deceleration; the step is skipped when 0 */
 	V_TARGET_MAP, /* 0x607A or 0x60FF, 32 bits */
 	V_PLUS_NODE,  /* value + node-ID */
+	V_SYNC_ID,    /* the SYNC's COB-ID; the step is skipped for the default */
 };
 
 enum opt {
@@ -55,6 +56,7 @@ struct step {
 static const struct step steps[] = {
 	{ 0x1000, 0, 4, true, REQUIRED, V_CONST, 0 },   /* device type: CiA 402? */
 	{ 0x1008, 0, 32, true, ANY_ABORT, V_CONST, 0 }, /* device name (segmented) */
+	{ 0x1005, 0, 4, false, REQUIRED, V_SYNC_ID, 0 },
 	{ 0x1017, 0, 2, false, REQUIRED, V_HEARTBEAT, 0 },
 	{ 0x6060, 0, 1, false, REQUIRED, V_MODE, 0 },
 	{ 0x60c2, 1, 1, false, REQUIRED, V_IP_VALUE, 0 },
@@ -116,6 +118,9 @@ static bool value_of(const struct co_master *m, const struct co_node *n, const s
 	case V_PLUS_NODE:
 		*v = s->value + n->cfg.node;
 		return true;
+	case V_SYNC_ID:
+		*v = m->cfg.sync_id;
+		return *v != CO_ID_SYNC;
 	default:
 		*v = s->value;
 		return true;

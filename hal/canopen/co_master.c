@@ -152,7 +152,9 @@ static void heartbeat(struct co_master *m, struct co_node *n, uint8_t state, int
 	if (n->hb_last >= 0 && !n->lost)
 		n->hb_last = now;
 	if (state == CO_NMT_BOOTUP) {
-		if (n->phase == CO_NODE_BOOT) {
+		/* a second boot-up while configuring (powered on as we reset it,
+		 * say): what was written is gone, so begin again */
+		if (n->phase == CO_NODE_BOOT || n->phase == CO_NODE_CONFIG) {
 			co_config_begin(m, n, now);
 		} else if (n->phase != CO_NODE_IDLE && n->phase != CO_NODE_DONE) {
 			/* it reset itself (or someone reset it) */
