@@ -411,6 +411,21 @@ static void test_start_fault_reset(void **state)
 
 /* ---- faults while running ---- */
 
+/* Someone else writes to a drive's dictionary (its answer goes to the
+ * master, which ignores it). */
+static void poke(struct cu_rig *r, uint8_t node, uint16_t index, uint8_t sub, uint32_t v,
+		 uint8_t size)
+{
+	struct co_frame f;
+	struct co_sdo c;
+	uint8_t buf[4];
+
+	co_put32(buf, v);
+	co_sdo_init(&c, node, MS);
+	co_sdo_download(&c, index, sub, buf, size, 0, &f);
+	co_slave_rx(drive(r, node), &f, hal_clock_now(&r->clk));
+}
+
 /* Run until a fault; returns the tick it was seen in. */
 static int64_t run_to_fault(struct cu_rig *r, int64_t max, int code)
 {
@@ -499,16 +514,8 @@ static void test_left_enabled(void **state)
 	cu_init(&r, 2, 1000);
 	start_ok(&r);
 	assert_int_equal(cu_run(&r, 20), 0);
-	/* a drive switched off by someone else: disable voltage by SDO */
-	{
-		struct co_frame f;
-		uint8_t v[2] = { 0 };
-		struct co_sdo c;
-
-		co_sdo_init(&c, 2, MS);
-		co_sdo_download(&c, 0x6040, 0, v, 2, 0, &f);
-		co_slave_rx(drive(&r, 2), &f, hal_clock_now(&r.clk));
-	}
+	/* a drive switched off by someone else: disable voltage */
+	poke(&r, 2, 0x6040, 0, 0, 2);
 	run_to_fault(&r, 10, -EIO);
 	expect_fault(&r, -EIO, CO_FAULT_STATE, 2, "left operation enabled", 0);
 	co_master_describe(r.m, &r.m->fault, msg, sizeof(msg));
@@ -535,18 +542,12 @@ static void test_drive_reboots(void **state)
 static void test_tpdo_stops(void **state)
 {
 	struct cu_rig r;
-	struct co_frame f;
-	struct co_sdo c;
-	uint8_t v[4];
 	int64_t seen;
 
 	cu_init(&r, 2, 1000);
 	start_ok(&r);
 	assert_int_equal(cu_run(&r, 20), 0);
-	co_put32(v, 0xc0000182);
-	co_sdo_init(&c, 2, MS);
-	co_sdo_download(&c, 0x1800, 1, v, 4, 0, &f);
-	co_slave_rx(drive(&r, 2), &f, hal_clock_now(&r.clk));
+	poke(&r, 2, 0x1800, 1, 0xc0000182, 4);
 	seen = run_to_fault(&r, 100, -ETIMEDOUT);
 	assert_true(seen >= 20 + 50 && seen <= 20 + 52);
 	expect_fault(&r, -ETIMEDOUT, CO_FAULT_TPDO, 2, "TPDOs stopped", 0);

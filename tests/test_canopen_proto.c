@@ -418,16 +418,7 @@ static void test_402_drive(void **state)
 	assert_int_equal(co402_decode(w->sw), CO402_DISABLED);
 	assert_int_equal(w->log[w->ntransitions - 1].cw, 0);
 	/* 16 with option code 5: quick stop active until enabled again */
-	{
-		struct co_sdo c;
-		struct co_frame f;
-		uint8_t v[2] = { 5, 0 };
-
-		co_sdo_init(&c, 5, 1000);
-		co_sdo_download(&c, 0x605a, 0, v, 2, t, &f);
-		pump(&p, &c, f);
-		assert_int_equal(c.state, CO_SDO_DONE);
-	}
+	sdo_write(&p, 0x605a, 0, 5, 2);
 	cw_at(&p, 0x06, t);
 	cw_at(&p, 0x07, t);
 	cw_at(&p, 0x0f, t);
@@ -454,18 +445,9 @@ static void test_402_drive(void **state)
 	assert_int_equal(co_get16(p.q[0].data), 0x0000);
 	assert_int_equal(w->error_code, 0);
 	/* 0x2000 injects a fault by SDO, for tests on a real bus */
-	{
-		struct co_sdo c;
-		struct co_frame f;
-		uint8_t v[2] = { 0x10, 0x23 };
-
-		co_sdo_init(&c, 5, 1000);
-		co_sdo_download(&c, 0x2000, 0, v, 2, t, &f);
-		pump(&p, &c, f);
-		assert_int_equal(c.state, CO_SDO_DONE);
-		assert_int_equal(co402_decode(w->sw), CO402_FAULT);
-		assert_int_equal(w->error_code, 0x2310);
-	}
+	sdo_write(&p, 0x2000, 0, 0x2310, 2);
+	assert_int_equal(co402_decode(w->sw), CO402_FAULT);
+	assert_int_equal(w->error_code, 0x2310);
 	co_slave_free(p.s);
 }
 
