@@ -11,9 +11,11 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "channel.h"
+#include "rig_canopen.h"
 
 /* What the rig sections need while they are read. */
 struct rl {
@@ -23,6 +25,7 @@ struct rl {
 	const char **chan_names; /* NULL-terminated, for suggestions */
 	const char **dev_names;
 	struct ld_mark *dev_at;
+	yaml_node_t **co_at; /* each device's canopen: mapping, or NULL */
 };
 
 static int find(const char *const *names, const char *name)
@@ -81,9 +84,59 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 	return err;
 }
 
+/* A COB-ID, in decimal or 0x hex: 1..0x7ff. */
+static int cob_id(struct ld *l, yaml_node_t *n, uint32_t *out)
+{
+	const char *text;
+	char *end;
+	unsigned long v;
+	int err = ld_str(l, n, &text);
+
+	if (err)
+		return err;
+	errno = 0;
+	v = strtoul(text, &end, 0);
+	if (errno || end == text || *end || v < 1 || v > 0x7ff)
+		return ld_fail(l, n, -EINVAL, "'%s' is not an 11-bit COB-ID (1 to 0x7ff)", text);
+	*out = (uint32_t)v;
+	return 0;
+}
+
+/* A canopen device's bus: {interface, bitrate, sync_id, heartbeat_ms}. */
+static int canopen_bus(struct ld *l, yaml_node_t *map, struct rig_canopen_desc *c)
+{
+	static const char *const keys[] = { "interface", "bitrate", "sync_id", "heartbeat_ms",
+					    NULL };
+	yaml_node_t *v[4];
+	long long n;
+	int err = ld_map(l, map, "canopen", keys, v);
+
+	if (!err)
+		err = ld_require(l, map, "canopen", v[0], "interface");
+	if (!err)
+		err = ld_require(l, map, "canopen", v[1], "bitrate");
+	if (!err)
+		err = ld_str(l, v[0], &c->interface);
+	if (!err && (!c->interface[0] || strlen(c->interface) > 15))
+		err = ld_fail(l, v[0], -EINVAL, "interface '%s': a network interface name "
+			      "(1 to 15 characters: can0, vcan0) or sim", c->interface);
+	if (!err)
+		err = ld_int(l, v[1], 10000, 1000000, &n);
+	c->bitrate = (uint32_t)n;
+	c->sync_id = CO_ID_SYNC;
+	if (!err && v[2])
+		err = cob_id(l, v[2], &c->sync_id);
+	c->heartbeat_ms = RIG_CO_HEARTBEAT_MS;
+	if (!err && v[3])
+		err = ld_int(l, v[3], 1, 10000, &n);
+	if (!err && v[3])
+		c->heartbeat_ms = (uint32_t)n;
+	return err;
+}
+
 static int devices(struct rl *rl, yaml_node_t *seq)
 {
-	static const char *const keys[] = { "name", "driver", "sim", NULL };
+	static const char *const keys[] = { "name", "driver", "sim", "canopen", NULL };
 	static const char *const drivers[] = { "sim", "modbus", "gpio", "canopen", NULL };
 	struct ld *l = rl->l;
 	struct rig_device_desc *dev;
@@ -95,10 +148,11 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 		return err;
 	dev = pool_array(l->pool, count ? count : 1, sizeof(*dev));
 	rl->dev_names = pool_array(l->pool, count + 1, sizeof(*rl->dev_names));
-	if (!dev || !rl->dev_names)
+	rl->co_at = pool_array(l->pool, count ? count : 1, sizeof(*rl->co_at));
+	if (!dev || !rl->dev_names || !rl->co_at)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
-		yaml_node_t *map = ld_node(l, it[i]), *v[3];
+		yaml_node_t *map = ld_node(l, it[i]), *v[4];
 		int drv, k;
 
 		err = ld_map(l, map, "device", keys, v);
@@ -112,8 +166,16 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 			err = ld_enum(l, v[1], "driver", drivers, &drv);
 		if (!err && v[2])
 			err = sim_params(l, v[2], &dev[i].sim);
+		if (!err && drv == RIG_DRIVER_CANOPEN)
+			err = ld_require(l, map, "canopen device", v[3], "canopen");
+		if (!err && v[3] && drv != RIG_DRIVER_CANOPEN)
+			err = ld_fail(l, v[3], -EINVAL, "canopen: settings of a canopen device, "
+				      "not of a %s one", drivers[drv]);
+		if (!err && v[3])
+			err = canopen_bus(l, v[3], &dev[i].canopen);
 		if (err)
 			return err;
+		rl->co_at[i] = v[3];
 		dev[i].driver = (enum rig_driver)drv;
 		k = find(rl->dev_names, dev[i].name);
 		if (k >= 0)
@@ -134,13 +196,92 @@ static bool is_angle(const struct rl *rl, const struct chan *c)
 	return c->kind == CHAN_CAMERA && c->comp >= 3;
 }
 
+/* An output on a canopen device: node: (its axis), mode: checked against
+ * the channel (cyclic synchronous velocity for spin speeds only). */
+static int canopen_output(struct rl *rl, yaml_node_t *map, yaml_node_t *axis_at,
+			  yaml_node_t *node_at, yaml_node_t *mode_at, const struct chan *c,
+			  struct rig_output_desc *o, long long *node)
+{
+	static const char *const modes[] = { "csp", "csv", NULL };
+	struct ld *l = rl->l;
+	bool spin = c->kind == CHAN_RPM;
+	int mode, err;
+
+	if (axis_at)
+		return ld_fail(l, axis_at, -EINVAL,
+			       "an output on canopen device '%s' is placed by node:, not axis:",
+			       o->device);
+	err = ld_require(l, map, "output on a canopen device", node_at, "node");
+	if (!err)
+		err = ld_int(l, node_at, 1, CO_NODE_MAX, node);
+	if (err || !mode_at) {
+		o->canopen.mode = spin ? 9 : 8;
+		return err;
+	}
+	err = ld_enum(l, mode_at, "mode", modes, &mode);
+	if (!err && mode != spin)
+		err = ld_fail(l, mode_at, -EINVAL, "mode %s: '%s' is %s; it needs mode %s",
+			      modes[mode], o->channel, spin ? "a spin speed" : "not a spin speed",
+			      modes[spin]);
+	o->canopen.mode = mode ? 9 : 8;
+	return err;
+}
+
+/* Each canopen bus carries its tick with margin, in the 0x60C2 format, and
+ * its SYNC's identifier is no drive's. */
+static int canopen_buses(struct rl *rl)
+{
+	struct ld *l = rl->l;
+	const struct rig_desc *r = rl->r;
+	uint32_t k, i, hz = l->d->tick_hz;
+	uint8_t ip;
+	int8_t ex;
+
+	for (k = 0; k < r->ndevices; k++) {
+		const struct rig_canopen_desc *c = &r->devices[k].canopen;
+		struct co_load load;
+
+		if (r->devices[k].driver != RIG_DRIVER_CANOPEN || !rig_canopen_drives(r, k))
+			continue;
+		rig_canopen_load(r, k, hz, &load);
+		if (!co_load_fits(&load))
+			return ld_fail(l, rl->co_at[k], -EINVAL,
+				       "canopen bus '%s': the worst case of a tick is %u bits (%u "
+				       "drives, bit stuffing) of the %u a tick holds at %u bit/s "
+				       "and %u ticks/s: %.0f%%, above %d%%; lower tick_hz, drive "
+				       "fewer outputs on this bus or raise the bitrate",
+				       r->devices[k].name, load.bits, load.drives, load.capacity,
+				       c->bitrate, hz, 100.0 * load.bits / load.capacity,
+				       CO_LOAD_MAX_PERCENT);
+		if (co_interp_period(hz, &ip, &ex) < 0)
+			return ld_fail(l, rl->co_at[k], -EINVAL,
+				       "canopen bus '%s': tick_hz %u: a drive's interpolation period "
+				       "(0x60C2: 1 to 255 times a power of ten seconds) cannot say "
+				       "%.6g us within 0.1%%", r->devices[k].name, hz, 1e6 / hz);
+		for (i = 0; i < r->noutputs; i++) {
+			uint32_t n = r->outputs[i].axis, id = c->sync_id;
+
+			if (strcmp(r->outputs[i].device, r->devices[k].name))
+				continue;
+			if (id == CO_ID_EMCY + n || id == co_tpdo_id(1, (uint8_t)n) ||
+			    id == co_rpdo_id(1, (uint8_t)n) || id == CO_ID_SDO_TX + n ||
+			    id == CO_ID_SDO_RX + n || id == CO_ID_HEARTBEAT + n)
+				return ld_fail(l, rl->co_at[k], -EINVAL,
+					       "canopen bus '%s': sync_id 0x%x is an identifier of "
+					       "node %u", r->devices[k].name, id, n);
+		}
+	}
+	return 0;
+}
+
 static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output_desc *o,
 		  const yaml_node_item_t *it)
 {
 	static const char *const keys[] = { "channel", "device", "axis", "counts_per_unit",
 					    "offset", "limits", "ferror", "min_ferror",
-					    "in_position", "home", NULL };
-	enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME, O_N };
+					    "in_position", "home", "node", "mode", NULL };
+	enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME,
+	       O_NODE, O_MODE, O_N };
 	struct ld *l = rl->l;
 	yaml_node_t *v[O_N];
 	const struct chan *c;
@@ -170,16 +311,23 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 	for (j = 0; j < i; j++)
 		used += !strcmp(rl->r->outputs[j].device, o->device);
 	axis = used; /* by default the next axis of the device */
-	if (v[O_AXIS])
+	if (rl->r->devices[dev].driver == RIG_DRIVER_CANOPEN)
+		err = canopen_output(rl, map, v[O_AXIS], v[O_NODE], v[O_MODE], c, o, &axis);
+	else if (v[O_NODE] || v[O_MODE])
+		err = ld_fail(l, v[O_NODE] ? v[O_NODE] : v[O_MODE], -EINVAL,
+			      "node: and mode: place an output on a canopen device; '%s' is not one",
+			      o->device);
+	else if (v[O_AXIS])
 		err = ld_int(l, v[O_AXIS], 0, 1023, &axis);
 	if (err)
 		return err;
 	o->axis = (uint32_t)axis;
 	for (j = 0; j < i; j++)
 		if (!strcmp(rl->r->outputs[j].device, o->device) && rl->r->outputs[j].axis == o->axis)
-			return ld_fail(l, v[O_AXIS] ? v[O_AXIS] : map, -EINVAL,
-				       "axis %u of device '%s' already drives '%s' (line %u)",
-				       o->axis, o->device, rl->r->outputs[j].channel,
+			return ld_fail(l, v[O_NODE] ? v[O_NODE] : v[O_AXIS] ? v[O_AXIS] : map,
+				       -EINVAL, "%s %u of device '%s' already drives '%s' (line %u)",
+				       v[O_NODE] ? "node" : "axis", o->axis, o->device,
+				       rl->r->outputs[j].channel,
 				       (unsigned)ld_mark_of(ld_node(l, it[j])).line);
 	err = ld_num(l, v[O_CPU], &o->counts_per_unit);
 	if (err)
@@ -419,6 +567,8 @@ int ld_rig(struct ld *l, const struct ld_rig_sections *s)
 		err = devices(&rl, s->devices);
 	if (!err && s->outputs)
 		err = outputs(&rl, s->outputs);
+	if (!err)
+		err = canopen_buses(&rl);
 	if (!err && s->triggers)
 		err = lines(&rl, s->triggers, true);
 	if (!err && s->inputs)

@@ -146,6 +146,10 @@ static void *rt_main(void *arg)
 	if (!p->clk.is_virtual) {
 		/* tick 0 a millisecond from now, on a whole millisecond */
 		t0 = (hal_clock_now(&p->clk) / 1000000 + 2) * 1000000;
+	} else {
+		/* where starting the devices left virtual time (a CANopen
+		 * start-up takes some), on a whole millisecond */
+		t0 = (hal_clock_now(&p->clk) + 999999) / 1000000 * 1000000;
 	}
 	play_in_loop = true;
 	loop_run(&p->L, t0);
@@ -344,12 +348,18 @@ void play_describe(const struct play *p, char *buf, size_t size)
 		snprintf(buf, size, "e-stop: input '%s' (line %d) %s; drives disabled, latched",
 			 r->device ? r->device : "?", r->channel, when);
 		break;
-	case LOOP_CAUSE_DEVICE:
-		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s) %s",
+	case LOOP_CAUSE_DEVICE: {
+		char code[24] = "";
+
+		/* the backend's own number: an emergency's error code, ... */
+		if (r->detail)
+			snprintf(code, sizeof(code), ", code 0x%04X", r->detail);
+		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s%s) %s",
 			 r->device ? r->device : "?", r->channel, o >= 0 ? " (" : "",
 			 out_name(p, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
-			 strerror(r->code < 0 ? -r->code : r->code), when);
+			 strerror(r->code < 0 ? -r->code : r->code), code, when);
 		break;
+	}
 	case LOOP_CAUSE_FERROR:
 	case LOOP_CAUSE_IN_POSITION:
 		snprintf(buf, size, "%s: device '%s' channel %d (%s): %.6g %s beyond the bound %.6g %s %s",

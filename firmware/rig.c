@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "co_simbus.h"
+#include "rig_canopen.h"
 #include "sim_camera.h"
 #include "sim_drive.h"
 #include "sim_gpio.h"
@@ -371,7 +373,9 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	dev_axis = calloc(d->ndevices ? d->ndevices : 1, sizeof(*dev_axis));
 	r->axes = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->axes));
 	r->sim_drive = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->sim_drive));
-	if (!r->out || !r->trig || !r->in || !dev_axis || !r->axes || !r->sim_drive) {
+	r->co_sim = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->co_sim));
+	if (!r->out || !r->trig || !r->in || !dev_axis || !r->axes || !r->sim_drive ||
+	    !r->co_sim) {
 		rc = fail(err, errsize, -ENOMEM, "out of memory");
 		goto out;
 	}
@@ -408,6 +412,13 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	for (k = 0; k < d->ndevices; k++) {
 		if (dev_axis[k] < 0)
 			continue;
+		if (!o->sim && d->devices[k].driver == RIG_DRIVER_CANOPEN) {
+			rc = rig_canopen_make(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz,
+					      clk, err, errsize);
+			if (rc)
+				goto out;
+			continue;
+		}
 		if (!o->sim && d->devices[k].driver != RIG_DRIVER_SIM) {
 			rc = fail(err, errsize, -ENOTSUP,
 				  "device '%s': driver %s is not in this build yet; play with --sim",
@@ -467,7 +478,16 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 	}
 	return 0;
 fail_axis:
-	fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name, strerror(-rc));
+	{
+		/* a backend that can say more than the errno says it in its fault */
+		struct hal_fault f = { 0 };
+
+		if (hal_axis_fault(r->axes[i], &f) && f.cause)
+			fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name, f.cause);
+		else
+			fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name,
+			     strerror(-rc));
+	}
 undo:
 	rig_stop(r);
 	return rc;
@@ -505,6 +525,8 @@ void rig_free(struct rig *r)
 		sim_camera_free(r->camera[i]);
 	for (i = 0; i < r->nsim_gpio; i++)
 		sim_gpio_free(r->sim_gpio[i]);
+	for (i = 0; r->co_sim && i < r->naxes; i++)
+		co_simbus_free(r->co_sim[i]);
 	free(r->axes);
 	free(r->douts);
 	free(r->dins);
@@ -512,6 +534,7 @@ void rig_free(struct rig *r)
 	free(r->trig);
 	free(r->in);
 	free(r->sim_drive);
+	free(r->co_sim);
 	free(r->sim_gpio);
 	free(r->camera);
 	free(r->started_axes);

@@ -75,6 +75,7 @@ struct rig {
 	uint32_t nsim_gpio;
 	struct sim_gpio **sim_gpio;
 	struct sim_camera **camera;    /* ntrig */
+	struct co_simbus **co_sim;     /* naxes: a CANopen bus with interface "sim" */
 	bool *started_axes, *started_douts, *started_dins;
 };
 

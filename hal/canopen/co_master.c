@@ -72,6 +72,19 @@ int co_master_init(struct co_master *m, const struct co_master_cfg *cfg,
 	return 0;
 }
 
+uint32_t co_master_rx_ids(const struct co_drive_cfg *drives, uint32_t n, uint16_t *ids)
+{
+	uint32_t i, k = 0;
+
+	for (i = 0; i < n; i++) {
+		ids[k++] = (uint16_t)(CO_ID_EMCY + drives[i].node);
+		ids[k++] = co_tpdo_id(1, drives[i].node);
+		ids[k++] = (uint16_t)(CO_ID_SDO_TX + drives[i].node);
+		ids[k++] = (uint16_t)(CO_ID_HEARTBEAT + drives[i].node);
+	}
+	return k;
+}
+
 int co_master_index(const struct co_master *m, uint8_t node)
 {
 	return node <= CO_NODE_MAX ? m->slot[node] : -1;

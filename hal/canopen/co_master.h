@@ -233,6 +233,11 @@ bool co_master_actual(const struct co_master *m, uint32_t i, int32_t *counts);
 /* Index of the drive with this node-ID, or -1. */
 int co_master_index(const struct co_master *m, uint8_t node);
 
+/* The identifiers the master consumes from these drives (EMCY, TPDO1, SDO
+ * response, heartbeat of each: 4 per drive) into ids; how many. For a
+ * transport's receive filter. */
+uint32_t co_master_rx_ids(const struct co_drive_cfg *drives, uint32_t n, uint16_t *ids);
+
 /* Static text for a fault, for the loop's report. */
 const char *co_fault_cause(const struct co_fault *f);
 

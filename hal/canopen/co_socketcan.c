@@ -1,0 +1,216 @@
+/* SPDX-License-Identifier: MIT */
+/* co_socketcan.c - the CANopen transport on SocketCAN (see co_socketcan.h). */
+#define _GNU_SOURCE
+#include "co_socketcan.h"
+
+#include <errno.h>
+#include <linux/can.h>
+#include <linux/can/error.h>
+#include <linux/can/raw.h>
+#include <net/if.h>
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+struct co_socketcan {
+	struct co_bus bus; /* first: the transport */
+	int fd;
+	uint8_t state;     /* enum co_bus_state */
+	char name[IF_NAMESIZE];
+	/* sendmmsg/recvmmsg vectors, set up once: nothing is made per call */
+	struct can_frame tx[CO_SOCKETCAN_BATCH], rx[CO_SOCKETCAN_BATCH];
+	struct iovec txv[CO_SOCKETCAN_BATCH], rxv[CO_SOCKETCAN_BATCH];
+	struct mmsghdr txm[CO_SOCKETCAN_BATCH], rxm[CO_SOCKETCAN_BATCH];
+};
+
+static struct co_socketcan *sc_of(struct co_bus *b)
+{
+	return (struct co_socketcan *)b; /* bus is the first member */
+}
+
+static int sc_send(struct co_bus *b, const struct co_frame *f, uint32_t n)
+{
+	struct co_socketcan *s = sc_of(b);
+	uint32_t i, done = 0;
+	int rc;
+
+	if (n > CO_SOCKETCAN_BATCH)
+		return -EMSGSIZE;
+	for (i = 0; i < n; i++) {
+		struct can_frame *c = &s->tx[i];
+
+		c->can_id = f[i].id & CAN_SFF_MASK;
+		c->can_dlc = f[i].len;
+		memcpy(c->data, f[i].data, 8);
+	}
+	while (done < n) {
+		rc = sendmmsg(s->fd, s->txm + done, n - done, MSG_DONTWAIT);
+		if (rc < 0)
+			return errno == EINTR ? -EAGAIN : -errno;
+		done += (uint32_t)rc;
+	}
+	return 0;
+}
+
+/* An error frame: the controller's state changed (linux/can/error.h). */
+static void error_frame(struct co_socketcan *s, const struct can_frame *c)
+{
+	if (c->can_id & CAN_ERR_BUSOFF) {
+		s->state = CO_BUS_OFF;
+	} else if (c->can_id & CAN_ERR_RESTARTED) {
+		s->state = CO_BUS_ACTIVE;
+	} else if (c->can_id & CAN_ERR_CRTL) {
+		if (c->data[1] & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE))
+			s->state = CO_BUS_PASSIVE;
+		else if (c->data[1] & (CAN_ERR_CRTL_RX_WARNING | CAN_ERR_CRTL_TX_WARNING))
+			s->state = CO_BUS_WARNING;
+		else if (c->data[1] & CAN_ERR_CRTL_ACTIVE)
+			s->state = CO_BUS_ACTIVE;
+	}
+}
+
+static int sc_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
+{
+	struct co_socketcan *s = sc_of(b);
+	uint32_t n = 0;
+	int rc, i;
+
+	if (max > CO_SOCKETCAN_BATCH)
+		max = CO_SOCKETCAN_BATCH;
+	rc = recvmmsg(s->fd, s->rxm, max, MSG_DONTWAIT, NULL);
+	if (rc < 0)
+		return errno == EAGAIN || errno == EINTR ? 0 : -errno;
+	for (i = 0; i < rc; i++) {
+		const struct can_frame *c = &s->rx[i];
+
+		if (c->can_id & CAN_ERR_FLAG) {
+			error_frame(s, c);
+			continue;
+		}
+		if (c->can_id & (CAN_EFF_FLAG | CAN_RTR_FLAG) || s->rxm[i].msg_len < CAN_MTU)
+			continue;
+		f[n].id = (uint16_t)(c->can_id & CAN_SFF_MASK);
+		f[n].len = c->can_dlc > 8 ? 8 : c->can_dlc;
+		memcpy(f[n].data, c->data, 8);
+		n++;
+	}
+	return (int)n;
+}
+
+static enum co_bus_state sc_state(struct co_bus *b)
+{
+	return (enum co_bus_state)sc_of(b)->state;
+}
+
+static void sc_wait(struct co_bus *b, int64_t until)
+{
+	struct co_socketcan *s = sc_of(b);
+	struct pollfd p = { .fd = s->fd, .events = POLLIN };
+	struct timespec ts;
+	int64_t now, ms;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	now = (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+	if (until <= now)
+		return;
+	ms = (until - now + 999999) / 1000000;
+	poll(&p, 1, ms > 1000 ? 1000 : (int)ms);
+}
+
+static void sc_close(struct co_bus *b)
+{
+	struct co_socketcan *s = sc_of(b);
+
+	close(s->fd);
+	free(s);
+}
+
+static const struct co_bus_ops socketcan_ops = {
+	.send = sc_send,
+	.recv = sc_recv,
+	.state = sc_state,
+	.wait = sc_wait,
+	.close = sc_close,
+};
+
+static struct co_bus *fail(struct co_socketcan *s, int code, char *err, size_t size,
+			   const char *fmt, const char *ifname)
+{
+	snprintf(err, size, fmt, ifname, strerror(code));
+	if (s) {
+		if (s->fd >= 0)
+			close(s->fd);
+		free(s);
+	}
+	errno = code;
+	return NULL;
+}
+
+struct co_bus *co_socketcan_open(const char *ifname, const uint16_t *ids, uint32_t n,
+				 char *err, size_t size)
+{
+	can_err_mask_t errs = CAN_ERR_CRTL | CAN_ERR_BUSOFF | CAN_ERR_RESTARTED;
+	struct sockaddr_can addr = { .can_family = AF_CAN };
+	struct can_filter *flt = NULL;
+	struct co_socketcan *s;
+	uint32_t i;
+
+	if (strlen(ifname) >= IF_NAMESIZE)
+		return fail(NULL, EINVAL, err, size, "CAN interface '%s': %s (name too long)", ifname);
+	s = calloc(1, sizeof(*s));
+	if (!s)
+		return fail(NULL, ENOMEM, err, size, "CAN interface '%s': %s", ifname);
+	s->fd = socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
+	if (s->fd < 0)
+		return fail(s, errno, err, size,
+			    "CAN interface '%s': no CAN socket: %s (is the can-raw module loaded?)",
+			    ifname);
+	addr.can_ifindex = (int)if_nametoindex(ifname);
+	if (!addr.can_ifindex)
+		return fail(s, errno, err, size,
+			    "CAN interface '%s': %s (see `ip link show type can`)", ifname);
+	if (ids) {
+		flt = calloc(n ? n : 1, sizeof(*flt));
+		if (!flt)
+			return fail(s, ENOMEM, err, size, "CAN interface '%s': %s", ifname);
+		for (i = 0; i < n; i++) {
+			flt[i].can_id = ids[i];
+			/* the identifier, and a data frame with an 11-bit one */
+			flt[i].can_mask = CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG;
+		}
+		if (setsockopt(s->fd, SOL_CAN_RAW, CAN_RAW_FILTER, flt,
+			       (socklen_t)(n * sizeof(*flt))) < 0) {
+			free(flt);
+			return fail(s, errno, err, size, "CAN interface '%s': receive filter: %s",
+				    ifname);
+		}
+		free(flt);
+	}
+	if (setsockopt(s->fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &errs, sizeof(errs)) < 0)
+		return fail(s, errno, err, size, "CAN interface '%s': error frames: %s", ifname);
+	if (bind(s->fd, (struct sockaddr *)&addr, sizeof(addr)) < 0)
+		return fail(s, errno, err, size, "CAN interface '%s': bind: %s (is it up?)", ifname);
+	for (i = 0; i < CO_SOCKETCAN_BATCH; i++) {
+		s->txv[i].iov_base = &s->tx[i];
+		s->txv[i].iov_len = CAN_MTU;
+		s->txm[i].msg_hdr.msg_iov = &s->txv[i];
+		s->txm[i].msg_hdr.msg_iovlen = 1;
+		s->rxv[i].iov_base = &s->rx[i];
+		s->rxv[i].iov_len = CAN_MTU;
+		s->rxm[i].msg_hdr.msg_iov = &s->rxv[i];
+		s->rxm[i].msg_hdr.msg_iovlen = 1;
+	}
+	snprintf(s->name, sizeof(s->name), "%s", ifname);
+	s->bus.ops = &socketcan_ops;
+	s->bus.name = s->name;
+	return &s->bus;
+}
+
+int co_socketcan_fd(struct co_bus *b)
+{
+	return sc_of(b)->fd;
+}

@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * co_socketcan.h - the CANopen transport on Linux SocketCAN: one raw socket
+ * per interface (classic CAN frames), receive filters for what its user
+ * consumes, the controller's error frames (CAN_RAW_ERR_FILTER) turned into
+ * its error state, send and receive without blocking (MSG_DONTWAIT,
+ * sendmmsg/recvmmsg: a tick's frames in one system call each way).
+ *
+ * Error state, from the error frames the driver sends (vcan sends none):
+ * warning and passive from the controller's counters (CAN_ERR_CRTL),
+ * bus-off (CAN_ERR_BUSOFF), back to active on a restart (CAN_ERR_RESTARTED)
+ * or when the driver says so (CAN_ERR_CRTL_ACTIVE).
+ *
+ * After a bus-off the kernel drops what was queued for the interface when
+ * it goes down (the qdisc is reset as the carrier goes); nothing of it is
+ * sent after a restart, and the master sends nothing more by itself.
+ */
+#ifndef CO_SOCKETCAN_H
+#define CO_SOCKETCAN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "co_bus.h"
+
+/* The most frames one send() or recv() call moves. */
+#define CO_SOCKETCAN_BATCH 130
+
+/* [init] A raw CAN socket bound to ifname that receives the n identifiers
+ * of ids (every frame when ids is NULL) and error frames. NULL with errno
+ * and a message in err naming the interface and what to do. */
+struct co_bus *co_socketcan_open(const char *ifname, const uint16_t *ids, uint32_t n,
+				 char *err, size_t size);
+
+/* The socket, for a program's own poll loop (strand-simdrive). */
+int co_socketcan_fd(struct co_bus *b);
+
+#endif /* CO_SOCKETCAN_H */
