@@ -44,9 +44,10 @@ static void print_buses(FILE *out, const struct scene_file *sf)
 		if (r->devices[k].driver != RIG_DRIVER_CANOPEN || !rig_canopen_drives(r, k))
 			continue;
 		rig_canopen_load(r, k, sf->desc.tick_hz, &l);
-		fprintf(out, "canopen bus '%s' (%s): %u drives, worst case %u of %u bits per tick "
-			"(%.0f%%, at most %d%%) at %u bit/s\n", r->devices[k].name,
-			r->devices[k].canopen.interface, l.drives, l.bits, l.capacity,
+		fprintf(out, "canopen bus '%s' (%s): %u drive%s, worst case %u of %u bits per "
+			"tick (%.0f%%, at most %d%%) at %u bit/s\n", r->devices[k].name,
+			r->devices[k].canopen.interface, l.drives, l.drives == 1 ? "" : "s",
+			l.bits, l.capacity,
 			100.0 * l.bits / l.capacity, CO_LOAD_MAX_PERCENT,
 			r->devices[k].canopen.bitrate);
 	}

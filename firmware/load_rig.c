@@ -247,10 +247,11 @@ static int canopen_buses(struct rl *rl)
 		if (!co_load_fits(&load))
 			return ld_fail(l, rl->co_at[k], -EINVAL,
 				       "canopen bus '%s': the worst case of a tick is %u bits (%u "
-				       "drives, bit stuffing) of the %u a tick holds at %u bit/s "
+				       "drive%s, bit stuffing) of the %u a tick holds at %u bit/s "
 				       "and %u ticks/s: %.0f%%, above %d%%; lower tick_hz, drive "
 				       "fewer outputs on this bus or raise the bitrate",
-				       r->devices[k].name, load.bits, load.drives, load.capacity,
+				       r->devices[k].name, load.bits, load.drives,
+				       load.drives == 1 ? "" : "s", load.capacity,
 				       c->bitrate, hz, 100.0 * load.bits / load.capacity,
 				       CO_LOAD_MAX_PERCENT);
 		if (co_interp_period(hz, &ip, &ex) < 0)

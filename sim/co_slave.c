@@ -407,6 +407,7 @@ struct co_slave *co_slave_new(const struct co_slave_cfg *cfg)
 	co_slave_od_defaults(s, true);
 	s->state = CO402_NOT_READY;
 	s->next_hb = INT64_MAX;
+	s->inject_at = INT64_MAX;
 	update_sw(s);
 	return s;
 }
@@ -483,6 +484,14 @@ int64_t co_slave_poll(struct co_slave *s, int64_t now)
 
 	if (!s->powered)
 		return INT64_MAX;
+	if (now >= s->inject_at) {
+		s->inject_at = INT64_MAX;
+		if (!s->inject_code) {
+			co_slave_power_off(s);
+			return INT64_MAX;
+		}
+		co_slave_fault(s, s->inject_code, now);
+	}
 	if (now >= s->next_hb) {
 		struct co_frame f;
 		int64_t period = s->heartbeat_ms * 1000000LL;
@@ -496,10 +505,16 @@ int64_t co_slave_poll(struct co_slave *s, int64_t now)
 	if (s->state == CO402_QUICK_STOP && s->plant)
 		quick_stop(s, now);
 	watch(s);
-	next = s->next_hb;
+	next = s->next_hb < s->inject_at ? s->next_hb : s->inject_at;
 	if (s->state == CO402_QUICK_STOP && s->plant && s->qs_next < next)
 		next = s->qs_next;
 	return next;
+}
+
+void co_slave_inject(struct co_slave *s, int64_t at_ns, uint16_t code)
+{
+	s->inject_at = at_ns;
+	s->inject_code = code;
 }
 
 void co_slave_refuse(struct co_slave *s, uint16_t index, uint8_t sub, uint32_t abort)

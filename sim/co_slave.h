@@ -94,6 +94,10 @@ int64_t co_slave_poll(struct co_slave *s, int64_t now);
 /* A fault: emergency message with this code, fault reaction, fault. */
 void co_slave_fault(struct co_slave *s, uint16_t code, int64_t now);
 
+/* At time at_ns (from co_slave_poll on): a fault with this emergency code,
+ * or with code 0 a power cut. One pending at a time. */
+void co_slave_inject(struct co_slave *s, int64_t at_ns, uint16_t code);
+
 /* Tests: the next SDO access to index:sub is answered with this abort
  * (0: no longer); the drive ignores SDO requests while deaf; its 402 state
  * machine ignores the controlword while stuck. */

@@ -74,6 +74,8 @@ struct co_slave {
 	uint8_t refuse_sub;
 	uint32_t refuse_abort;
 	bool deaf;
+	int64_t inject_at;      /* co_slave_inject: INT64_MAX when none */
+	uint16_t inject_code;
 	int32_t *trace;
 	uint32_t trace_cap, traced;
 	struct co_slave_watch w;
