@@ -7,10 +7,10 @@
 #include <string.h>
 
 #include "channel.h"
+#include "check_bus.h"
 #include "cli.h"
 #include "exitcode.h"
 #include "limit_check.h"
-#include "rig_canopen.h"
 
 struct report {
 	FILE *out;
@@ -27,30 +27,17 @@ static void print_violation(void *ctx, const struct lim_violation *v)
 
 	/* 7 digits: a velocity or acceleration is a difference of quantised
 	 * values, and more digits would print only that noise (limit_check.h) */
+	if (v->kind == LIM_STOP) {
+		fprintf(r->out,
+			"%s.%s: a controlled stop would end at %.7g %s, beyond limit %.7g %s, "
+			"frames %.10g to %.10g\n",
+			n->name, rev ? "angle" : "position", v->worst, unit, v->limit, unit,
+			v->frame_first, v->frame_last);
+		return;
+	}
 	fprintf(r->out, "%s.%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
 		n->name, rev ? "angle" : "position", lim_kind_name(v->kind), v->worst, unit, per,
 		v->limit, unit, per, v->frame_first, v->frame_last);
-}
-
-/* The load of each CANopen bus (the loader refused one that does not fit). */
-static void print_buses(FILE *out, const struct scene_file *sf)
-{
-	const struct rig_desc *r = &sf->rig;
-	uint32_t k;
-
-	for (k = 0; k < r->ndevices; k++) {
-		struct co_load l;
-
-		if (r->devices[k].driver != RIG_DRIVER_CANOPEN || !rig_canopen_drives(r, k))
-			continue;
-		rig_canopen_load(r, k, sf->desc.tick_hz, &l);
-		fprintf(out, "canopen bus '%s' (%s): %u drive%s, worst case %u of %u bits per "
-			"tick (%.0f%%, at most %d%%) at %u bit/s\n", r->devices[k].name,
-			r->devices[k].canopen.interface, l.drives, l.drives == 1 ? "" : "s",
-			l.bits, l.capacity,
-			100.0 * l.bits / l.capacity, CO_LOAD_MAX_PERCENT,
-			r->devices[k].canopen.bitrate);
-	}
 }
 
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
@@ -87,7 +74,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			path, res.violations, res.violations == 1 ? "" : "s", joints,
 			joints == 1 ? "" : "s", sf.desc.frame_first, sf.desc.frame_last,
 			(long long)res.ticks);
-		print_buses(out, &sf);
+		check_buses(out, &sf.rig, sf.desc.tick_hz);
 		rc = res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
 	scene_built_free(&b);

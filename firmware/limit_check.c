@@ -33,7 +33,8 @@ struct checker {
 
 const char *lim_kind_name(enum lim_kind k)
 {
-	static const char *const names[] = { "min", "max", "velocity", "acceleration" };
+	static const char *const names[] = { "min", "max", "velocity", "acceleration",
+					     "stopping distance" };
 
 	return names[k];
 }
@@ -56,13 +57,23 @@ static void close_run(struct checker *c, struct joint *j, enum lim_kind k)
 	v.kind = k;
 	v.worst = r->worst;
 	v.limit = k == LIM_MIN ? lim->min : k == LIM_MAX ? lim->max :
-		  k == LIM_VEL ? copysign(lim->vel, r->worst) : copysign(lim->acc, r->worst);
+		  k == LIM_VEL ? copysign(lim->vel, r->worst) :
+		  k == LIM_ACC ? copysign(lim->acc, r->worst) :
+		  lim->has_max && r->worst > lim->max ? lim->max : lim->min;
 	v.tick_first = r->first;
 	v.tick_last = r->last;
 	v.frame_first = tick_frame(c->t, r->first);
 	v.frame_last = tick_frame(c->t, r->last);
 	c->res->violations++;
 	c->report(c->ctx, &v);
+}
+
+/* The position limit a stopping point lies beyond. */
+static double stop_bound(const struct checker *c, const struct joint *j, double at)
+{
+	const struct sd_limits *lim = &c->d->nodes[j->node].limits;
+
+	return lim->has_max && at > lim->max ? lim->max : lim->min;
 }
 
 /* Tick k breaks (bad) or keeps limit kind with this value. */
@@ -79,7 +90,9 @@ static void step(struct checker *c, struct joint *j, enum lim_kind k, int64_t ti
 		r->open = true;
 		r->first = tick;
 		r->worst = value;
-	} else if (fabs(value) > fabs(r->worst) || (k == LIM_MIN && value < r->worst) ||
+	} else if (k == LIM_STOP ? fabs(value - stop_bound(c, j, value)) >
+					   fabs(r->worst - stop_bound(c, j, r->worst)) :
+		   fabs(value) > fabs(r->worst) || (k == LIM_MIN && value < r->worst) ||
 		   (k == LIM_MAX && value > r->worst)) {
 		r->worst = value;
 	}
@@ -104,6 +117,15 @@ static void joint_tick(struct checker *c, struct joint *j, int64_t k, int64_t k0
 		double v = (ring[n - 1] - ring[n - 1 - h]) * rate;
 
 		step(c, j, LIM_VEL, k, fabs(v) > lim->vel + 4 * lsb * rate, v);
+	}
+	if (lim->has_acc && lim->acc > 0 && (lim->has_min || lim->has_max) && k - k0 >= h) {
+		double v = (ring[n - 1] - ring[n - 1 - h]) * rate;
+		double d = v * v / (2 * lim->acc) + fabs(v) / (rate * h);
+		double at = value + copysign(d, v);
+		bool bad = (lim->has_min && at < lim->min - lsb) ||
+			   (lim->has_max && at > lim->max + lsb);
+
+		step(c, j, LIM_STOP, k, bad, at);
 	}
 	if (lim->has_acc && k - k0 >= 2 * h) {
 		double a = (ring[n - 1] - 2 * ring[h] + ring[0]) * rate * rate;

@@ -23,7 +23,17 @@
 
 #include "scene_desc.h"
 
-enum lim_kind { LIM_MIN, LIM_MAX, LIM_VEL, LIM_ACC, LIM_NKINDS };
+/*
+ * LIM_STOP: a controlled stop begun at that tick (every axis decelerating at
+ * its acceleration limit, as SIGINT, a fault or a stop input do) would carry
+ * the joint past its min or max. A joint with an acceleration limit and a
+ * position limit is checked for it at every tick: its stopping point
+ *     x + sign(v) (v^2 / (2 a) + |v| / tick_hz)
+ * (the second term covers the tick the stop starts in) must stay inside the
+ * limits, so that a stop anywhere on a timeline that passes `check` is safe.
+ * worst is that stopping point, limit the bound it crosses.
+ */
+enum lim_kind { LIM_MIN, LIM_MAX, LIM_VEL, LIM_ACC, LIM_STOP, LIM_NKINDS };
 
 struct lim_violation {
 	uint32_t node;

@@ -11,11 +11,10 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "channel.h"
-#include "rig_canopen.h"
 
 /* What the rig sections need while they are read. */
 struct rl {
@@ -84,59 +83,43 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 	return err;
 }
 
-/* A COB-ID, in decimal or 0x hex: 1..0x7ff. */
-static int cob_id(struct ld *l, yaml_node_t *n, uint32_t *out)
+/* `line:`, a number (the line's offset on its chip) or the line's name
+ * (the chip's gpio-line-names, as gpioinfo shows them). */
+static int line_spec(struct ld *l, yaml_node_t *n, uint32_t *line, const char **name)
 {
-	const char *text;
-	char *end;
-	unsigned long v;
-	int err = ld_str(l, n, &text);
+	long long v = 0;
+	int err;
 
-	if (err)
-		return err;
-	errno = 0;
-	v = strtoul(text, &end, 0);
-	if (errno || end == text || *end || v < 1 || v > 0x7ff)
-		return ld_fail(l, n, -EINVAL, "'%s' is not an 11-bit COB-ID (1 to 0x7ff)", text);
-	*out = (uint32_t)v;
-	return 0;
+	*name = NULL;
+	if (n->type == YAML_SCALAR_NODE && n->data.scalar.length &&
+	    (n->data.scalar.value[0] < '0' || n->data.scalar.value[0] > '9'))
+		return ld_str(l, n, name);
+	err = ld_int(l, n, 0, 4095, &v);
+	*line = (uint32_t)v;
+	return err;
 }
 
-/* A canopen device's bus: {interface, bitrate, sync_id, heartbeat_ms}. */
-static int canopen_bus(struct ld *l, yaml_node_t *map, struct rig_canopen_desc *c)
+/* `ready: {line: L, active_low: B}`: the device's rig-ready output. */
+static int ready_output(struct ld *l, yaml_node_t *map, struct rig_device_desc *dev)
 {
-	static const char *const keys[] = { "interface", "bitrate", "sync_id", "heartbeat_ms",
-					    NULL };
-	yaml_node_t *v[4];
-	long long n;
-	int err = ld_map(l, map, "canopen", keys, v);
+	static const char *const keys[] = { "line", "active_low", NULL };
+	yaml_node_t *v[2];
+	int err = ld_map(l, map, "ready", keys, v);
 
 	if (!err)
-		err = ld_require(l, map, "canopen", v[0], "interface");
+		err = ld_require(l, map, "ready", v[0], "line");
 	if (!err)
-		err = ld_require(l, map, "canopen", v[1], "bitrate");
-	if (!err)
-		err = ld_str(l, v[0], &c->interface);
-	if (!err && (!c->interface[0] || strlen(c->interface) > 15))
-		err = ld_fail(l, v[0], -EINVAL, "interface '%s': a network interface name "
-			      "(1 to 15 characters: can0, vcan0) or sim", c->interface);
-	if (!err)
-		err = ld_int(l, v[1], 10000, 1000000, &n);
-	c->bitrate = (uint32_t)n;
-	c->sync_id = CO_ID_SYNC;
-	if (!err && v[2])
-		err = cob_id(l, v[2], &c->sync_id);
-	c->heartbeat_ms = RIG_CO_HEARTBEAT_MS;
-	if (!err && v[3])
-		err = ld_int(l, v[3], 1, 10000, &n);
-	if (!err && v[3])
-		c->heartbeat_ms = (uint32_t)n;
+		err = line_spec(l, v[0], &dev->ready_line, &dev->ready_line_name);
+	if (!err && v[1])
+		err = ld_bool(l, v[1], &dev->ready_active_low);
+	dev->has_ready = !err;
 	return err;
 }
 
 static int devices(struct rl *rl, yaml_node_t *seq)
 {
-	static const char *const keys[] = { "name", "driver", "sim", "canopen", NULL };
+	static const char *const keys[] = { "name", "driver", "sim", "chip", "ready", "modbus",
+					    "canopen", NULL };
 	static const char *const drivers[] = { "sim", "modbus", "gpio", "canopen", NULL };
 	struct ld *l = rl->l;
 	struct rig_device_desc *dev;
@@ -152,7 +135,7 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 	if (!dev || !rl->dev_names || !rl->co_at)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
-		yaml_node_t *map = ld_node(l, it[i]), *v[4];
+		yaml_node_t *map = ld_node(l, it[i]), *v[7];
 		int drv, k;
 
 		err = ld_map(l, map, "device", keys, v);
@@ -166,17 +149,29 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 			err = ld_enum(l, v[1], "driver", drivers, &drv);
 		if (!err && v[2])
 			err = sim_params(l, v[2], &dev[i].sim);
-		if (!err && drv == RIG_DRIVER_CANOPEN)
-			err = ld_require(l, map, "canopen device", v[3], "canopen");
-		if (!err && v[3] && drv != RIG_DRIVER_CANOPEN)
-			err = ld_fail(l, v[3], -EINVAL, "canopen: settings of a canopen device, "
-				      "not of a %s one", drivers[drv]);
+		if (!err && v[3] && drv != RIG_DRIVER_GPIO)
+			err = ld_fail(l, v[3], -EINVAL, "chip: is for a device with driver gpio");
 		if (!err && v[3])
-			err = canopen_bus(l, v[3], &dev[i].canopen);
+			err = ld_str(l, v[3], &dev[i].chip);
+		if (!err && v[4])
+			err = ready_output(l, v[4], &dev[i]);
+		if (!err && (drv == RIG_DRIVER_CANOPEN) != !!v[6])
+			err = ld_fail(l, v[6] ? v[6] : map, -EINVAL, v[6] ?
+				      "a canopen: section belongs to a device of driver canopen" :
+				      "a device of driver canopen needs its canopen: section");
+		if (!err && v[6])
+			err = ld_canopen_bus(l, v[6], &dev[i].canopen);
 		if (err)
 			return err;
-		rl->co_at[i] = v[3];
+		rl->co_at[i] = v[6];
 		dev[i].driver = (enum rig_driver)drv;
+		/* a Modbus device's bus and register map (load_modbus.c) */
+		if ((dev[i].driver == RIG_DRIVER_MODBUS) != !!v[5])
+			return ld_fail(l, v[5] ? v[5] : map, -EINVAL, v[5] ?
+				       "a modbus: section belongs to a device of driver modbus" :
+				       "a device of driver modbus needs its modbus: section");
+		if (v[5] && (err = ld_modbus(l, v[5], &dev[i])))
+			return err;
 		k = find(rl->dev_names, dev[i].name);
 		if (k >= 0)
 			return ld_fail(l, v[0], -EINVAL, "device '%s' is already listed (line %u)",
@@ -194,85 +189,6 @@ static bool is_angle(const struct rl *rl, const struct chan *c)
 	if (c->kind == CHAN_VALUE)
 		return rl->l->d->nodes[c->index].kind == MOT_NODE_REVOLUTE;
 	return c->kind == CHAN_CAMERA && c->comp >= 3;
-}
-
-/* An output on a canopen device: node: (its axis), mode: checked against
- * the channel (cyclic synchronous velocity for spin speeds only). */
-static int canopen_output(struct rl *rl, yaml_node_t *map, yaml_node_t *axis_at,
-			  yaml_node_t *node_at, yaml_node_t *mode_at, const struct chan *c,
-			  struct rig_output_desc *o, long long *node)
-{
-	static const char *const modes[] = { "csp", "csv", NULL };
-	struct ld *l = rl->l;
-	bool spin = c->kind == CHAN_RPM;
-	int mode, err;
-
-	if (axis_at)
-		return ld_fail(l, axis_at, -EINVAL,
-			       "an output on canopen device '%s' is placed by node:, not axis:",
-			       o->device);
-	err = ld_require(l, map, "output on a canopen device", node_at, "node");
-	if (!err)
-		err = ld_int(l, node_at, 1, CO_NODE_MAX, node);
-	if (err || !mode_at) {
-		o->canopen.mode = spin ? 9 : 8;
-		return err;
-	}
-	err = ld_enum(l, mode_at, "mode", modes, &mode);
-	if (!err && mode != spin)
-		err = ld_fail(l, mode_at, -EINVAL, "mode %s: '%s' is %s; it needs mode %s",
-			      modes[mode], o->channel, spin ? "a spin speed" : "not a spin speed",
-			      modes[spin]);
-	o->canopen.mode = mode ? 9 : 8;
-	return err;
-}
-
-/* Each canopen bus carries its tick with margin, in the 0x60C2 format, and
- * its SYNC's identifier is no drive's. */
-static int canopen_buses(struct rl *rl)
-{
-	struct ld *l = rl->l;
-	const struct rig_desc *r = rl->r;
-	uint32_t k, i, hz = l->d->tick_hz;
-	uint8_t ip;
-	int8_t ex;
-
-	for (k = 0; k < r->ndevices; k++) {
-		const struct rig_canopen_desc *c = &r->devices[k].canopen;
-		struct co_load load;
-
-		if (r->devices[k].driver != RIG_DRIVER_CANOPEN || !rig_canopen_drives(r, k))
-			continue;
-		rig_canopen_load(r, k, hz, &load);
-		if (!co_load_fits(&load))
-			return ld_fail(l, rl->co_at[k], -EINVAL,
-				       "canopen bus '%s': the worst case of a tick is %u bits (%u "
-				       "drive%s, bit stuffing) of the %u a tick holds at %u bit/s "
-				       "and %u ticks/s: %.0f%%, above %d%%; lower tick_hz, drive "
-				       "fewer outputs on this bus or raise the bitrate",
-				       r->devices[k].name, load.bits, load.drives,
-				       load.drives == 1 ? "" : "s", load.capacity,
-				       c->bitrate, hz, 100.0 * load.bits / load.capacity,
-				       CO_LOAD_MAX_PERCENT);
-		if (co_interp_period(hz, &ip, &ex) < 0)
-			return ld_fail(l, rl->co_at[k], -EINVAL,
-				       "canopen bus '%s': tick_hz %u: a drive's interpolation period "
-				       "(0x60C2: 1 to 255 times a power of ten seconds) cannot say "
-				       "%.6g us within 0.1%%", r->devices[k].name, hz, 1e6 / hz);
-		for (i = 0; i < r->noutputs; i++) {
-			uint32_t n = r->outputs[i].axis, id = c->sync_id;
-
-			if (strcmp(r->outputs[i].device, r->devices[k].name))
-				continue;
-			if (id == CO_ID_EMCY + n || id == co_tpdo_id(1, (uint8_t)n) ||
-			    id == co_rpdo_id(1, (uint8_t)n) || id == CO_ID_SDO_TX + n ||
-			    id == CO_ID_SDO_RX + n || id == CO_ID_HEARTBEAT + n)
-				return ld_fail(l, rl->co_at[k], -EINVAL,
-					       "canopen bus '%s': sync_id 0x%x is an identifier of "
-					       "node %u", r->devices[k].name, id, n);
-		}
-	}
-	return 0;
 }
 
 static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output_desc *o,
@@ -313,7 +229,7 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 		used += !strcmp(rl->r->outputs[j].device, o->device);
 	axis = used; /* by default the next axis of the device */
 	if (rl->r->devices[dev].driver == RIG_DRIVER_CANOPEN)
-		err = canopen_output(rl, map, v[O_AXIS], v[O_NODE], v[O_MODE], c, o, &axis);
+		err = ld_canopen_output(l, map, v[O_AXIS], v[O_NODE], v[O_MODE], c, o, &axis);
 	else if (v[O_NODE] || v[O_MODE])
 		err = ld_fail(l, v[O_NODE] ? v[O_NODE] : v[O_MODE], -EINVAL,
 			      "node: and mode: place an output on a canopen device; '%s' is not one",
@@ -400,19 +316,40 @@ static int outputs(struct rl *rl, yaml_node_t *seq)
 	return 0;
 }
 
-/* A line of a device: not taken by an earlier trigger or input. */
-static int line_free(struct rl *rl, yaml_node_t *at, const char *dev, uint32_t line)
+static bool same_line(const char *dev_a, uint32_t a, const char *name_a, const char *dev_b,
+		      uint32_t b, const char *name_b)
 {
+	if (strcmp(dev_a, dev_b) || !name_a != !name_b)
+		return false;
+	return name_a ? !strcmp(name_a, name_b) : a == b;
+}
+
+/* A line of a device: not taken by an earlier trigger or input. (A line
+ * given by number and by name at once is the backend's to find.) */
+static int line_free(struct rl *rl, yaml_node_t *at, const char *dev, uint32_t line,
+		     const char *name)
+{
+	char what[80];
 	uint32_t j;
 
-	for (j = 0; j < rl->r->ntriggers; j++)
-		if (!strcmp(rl->r->triggers[j].device, dev) && rl->r->triggers[j].line == line)
-			return ld_fail(rl->l, at, -EINVAL, "line %u of '%s' is trigger '%s' already",
-				       line, dev, rl->r->triggers[j].name);
-	for (j = 0; j < rl->r->ninputs; j++)
-		if (!strcmp(rl->r->inputs[j].device, dev) && rl->r->inputs[j].line == line)
-			return ld_fail(rl->l, at, -EINVAL, "line %u of '%s' is input '%s' already",
-				       line, dev, rl->r->inputs[j].name);
+	if (name)
+		snprintf(what, sizeof(what), "line '%s'", name);
+	else
+		snprintf(what, sizeof(what), "line %u", line);
+	for (j = 0; j < rl->r->ntriggers; j++) {
+		const struct rig_trigger_desc *t = &rl->r->triggers[j];
+
+		if (same_line(t->device, t->line, t->line_name, dev, line, name))
+			return ld_fail(rl->l, at, -EINVAL, "%s of '%s' is trigger '%s' already",
+				       what, dev, t->name);
+	}
+	for (j = 0; j < rl->r->ninputs; j++) {
+		const struct rig_input_desc *in = &rl->r->inputs[j];
+
+		if (same_line(in->device, in->line, in->line_name, dev, line, name))
+			return ld_fail(rl->l, at, -EINVAL, "%s of '%s' is input '%s' already",
+				       what, dev, in->name);
+	}
 	return 0;
 }
 
@@ -425,7 +362,6 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	const struct scene_desc *d = l->d;
 	yaml_node_t *v[G_N];
 	double frame_ms = 1000.0 * d->rate_den / d->rate_num, tick_ms = 1000.0 / d->tick_hz;
-	long long line;
 	int err, dev;
 
 	err = ld_map(l, map, "trigger", keys, v);
@@ -440,11 +376,10 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	if (!err)
 		err = lookup(rl, v[G_DEV], "device", rl->dev_names, "devices:", &dev);
 	if (!err)
-		err = ld_int(l, v[G_LINE], 0, 4095, &line);
+		err = line_spec(l, v[G_LINE], &t->line, &t->line_name);
 	if (err)
 		return err;
 	t->device = rl->dev_names[dev];
-	t->line = (uint32_t)line;
 	t->pulse_ms = 1;
 	if (v[G_PULSE])
 		err = positive(l, v[G_PULSE], &t->pulse_ms);
@@ -453,7 +388,7 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	if (!err && v[G_OFF])
 		err = ld_num(l, v[G_OFF], &t->offset_ms);
 	if (!err)
-		err = line_free(rl, v[G_LINE], t->device, t->line);
+		err = line_free(rl, v[G_LINE], t->device, t->line, t->line_name);
 	if (err)
 		return err;
 	/* the player's rule (rig.c): whole ticks, at least one, ending before
@@ -475,7 +410,6 @@ static int input(struct rl *rl, yaml_node_t *map, struct rig_input_desc *in)
 	enum { I_NAME, I_DEV, I_LINE, I_ROLE, I_LOW, I_N };
 	struct ld *l = rl->l;
 	yaml_node_t *v[I_N];
-	long long line;
 	int err, dev, role;
 
 	err = ld_map(l, map, "input", keys, v);
@@ -492,13 +426,12 @@ static int input(struct rl *rl, yaml_node_t *map, struct rig_input_desc *in)
 	if (!err)
 		err = lookup(rl, v[I_DEV], "device", rl->dev_names, "devices:", &dev);
 	if (!err)
-		err = ld_int(l, v[I_LINE], 0, 4095, &line);
+		err = line_spec(l, v[I_LINE], &in->line, &in->line_name);
 	if (!err)
 		err = ld_enum(l, v[I_ROLE], "input role", roles, &role);
 	if (err)
 		return err;
 	in->device = rl->dev_names[dev];
-	in->line = (uint32_t)line;
 	in->role = role == 0 ? RIG_INPUT_ESTOP : role == 1 ? RIG_INPUT_STOP :
 							     RIG_INPUT_CAMERA_READY;
 	/* an e-stop chain is wired normally closed: asserted when it opens */
@@ -506,7 +439,7 @@ static int input(struct rl *rl, yaml_node_t *map, struct rig_input_desc *in)
 	if (v[I_LOW])
 		err = ld_bool(l, v[I_LOW], &in->active_low);
 	if (!err)
-		err = line_free(rl, v[I_LINE], in->device, in->line);
+		err = line_free(rl, v[I_LINE], in->device, in->line, in->line_name);
 	return err;
 }
 
@@ -569,7 +502,9 @@ int ld_rig(struct ld *l, const struct ld_rig_sections *s)
 	if (!err && s->outputs)
 		err = outputs(&rl, s->outputs);
 	if (!err)
-		err = canopen_buses(&rl);
+		err = ld_modbus_outputs(l, rl.r, s->outputs);
+	if (!err)
+		err = ld_canopen_buses(l, rl.r, rl.co_at);
 	if (!err && s->triggers)
 		err = lines(&rl, s->triggers, true);
 	if (!err && s->inputs)

@@ -191,6 +191,12 @@ static void inputs(struct loop *L, int64_t now)
 						L->ready = L->edges[e].asserted;
 						if (L->ready)
 							L->ready_since_fire = true;
+					} else if (in->role == RIG_INPUT_ESTOP &&
+						   L->edges[e].asserted && L->edges[e].ts_ns >= 0) {
+						/* (a simulated edge "before the run" is
+						 * dated INT64_MIN: not one) */
+						L->estop_edge_ns = L->edges[e].ts_ns;
+						L->estop_edge = true;
 					} else if (in->role == RIG_INPUT_STOP && L->edges[e].asserted) {
 						loop_request_stop(L, 1, LOOP_CAUSE_STOP_INPUT);
 					}
@@ -212,6 +218,9 @@ static void inputs(struct loop *L, int64_t now)
 
 		if (in->role == RIG_INPUT_ESTOP && hal_din_level(r->dins[in->dev], in->line)) {
 			where(L, true, in->name, (int32_t)in->line, NULL, 0);
+			L->rep.has_edge = L->estop_edge;
+			L->rep.edge_ns = L->estop_edge_ns;
+			L->rep.acted_ns = now;
 			halt(L, LOOP_END_ESTOP, LOOP_CAUSE_ESTOP);
 			return;
 		}

@@ -149,6 +149,11 @@ struct loop_report {
 	double value, bound; /* core units (ferror, limit) */
 	int64_t tick;       /* run tick it happened at */
 	int64_t frame;      /* last frame fired then, -1 if none */
+	/* e-stop: the input edge's own time (the kernel's, for GPIO) and the
+	 * clock when the loop acted; has_edge false when it was seen by its
+	 * level alone (asserted before the run) */
+	bool has_edge;
+	int64_t edge_ns, acted_ns;
 };
 
 struct loop_cfg {
@@ -243,6 +248,8 @@ struct loop {
 	_Atomic int stop_req;   /* 0, 1 controlled, 2 immediate */
 	enum loop_cause stop_cause;
 	struct hal_edge edges[LOOP_EDGES_MAX];
+	int64_t estop_edge_ns;  /* the last e-stop edge that asserted... */
+	bool estop_edge;        /* ...if there was one during the run */
 
 	/* results */
 	struct loop_report rep;

@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "exitcode.h"
+#include "modbus_dev.h"
 #include "timecode.h"
 
 /* Records the journal keeps mapped ahead of the loop: ten seconds of
@@ -94,7 +95,9 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 		p->o.rt.pm_qos = false;
 	}
 	p->failed_at = PLAY_STAGE_RIG;
-	rc = rig_build(&p->rig, rd, src, &p->clk, &o->rig, err, errsize);
+	/* GPIO edges (an e-stop) must not wait behind ordinary work either */
+	p->o.rig.gpio_priority = p->o.rt.priority;
+	rc = rig_build(&p->rig, rd, src, &p->clk, &p->o.rig, err, errsize);
 	if (rc)
 		return rc;
 	p->rig_built = true;
@@ -345,21 +348,26 @@ void play_describe(const struct play *p, char *buf, size_t size)
 			 when);
 		break;
 	case LOOP_CAUSE_ESTOP:
-		snprintf(buf, size, "e-stop: input '%s' (line %d) %s; drives disabled, latched",
-			 r->device ? r->device : "?", r->channel, when);
+		if (r->has_edge)
+			snprintf(buf, size, "e-stop: input '%s' (line %d) %s, acted on %.1f us after "
+				 "the edge; drives disabled, latched", r->device ? r->device : "?",
+				 r->channel, when, (r->acted_ns - r->edge_ns) / 1000.0);
+		else
+			snprintf(buf, size, "e-stop: input '%s' (line %d) %s; drives disabled, "
+				 "latched", r->device ? r->device : "?", r->channel, when);
 		break;
-	case LOOP_CAUSE_DEVICE: {
-		char code[24] = "";
-
-		/* the backend's own number: an emergency's error code, ... */
-		if (r->detail)
-			snprintf(code, sizeof(code), ", code 0x%04X", r->detail);
-		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s%s) %s",
+	case LOOP_CAUSE_DEVICE:
+		if (r->channel < 0) { /* the device as a whole: a bus, a unit */
+			snprintf(buf, size, "device fault: device '%s': %s (%s) %s",
+				 r->device ? r->device : "?", r->what ? r->what : "fault",
+				 strerror(r->code < 0 ? -r->code : r->code), when);
+			break;
+		}
+		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s) %s",
 			 r->device ? r->device : "?", r->channel, o >= 0 ? " (" : "",
 			 out_name(p, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
-			 strerror(r->code < 0 ? -r->code : r->code), code, when);
+			 strerror(r->code < 0 ? -r->code : r->code), when);
 		break;
-	}
 	case LOOP_CAUSE_FERROR:
 	case LOOP_CAUSE_IN_POSITION:
 		snprintf(buf, size, "%s: device '%s' channel %d (%s): %.6g %s beyond the bound %.6g %s %s",
@@ -428,6 +436,8 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 		if (L->limited[i])
 			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
 				p->rig.out[i].channel, (long long)L->limited[i]);
+	for (i = 0; i < p->rig.naxes; i++)
+		hal_modbus_report(p->rig.axes[i], f);
 	if (L->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",
 			(long long)L->status_dropped);

@@ -11,6 +11,7 @@
 
 #include "co_simbus.h"
 #include "rig_canopen.h"
+#include "rig_modbus.h"
 #include "sim_camera.h"
 #include "sim_drive.h"
 #include "sim_gpio.h"
@@ -242,6 +243,8 @@ static int check_lines(struct rig *r, const struct rig_desc *d, const struct mot
 	return 0;
 }
 
+/* Device k's output (trig) or input lines; the outputs are its triggers,
+ * then its rig-ready line. */
 static uint32_t count_role(const struct rig_desc *d, int k, bool trig)
 {
 	uint32_t i, n = 0;
@@ -249,6 +252,7 @@ static uint32_t count_role(const struct rig_desc *d, int k, bool trig)
 	if (trig) {
 		for (i = 0; i < d->ntriggers; i++)
 			n += find_device(d, d->triggers[i].device) == k;
+		n += d->devices[k].has_ready; /* the last output line */
 	} else {
 		for (i = 0; i < d->ninputs; i++)
 			n += find_device(d, d->inputs[i].device) == k;
@@ -256,21 +260,98 @@ static uint32_t count_role(const struct rig_desc *d, int k, bool trig)
 	return n;
 }
 
+/* Is device k simulated in this run? */
+static bool simulated(const struct rig_desc *d, uint32_t k, const struct rig_opts *o)
+{
+	return o->sim || d->devices[k].driver == RIG_DRIVER_SIM;
+}
+
+/* Index of line i among the lines of its device (triggers or inputs). */
+static uint32_t line_index(const struct rig_desc *d, uint32_t i, bool trig)
+{
+	const char *dev = trig ? d->triggers[i].device : d->inputs[i].device;
+	uint32_t k, n = 0;
+
+	for (k = 0; k < i; k++)
+		n += !strcmp(trig ? d->triggers[k].device : d->inputs[k].device, dev);
+	return n;
+}
+
+/*
+ * Device k's trigger (trig) or input lines on a real GPIO chip, in the
+ * order rig_trig.line and rig_in.line number them, to be requested by
+ * rig_start() into douts[] or dins[] at index at. The loop's thread
+ * priority goes to the input event thread.
+ */
+static int plan_gpio(struct rig *r, const struct rig_desc *d, uint32_t k, bool trig, uint32_t n,
+		     uint32_t at, const struct rig_opts *o, char *err, size_t size)
+{
+	const struct rig_device_desc *dd = &d->devices[k];
+	struct rig_gpio *g = &r->gpio[r->ngpio];
+	uint32_t i, j = 0, count = trig ? d->ntriggers : d->ninputs;
+
+	g->lines = calloc(n, sizeof(*g->lines));
+	if (!g->lines)
+		return fail(err, size, -ENOMEM, "out of memory");
+	r->ngpio++;
+	for (i = 0; i < count; i++) {
+		const char *dev = trig ? d->triggers[i].device : d->inputs[i].device;
+
+		if (find_device(d, dev) != (int)k)
+			continue;
+		g->lines[j].name = trig ? d->triggers[i].line_name : d->inputs[i].line_name;
+		g->lines[j].offset = trig ? d->triggers[i].line : d->inputs[i].line;
+		g->lines[j].active_low = trig ? d->triggers[i].active_low : d->inputs[i].active_low;
+		j++;
+	}
+	if (trig && dd->has_ready)
+		g->lines[j] = (struct hal_gpio_line){ .name = dd->ready_line_name,
+						      .offset = dd->ready_line,
+						      .active_low = dd->ready_active_low };
+	g->cfg = (struct hal_gpio_cfg){ .device = dd->name, .chip = dd->chip, .nlines = n,
+					.lines = g->lines, .priority = o->gpio_priority };
+	g->trig = trig;
+	g->at = at;
+	return 0;
+}
+
+/* Request the lines planned by plan_gpio(). */
+static int open_gpio(struct rig *r, char *err, size_t size)
+{
+	uint32_t i;
+	int rc;
+
+	for (i = 0; i < r->ngpio; i++) {
+		struct rig_gpio *g = &r->gpio[i];
+
+		if (g->trig)
+			rc = hal_gpio_dout_open(&r->douts[g->at], &g->cfg, err, size);
+		else
+			rc = hal_gpio_din_open(&r->dins[g->at], &g->cfg, err, size);
+		if (rc)
+			return rc;
+	}
+	return 0;
+}
+
 static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_opts *o,
 		      struct hal_clock *clk, const struct mot_timing *t, char *err, size_t size)
 {
 	double frame_ns = 1e9 * t->den / t->num;
+	size_t nd = d->ndevices ? d->ndevices : 1;
+	int *dev_gpio = calloc(nd, sizeof(int)), *dev_dout = calloc(nd, sizeof(int));
+	int *dev_din = calloc(nd, sizeof(int));
 	uint32_t i, k, nline;
-	int *dev_gpio = calloc(d->ndevices ? d->ndevices : 1, sizeof(int));
 	int rc = 0;
 
-	if (!dev_gpio)
-		return fail(err, size, -ENOMEM, "out of memory");
-	r->sim_gpio = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->sim_gpio));
-	r->douts = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->douts));
-	r->dins = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->dins));
+	r->sim_gpio = calloc(nd, sizeof(*r->sim_gpio));
+	r->douts = calloc(nd, sizeof(*r->douts));
+	r->dins = calloc(nd, sizeof(*r->dins));
+	r->gpio = calloc(2 * nd, sizeof(*r->gpio));
+	r->ready = calloc(nd, sizeof(*r->ready));
 	r->camera = calloc(d->ntriggers ? d->ntriggers : 1, sizeof(*r->camera));
-	if (!r->sim_gpio || !r->douts || !r->dins || !r->camera) {
+	if (!dev_gpio || !dev_dout || !dev_din || !r->sim_gpio || !r->douts || !r->dins ||
+	    !r->gpio || !r->ready || !r->camera) {
 		rc = fail(err, size, -ENOMEM, "out of memory");
 		goto out;
 	}
@@ -278,13 +359,23 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 		uint32_t nt = count_role(d, (int)k, true), ni = count_role(d, (int)k, false);
 		struct sim_gpio *g;
 
-		dev_gpio[k] = -1;
+		dev_gpio[k] = dev_dout[k] = dev_din[k] = -1;
 		if (!nt && !ni)
 			continue;
-		if (!o->sim && d->devices[k].driver != RIG_DRIVER_SIM) {
+		if (!simulated(d, k, o) && d->devices[k].driver == RIG_DRIVER_GPIO) {
+			dev_dout[k] = nt ? (int)r->ndouts++ : -1;
+			dev_din[k] = ni ? (int)r->ndins++ : -1;
+			rc = nt ? plan_gpio(r, d, k, true, nt, (uint32_t)dev_dout[k], o, err, size) : 0;
+			if (!rc && ni)
+				rc = plan_gpio(r, d, k, false, ni, (uint32_t)dev_din[k], o, err, size);
+			if (rc)
+				goto out;
+			continue;
+		}
+		if (!simulated(d, k, o)) {
 			rc = fail(err, size, -ENOTSUP,
-				  "device '%s': driver %s is not in this build yet; play with --sim",
-				  d->devices[k].name, driver_name[d->devices[k].driver]);
+				  "device '%s': driver %s has no trigger or input lines; play with "
+				  "--sim", d->devices[k].name, driver_name[d->devices[k].driver]);
 			goto out;
 		}
 		/* queue: two camera-ready edges per frame in flight, and a few
@@ -296,9 +387,18 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 		}
 		dev_gpio[k] = (int)r->nsim_gpio;
 		r->sim_gpio[r->nsim_gpio++] = g;
+		dev_dout[k] = (int)r->ndouts;
+		dev_din[k] = (int)r->ndins;
 		r->douts[r->ndouts++] = sim_gpio_dout(g);
 		r->dins[r->ndins++] = sim_gpio_din(g);
+		if (d->devices[k].has_ready)
+			sim_gpio_out_polarity(g, nt - 1, d->devices[k].ready_active_low);
 	}
+	for (k = 0; k < d->ndevices; k++)
+		if (d->devices[k].has_ready)
+			r->ready[r->nready++] = (struct rig_line){
+				.dev = (uint32_t)dev_dout[k],
+				.line = count_role(d, (int)k, true) - 1 };
 	for (i = 0; i < d->ntriggers; i++) {
 		const struct rig_trigger_desc *td = &d->triggers[i];
 		int dev = find_device(d, td->device);
@@ -310,11 +410,12 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 				  i, td->name, td->device ? td->device : "");
 			goto out;
 		}
-		g = r->sim_gpio[dev_gpio[dev]];
-		for (nline = 0, k = 0; k < i; k++)
-			nline += find_device(d, d->triggers[k].device) == dev;
-		r->trig[i].dev = (uint32_t)dev_gpio[dev];
+		nline = line_index(d, i, true);
+		r->trig[i].dev = (uint32_t)dev_dout[dev];
 		r->trig[i].line = nline;
+		if (dev_gpio[dev] < 0)
+			continue; /* a real line: a real camera, polarity set at the request */
+		g = r->sim_gpio[dev_gpio[dev]];
 		sim_gpio_out_polarity(g, nline, td->active_low);
 		cp.exposure_ns = (int64_t)(sim_or(d->devices[dev].sim.exposure_ms,
 						  RIG_SIM_EXPOSURE_FRAC * frame_ns / 1e6) * 1e6);
@@ -339,13 +440,14 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 				  id->name, id->device ? id->device : "");
 			goto out;
 		}
-		g = r->sim_gpio[dev_gpio[dev]];
-		for (nline = 0, k = 0; k < i; k++)
-			nline += find_device(d, d->inputs[k].device) == dev;
+		nline = line_index(d, i, false);
 		r->in[i].name = id->name;
-		r->in[i].dev = (uint32_t)dev_gpio[dev];
+		r->in[i].dev = (uint32_t)dev_din[dev];
 		r->in[i].line = nline;
 		r->in[i].role = id->role;
+		if (dev_gpio[dev] < 0)
+			continue;
+		g = r->sim_gpio[dev_gpio[dev]];
 		sim_gpio_in_polarity(g, nline, id->active_low);
 		/* the first camera tells when it is ready through this line */
 		if (id->role == RIG_INPUT_CAMERA_READY && d->ntriggers && r->camera[0])
@@ -353,6 +455,8 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 	}
 out:
 	free(dev_gpio);
+	free(dev_dout);
+	free(dev_din);
 	return rc;
 }
 
@@ -419,6 +523,13 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 				goto out;
 			continue;
 		}
+		if (!o->sim && d->devices[k].driver == RIG_DRIVER_MODBUS) {
+			rc = rig_modbus_open(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz,
+					     clk->is_virtual, err, errsize);
+			if (rc)
+				goto out;
+			continue;
+		}
 		if (!o->sim && d->devices[k].driver != RIG_DRIVER_SIM) {
 			rc = fail(err, errsize, -ENOTSUP,
 				  "device '%s': driver %s is not in this build yet; play with --sim",
@@ -449,8 +560,15 @@ out:
 
 int rig_start(struct rig *r, char *err, size_t errsize)
 {
+	struct hal_fault f;
 	uint32_t i;
 	int rc;
+
+	/* real lines are requested now: one held by another process is a
+	 * device error, with a message naming the chip and the line */
+	rc = open_gpio(r, err, errsize);
+	if (rc)
+		return rc;
 
 	for (i = 0; i < r->naxes; i++) {
 		rc = hal_axis_start(r->axes[i]);
@@ -476,18 +594,25 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 		}
 		r->started_dins[i] = true;
 	}
+	/* every device is up: the rig is ready (rig_stop's deasserting every
+	 * line says it no longer is) */
+	for (i = 0; i < r->nready; i++) {
+		hal_dout_set(r->douts[r->ready[i].dev], r->ready[i].line, true);
+		rc = hal_dout_commit(r->douts[r->ready[i].dev], 0);
+		if (rc) {
+			fail(err, errsize, rc, "device '%s': rig-ready line: %s",
+			     r->douts[r->ready[i].dev]->name, strerror(-rc));
+			goto undo;
+		}
+	}
 	return 0;
 fail_axis:
-	{
-		/* a backend that can say more than the errno says it in its fault */
-		struct hal_fault f = { 0 };
-
-		if (hal_axis_fault(r->axes[i], &f) && f.cause)
-			fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name, f.cause);
-		else
-			fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name,
-			     strerror(-rc));
-	}
+	/* a backend that latched why names the bus, unit and register */
+	if (hal_axis_fault(r->axes[i], &f) && f.cause)
+		fail(err, errsize, rc, "device '%s': start: %s (%s)", r->axes[i]->name, f.cause,
+		     strerror(-rc));
+	else
+		fail(err, errsize, rc, "device '%s': start: %s", r->axes[i]->name, strerror(-rc));
 undo:
 	rig_stop(r);
 	return rc;
@@ -527,6 +652,13 @@ void rig_free(struct rig *r)
 		sim_gpio_free(r->sim_gpio[i]);
 	for (i = 0; r->co_sim && i < r->naxes; i++)
 		co_simbus_free(r->co_sim[i]);
+	for (i = 0; i < r->ngpio; i++) {
+		if (r->gpio[i].trig)
+			hal_dout_close(r->douts[r->gpio[i].at]);
+		else
+			hal_din_close(r->dins[r->gpio[i].at]);
+		free(r->gpio[i].lines);
+	}
 	free(r->axes);
 	free(r->douts);
 	free(r->dins);
@@ -536,6 +668,8 @@ void rig_free(struct rig *r)
 	free(r->sim_drive);
 	free(r->co_sim);
 	free(r->sim_gpio);
+	free(r->gpio);
+	free(r->ready);
 	free(r->camera);
 	free(r->started_axes);
 	free(r->started_douts);

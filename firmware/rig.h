@@ -5,8 +5,11 @@
  * in core units, trigger and input lines resolved to (device, line).
  *
  * Building allocates everything the loop will touch (Klipper's "configure,
- * then seal"); nothing is allocated once the loop runs. Under --sim, or for
- * a device whose driver is `sim`, every device is its simulated twin: a
+ * then seal"); nothing is allocated once the loop runs. A device whose
+ * driver is `gpio` has its trigger lines and inputs on a GPIO chip
+ * (hal/gpio.h), requested by rig_start(): a line held elsewhere is a
+ * device error whose message names the chip and the line. Under --sim, or for a device whose driver is `sim`, every
+ * device is its simulated twin: a
  * drive (sim/sim_drive.h) for outputs, a GPIO chip (sim/sim_gpio.h) for triggers
  * and inputs, and a camera (sim/sim_camera.h) on every trigger line.
  */
@@ -21,6 +24,7 @@
 #include "clock.h"
 #include "din.h"
 #include "dout.h"
+#include "gpio.h"
 #include "rig_desc.h"
 #include "scale.h"
 #include "source.h"
@@ -61,6 +65,18 @@ struct rig_in {
 	enum rig_input_role role;
 };
 
+struct rig_line {
+	uint32_t dev, line;
+};
+
+/* A device's trigger or input lines on a GPIO chip, requested at start. */
+struct rig_gpio {
+	bool trig;                   /* douts[at], else dins[at] */
+	uint32_t at;
+	struct hal_gpio_cfg cfg;
+	struct hal_gpio_line *lines;
+};
+
 struct rig {
 	uint32_t naxes, ndouts, ndins;
 	struct hal_axis **axes;
@@ -76,6 +92,10 @@ struct rig {
 	struct sim_gpio **sim_gpio;
 	struct sim_camera **camera;    /* ntrig */
 	struct co_simbus **co_sim;     /* naxes: a CANopen bus with interface "sim" */
+	uint32_t nready;               /* rig-ready outputs: douts[dev], line */
+	struct rig_line *ready;
+	uint32_t ngpio;                /* real GPIO lines (gpio.h): rig_start requests */
+	struct rig_gpio *gpio;         /* them into douts[at] or dins[at] */
 	bool *started_axes, *started_douts, *started_dins;
 };
 
@@ -83,6 +103,7 @@ struct rig_opts {
 	bool sim;               /* every device by its simulated twin */
 	const char *camera_log; /* the first simulated camera's log file, or NULL */
 	uint64_t camera_cap;    /* exposures each simulated camera keeps */
+	int gpio_priority;      /* the GPIO input event thread's SCHED_FIFO priority, 0: none */
 };
 
 /* [init] Build the rig for a source. 0, or a negative errno with a message

@@ -20,8 +20,11 @@
  *       ferror: 2                # following error bound at full speed (units)
  *       min_ferror: 0.2          # ... at rest
  *       in_position: 0.05        # step mode: close enough to shoot
+ *     - {name: gpio0, driver: gpio, chip: gpiochip0,   # chip: optional
+ *        ready: {line: RIG_READY, active_low: false}}  # optional
  *   triggers:                    # camera trigger lines
  *     - {name: cam, device: io, line: 0, pulse_ms: 2, active_low: false, offset_ms: -8}
+ *     - {name: cam2, device: gpio0, line: CAM2_TRIG}   # a line by its name
  *   inputs:
  *     - {name: estop, device: io, line: 0, role: estop, active_low: true}
  *     - {name: ready, device: io, line: 1, role: camera_ready}
@@ -35,6 +38,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "modbus_dev.h" /* struct modbus_desc */
 #include "scene_desc.h" /* struct sd_limits */
 
 enum rig_driver {
@@ -70,7 +74,16 @@ struct rig_device_desc {
 	enum rig_driver driver;
 	struct rig_sim_desc sim;
 	/* the hardware backends add their settings here (issues 5-7) */
-	struct rig_canopen_desc canopen;
+	const struct modbus_desc *modbus; /* driver modbus: bus and register map */
+	const char *chip;      /* gpio: gpiochip0, /dev/gpiochip0 or a label;
+				* NULL: the lines by name, on whichever chip */
+	/* a rig-ready output (a lamp, a PLC input): asserted once every
+	 * device has started, deasserted when the run ends */
+	bool has_ready;
+	uint32_t ready_line;
+	const char *ready_line_name; /* by name; NULL: by number */
+	bool ready_active_low;
+	struct rig_canopen_desc canopen; /* driver canopen: the bus */
 };
 
 /* An output on a CANopen bus: its drive's node-ID is the output's axis
@@ -101,6 +114,7 @@ struct rig_trigger_desc {
 	bool active_low;
 	double offset_ms; /* edge time relative to the frame's tick; negative
 			   * fires early to make up for a camera's shutter lag */
+	const char *line_name; /* gpio: the line by its name; NULL: by number */
 };
 
 enum rig_input_role {
@@ -115,6 +129,7 @@ struct rig_input_desc {
 	uint32_t line;
 	enum rig_input_role role;
 	bool active_low;
+	const char *line_name; /* gpio: the line by its name; NULL: by number */
 };
 
 struct rig_desc {

@@ -137,11 +137,11 @@ void pu_rig_init(struct pu_rig *r, const struct pu_source *ps, uint32_t ntrig, u
 	}
 	i = 0;
 	if (inputs & PU_ESTOP)
-		r->in[i++] = (struct rig_input_desc){ "estop", "io", 0, RIG_INPUT_ESTOP, true };
+		r->in[i++] = (struct rig_input_desc){ "estop", "io", 0, RIG_INPUT_ESTOP, true, NULL };
 	if (inputs & PU_READY)
-		r->in[i++] = (struct rig_input_desc){ "ready", "io", 1, RIG_INPUT_CAMERA_READY, false };
+		r->in[i++] = (struct rig_input_desc){ "ready", "io", 1, RIG_INPUT_CAMERA_READY, false, NULL };
 	if (inputs & PU_STOP)
-		r->in[i++] = (struct rig_input_desc){ "stop", "io", 2, RIG_INPUT_STOP, false };
+		r->in[i++] = (struct rig_input_desc){ "stop", "io", 2, RIG_INPUT_STOP, false, NULL };
 	r->d.ndevices = 3;
 	r->d.devices = r->dev;
 	r->d.noutputs = ps->nch;

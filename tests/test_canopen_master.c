@@ -497,10 +497,11 @@ static void test_emcy_running(void **state)
 	co_slave_fault(drive(&r, 3), 0x2310, hal_clock_now(&r.clk));
 	seen = run_to_fault(&r, 10, -EIO);
 	assert_int_equal(seen, 50);
-	expect_fault(&r, -EIO, CO_FAULT_EMCY, 3, "emergency: current, device output side", 0x2310);
+	expect_fault(&r, -EIO, CO_FAULT_EMCY, 3, "emergency 0x2310 (current, device output side)",
+		     0x2310);
 	co_master_describe(r.m, &r.m->fault, msg, sizeof(msg));
-	assert_string_equal(msg, "node 3: emergency 0x2310 (emergency: current, device output "
-				 "side), error register 0x03, drive operation enabled");
+	assert_string_equal(msg, "node 3: emergency 0x2310 (current, device output side), error "
+				 "register 0x03, drive operation enabled");
 	cu_free(&r);
 }
 

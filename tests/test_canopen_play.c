@@ -170,8 +170,8 @@ static void test_emcy(void **state)
 	assert_int_equal(p.L.rep.channel, 3);
 	assert_int_equal(p.L.rep.detail, 0x2310);
 	play_describe(&p, why, sizeof(why));
-	assert_non_null(strstr(why, "device fault: device 'arm' channel 3 (a.angle): emergency: "
-				    "current, device output side (Input/output error, code 0x2310) "
+	assert_non_null(strstr(why, "device fault: device 'arm' channel 3 (a.angle): emergency "
+				    "0x2310 (current, device output side) (Input/output error) "
 				    "at tick 2000"));
 	assert_int_equal(co_slave_watch(drive(&p, 7))->state, CO402_DISABLED);
 	play_free(&p);
@@ -223,7 +223,7 @@ static void test_start_refused(void **state)
 	co_slave_refuse(co_simbus_node(rig.co_sim[0], 7), 0x6060, 0, CO_ABORT_VALUE);
 	assert_int_equal(rig_start(&rig, err, sizeof(err)), -EIO);
 	assert_string_equal(err, "device 'arm': start: node 7: SDO write of 0x6060:00 aborted: "
-				 "invalid value for parameter (0x06090030)");
+				 "invalid value for parameter (0x06090030) (Input/output error)");
 	assert_true(co_slave_watch(co_simbus_node(rig.co_sim[0], 3))->state < CO402_SWITCHED_ON);
 	assert_int_equal(co_slave_watch(co_simbus_node(rig.co_sim[0], 3))->nmt,
 			 CO_NMT_PREOPERATIONAL);

@@ -456,15 +456,15 @@ static void test_emcy(void **state)
 	struct co_frame f;
 	struct co_emcy e;
 
-	assert_string_equal(co_emcy_class(0x2310), "emergency: current, device output side");
+	assert_string_equal(co_emcy_class(0x2310), "current, device output side");
 	assert_string_equal(co_emcy_class(0x8130),
-			    "emergency: communication, heartbeat or life guard error");
-	assert_string_equal(co_emcy_class(0x8140), "emergency: communication, recovered from bus-off");
-	assert_string_equal(co_emcy_class(0x8199), "emergency: communication");
-	assert_string_equal(co_emcy_class(0x5530), "emergency: device hardware");
-	assert_string_equal(co_emcy_class(0xff12), "emergency: device specific");
-	assert_string_equal(co_emcy_class(0x0000), "emergency: error reset or no error");
-	assert_string_equal(co_emcy_class(0x1000), "emergency: generic error");
+			    "communication, heartbeat or life guard error");
+	assert_string_equal(co_emcy_class(0x8140), "communication, recovered from bus-off");
+	assert_string_equal(co_emcy_class(0x8199), "communication");
+	assert_string_equal(co_emcy_class(0x5530), "device hardware");
+	assert_string_equal(co_emcy_class(0xff12), "device specific");
+	assert_string_equal(co_emcy_class(0x0000), "error reset or no error");
+	assert_string_equal(co_emcy_class(0x1000), "generic error");
 	assert_string_equal(co_emcy_class(0xe000), "unknown error class");
 	assert_int_equal(co_emcy_register_bit(0x2310), 0x02);
 	assert_int_equal(co_emcy_register_bit(0x4310), 0x08);

@@ -231,12 +231,47 @@ static void test_truncated(void **state)
 	assert_true(errors > 0);
 }
 
+/* A GPIO device: its chip, its rig-ready line, lines by offset and by
+ * name, each kept apart. */
+static void test_gpio_lines(void **state)
+{
+	struct scene_file sf;
+	const struct rig_desc *r;
+
+	parse_ok(&sf, "timing: {frame_rate: 24, frames: [0, 10]}\n"
+		      "devices: [{name: io, driver: gpio, chip: gpiochip2},\n"
+		      "          {name: any, driver: gpio, ready: {line: LAMP, active_low: true}}]\n"
+		      "triggers: [{name: cam, device: io, line: 5, active_low: true},\n"
+		      "           {name: cam2, device: any, line: CAM2_TRIG}]\n"
+		      "inputs: [{name: estop, device: any, line: ESTOP-1, role: estop},\n"
+		      "         {name: ready, device: io, line: 0, role: camera_ready}]\n");
+	r = &sf.rig;
+	assert_int_equal(r->ndevices, 2);
+	assert_int_equal(r->devices[0].driver, RIG_DRIVER_GPIO);
+	assert_string_equal(r->devices[0].chip, "gpiochip2");
+	assert_null(r->devices[1].chip);
+	assert_false(r->devices[0].has_ready);
+	assert_true(r->devices[1].has_ready);
+	assert_string_equal(r->devices[1].ready_line_name, "LAMP");
+	assert_true(r->devices[1].ready_active_low);
+	assert_int_equal(r->triggers[0].line, 5);
+	assert_null(r->triggers[0].line_name);
+	assert_true(r->triggers[0].active_low);
+	assert_string_equal(r->triggers[1].line_name, "CAM2_TRIG");
+	assert_string_equal(r->inputs[0].line_name, "ESTOP-1");
+	assert_true(r->inputs[0].active_low); /* an e-stop: normally closed */
+	assert_int_equal(r->inputs[1].line, 0);
+	assert_null(r->inputs[1].line_name);
+	assert_false(r->inputs[1].active_low);
+	scene_file_free(&sf);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_schema),	 cmocka_unit_test(test_defaults),
 		cmocka_unit_test(test_matrix_key), cmocka_unit_test(test_examples),
-		cmocka_unit_test(test_truncated),
+		cmocka_unit_test(test_truncated), cmocka_unit_test(test_gpio_lines),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -571,14 +571,14 @@ static const struct err_case cases[] = {
 	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
 	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
 	  "devices: [{name: bus, driver: canopen}]\n",
-	  "t.yaml:5:11: missing field 'canopen' in canopen device" },
+	  "t.yaml:5:11: a device of driver canopen needs its canopen: section" },
 	{ "canopen: settings on another driver",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
 	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
 	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
 	  "devices: [{name: bus, driver: sim, canopen: {interface: can0, bitrate: 500000}}]\n",
-	  "t.yaml:5:45: canopen: settings of a canopen device, not of a sim one" },
+	  "t.yaml:5:45: a canopen: section belongs to a device of driver canopen" },
 	{ "canopen: bitrate missing",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
@@ -682,6 +682,17 @@ static const struct err_case cases[] = {
 	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 1000000, sync_id: 0x83}}]\n"
 	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100}]\n",
 	  "t.yaml:5:49: canopen bus 'bus': sync_id 0x83 is an identifier of node 3" },
+	{ "rig: chip on a simulated device",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "devices: [{name: io, driver: sim, chip: gpiochip0}]\n",
+	  "t.yaml:2:41: chip: is for a device with driver gpio" },
+	{ "rig: a named line twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: io, driver: gpio}]\n"
+	  "triggers: [{name: cam, device: io, line: SHUTTER}]\n"
+	  "inputs: [{name: estop, device: io, line: SHUTTER, role: estop}]\n",
+	  "t.yaml:5:42: line 'SHUTTER' of 'io' is trigger 'cam' already" },
 };
 
 #define NCASES (sizeof(cases) / sizeof(cases[0]))

@@ -15,6 +15,7 @@ struct co_axis {
 	bool started;
 	struct hal_fault hf;
 	char msg[256];      /* a start or stop failure in words ([init] only) */
+	char emcy[96];      /* "emergency 0x2310 (its class)", composed in fault() */
 	struct co_node *nodes;
 	struct co_frame *cycle;
 	struct co_frame rx[CO_AXIS_RX_BATCH];
@@ -141,6 +142,30 @@ static int ca_commit(struct hal_axis *ax, int64_t tick)
 	return co_master_fault(&a->m, NULL);
 }
 
+/* "emergency 0x2310 (current, device output side)": four hex digits and a
+ * static class, put together by hand in the loop's thread, where printf
+ * has no place. */
+static const char *emcy_text(struct co_axis *a, uint16_t code)
+{
+	static const char head[] = "emergency 0x", hex[] = "0123456789ABCDEF";
+	const char *cls = co_emcy_class(code);
+	size_t n = sizeof(head) - 1, len = strlen(cls);
+	int i;
+
+	memcpy(a->emcy, head, n);
+	for (i = 12; i >= 0; i -= 4)
+		a->emcy[n++] = hex[(code >> i) & 0xf];
+	a->emcy[n++] = ' ';
+	a->emcy[n++] = '(';
+	if (len > sizeof(a->emcy) - n - 2)
+		len = sizeof(a->emcy) - n - 2;
+	memcpy(a->emcy + n, cls, len);
+	n += len;
+	a->emcy[n++] = ')';
+	a->emcy[n] = '\0';
+	return a->emcy;
+}
+
 static int ca_fault(struct hal_axis *ax, struct hal_fault *hf)
 {
 	struct co_axis *a = axis_of(ax);
@@ -153,7 +178,8 @@ static int ca_fault(struct hal_axis *ax, struct hal_fault *hf)
 	hf->channel = f.node ? f.node : -1;
 	/* a start or stop failure was put in words by [init] code; in the
 	 * loop only static text */
-	hf->cause = a->msg[0] ? a->msg : co_fault_cause(&f);
+	hf->cause = a->msg[0] ? a->msg :
+		    f.kind == CO_FAULT_EMCY ? emcy_text(a, (uint16_t)f.detail) : co_fault_cause(&f);
 	hf->detail = f.kind == CO_FAULT_EMCY || f.kind == CO_FAULT_SDO ? f.detail : 0;
 	return code;
 }

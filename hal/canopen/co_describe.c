@@ -23,7 +23,7 @@ const char *co_fault_cause(const struct co_fault *f)
 	case CO_FAULT_NMT:
 		return f->detail == CO_NMT_BOOTUP ? "drive rebooted" : "left NMT operational";
 	case CO_FAULT_EMCY:
-		return co_emcy_class((uint16_t)f->detail);
+		return "emergency";
 	case CO_FAULT_STATE:
 		return "left operation enabled";
 	case CO_FAULT_TPDO:

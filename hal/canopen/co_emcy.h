@@ -41,8 +41,8 @@ bool co_emcy_parse(const struct co_frame *f, uint16_t sync_id, struct co_emcy *e
 void co_emcy_frame(struct co_frame *f, uint8_t node, uint16_t code, uint8_t reg);
 
 /* The class of an error code as static text, most specific first:
- * "emergency: current, device output side", "emergency: communication,
- * heartbeat or life guard error", "emergency: device specific". */
+ * "current, device output side", "communication, heartbeat or life guard
+ * error", "device specific". */
 const char *co_emcy_class(uint16_t code);
 
 /* The error register bit that goes with an error code's class (1 generic,

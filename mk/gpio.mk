@@ -1,0 +1,74 @@
+# mk/gpio.mk - the GPIO backend's libgpiod side (hal/gpio.h, hal/gpio_line.h).
+#
+# hal/gpio_*.c (the HAL backend) build with the rest of hal/ (mk/play.mk).
+# What talks to libgpiod is in hal/gpiod/, in an archive of its own,
+# $(GPIOD_LIB): the implementation of gpio_line.h for the installed
+# library's API, and the messages both implementations share.
+#
+# libgpiod's API changed at 2.0 (Debian 12 has 1.6.3). HAVE_GPIOD_V2 is
+# decided once, by mk/gpiod-api.sh from pkg-config's version of the
+# library, when the archive is built: it names the one file to compile,
+# hal/gpiod/gpio_line_v1.c or gpio_line_v2.c. No source file tests a
+# version. (`make gpiod-api` says which.)
+#
+# tests/test_gpio runs the backend over a fake chip (tests/fake/), linked
+# ahead of the archive; the real chip is tested in the VM (mk/vm.mk).
+
+DEB_GPIO  := libgpiod-dev
+GPIOD_LIB := $(BUILD)/hal/libgpioline.a
+GPIOD_SRC := hal/gpiod/gpio_line_v1.c hal/gpiod/gpio_line_v2.c
+GPIOD_HDR := hal/gpio_line.h
+
+.PHONY: gpiod-api
+
+$(BUILD)/.deps-gpio: mk/deps.sh $(BUILD)/.deps-build
+	$(Q)sh mk/deps.sh $(DEB_GPIO) && touch $@
+deps: $(BUILD)/.deps-gpio
+
+gpiod-api: | $(BUILD)/.deps-gpio
+	$(Q)echo "libgpiod $$(pkg-config --modversion libgpiod): $$(sh mk/gpiod-api.sh --have)," \
+		"compiling $$(sh mk/gpiod-api.sh)"
+
+$(BUILD)/hal/gpiod/gpio_line_api.o: $(GPIOD_SRC) $(GPIOD_HDR) mk/gpiod-api.sh | $(BUILD)/.deps-gpio
+	@mkdir -p $(@D)
+	$(Q)src=$$(sh mk/gpiod-api.sh) && \
+		$(CC) $(FW_CFLAGS) $(OPT) -g $$(pkg-config --cflags libgpiod) -c $$src -o $@
+$(BUILD)/hal/gpiod/gpio_line_msg.o: hal/gpiod/gpio_line_msg.c $(GPIOD_HDR) | $(BUILD)/.deps-build
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(FW_CFLAGS) $(OPT) -g -c $< -o $@
+$(GPIOD_LIB): $(BUILD)/hal/gpiod/gpio_line_api.o $(BUILD)/hal/gpiod/gpio_line_msg.o
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+# Everything that links the firmware links the archive and libgpiod: the
+# program, the tests (their archive of firmware objects holds the HAL
+# backend) and the fuzzer. '=': pkg-config is asked when a link runs, after
+# mk/deps.sh installed the library.
+FW_LIBS += $(GPIOD_LIB) $(shell pkg-config --libs libgpiod 2>/dev/null || echo -lgpiod)
+$(BUILD)/strand: $(GPIOD_LIB)
+$(TEST_BIN): | $(GPIOD_LIB)
+$(BUILD)/fuzz/fuzz_load: | $(GPIOD_LIB)
+
+# test_gpio: the fake chip, ahead of the archive in the link.
+$(BUILD)/san/tests/fake/%.o: tests/fake/%.c tests/fake/%.h $(GPIOD_HDR) | $(BUILD)/.deps-test
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
+$(BUILD)/tests/test_gpio: $(BUILD)/san/tests/fake/gpio_line_fake.o
+$(BUILD)/san/tests/test_gpio.o: TEST_CFLAGS += -Itests/fake
+$(BUILD)/san/tests/test_gpio.o: tests/fake/gpio_line_fake.h $(GPIOD_HDR)
+
+# make bench-gpio (part of make bench): the trigger's edge jitter measured
+# in the test VM: tests/vm/t_gpio_trigger.sh over the scene ten times (760
+# frames, 30 s), gpiomon's kernel timestamps against each tick's due time.
+# Under qemu's software emulation (TCG) the guest's CPU is a host thread
+# the host preempts: these figures bound what the harness sees, not what a
+# board does (README "GPIO").
+.PHONY: bench-gpio
+bench: bench-gpio
+bench-gpio: $(BUILD)/vm/initrd.cpio.gz
+	$(Q)VM_ONLY=t_gpio_trigger VM_APPEND="strand.bench_passes=10 strand.max_late_us=100000" \
+		sh tests/vm/run.sh $(BUILD)/vm-cache/kernel-$(VM_KERNEL_VERSION)/vmlinux $< \
+		$(BUILD)/bench-gpio >$(BUILD)/bench-gpio.log 2>&1 || \
+		{ cat $(BUILD)/bench-gpio.log; exit 1; }
+	$(Q)echo "bench-gpio: trigger edges in the VM ($$(sed -n 's/^vm: booting [^ ]* (\([A-Z]*\)).*/\1/p' \
+		$(BUILD)/bench-gpio.log)), 250 Hz tick, 20 ms pulses; late = edge - due"
+	$(Q)grep -h '^BENCH gpio_' $(BUILD)/bench-gpio/console.log.txt
