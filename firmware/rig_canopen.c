@@ -103,6 +103,7 @@ int rig_canopen_make(struct rig *r, const struct rig_desc *d, uint32_t k, uint32
 	const struct rig_canopen_desc *c = &dd->canopen;
 	struct co_drive_cfg drv[CO_NODE_MAX];
 	uint16_t ids[4 * CO_NODE_MAX];
+	struct co_rx_filter flt[4 * CO_NODE_MAX];
 	struct co_axis_cfg ac = { .name = dd->name, .clk = clk };
 	uint32_t i, n = 0;
 
@@ -135,10 +136,15 @@ int rig_canopen_make(struct rig *r, const struct rig_desc *d, uint32_t k, uint32
 	if (c->interface && !strcmp(c->interface, "sim")) {
 		ac.bus = simulated(r, dd, ax, drv, n, clk, err, size);
 	} else {
+		uint32_t nf = co_master_rx_ids(drv, n, ids);
 		char why[160];
 
-		ac.bus = co_socketcan_open(c->interface ? c->interface : "", ids,
-					   co_master_rx_ids(drv, n, ids), why, sizeof(why));
+		for (i = 0; i < nf; i++) {
+			flt[i].id = ids[i];
+			flt[i].mask = 0x7ff;
+		}
+		ac.bus = co_socketcan_open(c->interface ? c->interface : "", flt, nf, why,
+					   sizeof(why));
 		if (!ac.bus)
 			return fail(err, size, -errno, "device '%s': %s", dd->name, why);
 	}

@@ -19,3 +19,8 @@ CO_USERS := $(CO_OBJ) $(CO_SAN_OBJ) \
 	$(patsubst %.c,$(BUILD)/%.o,$(wildcard sim/*.c sim/simdrive/*.c firmware/*.c)) \
 	$(patsubst %.c,$(BUILD)/san/%.o,$(wildcard sim/*.c firmware/*.c tests/*.c))
 $(CO_USERS): $(CO_HDR)
+
+# ---- the VM tests (mk/vm.mk) ------------------------------------------------------
+# strand drives strand-simdrive processes on vcan0, candump records the bus.
+VM_BINS  += $(BUILD)/strand-simdrive
+VM_FILES += /tests/can.awk=tests/vm/can.awk /tests/can.sh=tests/vm/can.sh

@@ -555,3 +555,8 @@ uint8_t co_slave_node(const struct co_slave *s)
 {
 	return s->cfg.node;
 }
+
+uint16_t co_slave_sync_id(const struct co_slave *s)
+{
+	return (uint16_t)(s->sync_id & 0x7ff);
+}

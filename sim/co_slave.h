@@ -113,5 +113,7 @@ uint32_t co_slave_traced(const struct co_slave *s);
 /* What it did: a live view, current after every call into the drive. */
 const struct co_slave_watch *co_slave_watch(const struct co_slave *s);
 uint8_t co_slave_node(const struct co_slave *s);
+/* The SYNC's identifier it listens to (0x1005). */
+uint16_t co_slave_sync_id(const struct co_slave *s);
 
 #endif /* CO_SLAVE_H */

@@ -150,14 +150,39 @@ static struct co_bus *fail(struct co_socketcan *s, int code, char *err, size_t s
 	return NULL;
 }
 
-struct co_bus *co_socketcan_open(const char *ifname, const uint16_t *ids, uint32_t n,
-				 char *err, size_t size)
+/* CAN_RAW_FILTER from ours: the identifier's bits, and a data frame with
+ * an 11-bit identifier (no remote request, no extended frame). */
+static int set_filter(int fd, const struct co_rx_filter *flt, uint32_t n)
+{
+	struct can_filter *k = calloc(n ? n : 1, sizeof(*k));
+	uint32_t i;
+	int rc = 0;
+
+	if (!k)
+		return -ENOMEM;
+	for (i = 0; i < n; i++) {
+		k[i].can_id = flt[i].id & CAN_SFF_MASK;
+		k[i].can_mask = (flt[i].mask & CAN_SFF_MASK) | CAN_EFF_FLAG | CAN_RTR_FLAG;
+	}
+	if (setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, k, (socklen_t)(n * sizeof(*k))) < 0)
+		rc = -errno;
+	free(k);
+	return rc;
+}
+
+int co_socketcan_filter(struct co_bus *b, const struct co_rx_filter *flt, uint32_t n)
+{
+	return set_filter(sc_of(b)->fd, flt, n);
+}
+
+struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *flt,
+				 uint32_t n, char *err, size_t size)
 {
 	can_err_mask_t errs = CAN_ERR_CRTL | CAN_ERR_BUSOFF | CAN_ERR_RESTARTED;
 	struct sockaddr_can addr = { .can_family = AF_CAN };
-	struct can_filter *flt = NULL;
 	struct co_socketcan *s;
 	uint32_t i;
+	int rc;
 
 	if (strlen(ifname) >= IF_NAMESIZE)
 		return fail(NULL, EINVAL, err, size, "CAN interface '%s': %s (name too long)", ifname);
@@ -173,23 +198,8 @@ struct co_bus *co_socketcan_open(const char *ifname, const uint16_t *ids, uint32
 	if (!addr.can_ifindex)
 		return fail(s, errno, err, size,
 			    "CAN interface '%s': %s (see `ip link show type can`)", ifname);
-	if (ids) {
-		flt = calloc(n ? n : 1, sizeof(*flt));
-		if (!flt)
-			return fail(s, ENOMEM, err, size, "CAN interface '%s': %s", ifname);
-		for (i = 0; i < n; i++) {
-			flt[i].can_id = ids[i];
-			/* the identifier, and a data frame with an 11-bit one */
-			flt[i].can_mask = CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG;
-		}
-		if (setsockopt(s->fd, SOL_CAN_RAW, CAN_RAW_FILTER, flt,
-			       (socklen_t)(n * sizeof(*flt))) < 0) {
-			free(flt);
-			return fail(s, errno, err, size, "CAN interface '%s': receive filter: %s",
-				    ifname);
-		}
-		free(flt);
-	}
+	if (flt && (rc = set_filter(s->fd, flt, n)) < 0)
+		return fail(s, -rc, err, size, "CAN interface '%s': receive filter: %s", ifname);
 	if (setsockopt(s->fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &errs, sizeof(errs)) < 0)
 		return fail(s, errno, err, size, "CAN interface '%s': error frames: %s", ifname);
 	if (bind(s->fd, (struct sockaddr *)&addr, sizeof(addr)) < 0)

@@ -26,11 +26,21 @@
 /* The most frames one send() or recv() call moves. */
 #define CO_SOCKETCAN_BATCH 130
 
-/* [init] A raw CAN socket bound to ifname that receives the n identifiers
- * of ids (every frame when ids is NULL) and error frames. NULL with errno
- * and a message in err naming the interface and what to do. */
-struct co_bus *co_socketcan_open(const char *ifname, const uint16_t *ids, uint32_t n,
-				 char *err, size_t size);
+/* A receive filter: frames whose identifier matches id in the bits of mask
+ * (0x7ff: exactly id). */
+struct co_rx_filter {
+	uint16_t id, mask;
+};
+
+/* [init] A raw CAN socket bound to ifname that receives the data frames
+ * with 11-bit identifiers that one of the n filters passes (every frame
+ * when flt is NULL), and error frames. NULL with errno and a message in err
+ * naming the interface and what to do. */
+struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *flt,
+				 uint32_t n, char *err, size_t size);
+
+/* [init] Replace the receive filters: 0 or a negative errno. */
+int co_socketcan_filter(struct co_bus *b, const struct co_rx_filter *flt, uint32_t n);
 
 /* The socket, for a program's own poll loop (strand-simdrive). */
 int co_socketcan_fd(struct co_bus *b);

@@ -6,9 +6,9 @@
  * tells the drive everything by SDO (mode, interpolation period, PDOs,
  * heartbeat); the plant's constants are options.
  *
- * The drive reads every frame on the interface (its own object dictionary
- * decides what is addressed to it) and runs on CLOCK_MONOTONIC, woken by a
- * frame or by its next timer (heartbeat, a quick stop's next period).
+ * The drive reads the frames addressed to it and runs on CLOCK_MONOTONIC,
+ * woken by a frame or by its next timer (heartbeat, a quick stop's next
+ * period).
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -175,11 +175,31 @@ static void report(const struct co_slave_watch *w, uint8_t node)
 		(unsigned long long)w->emcys, (unsigned long long)w->sdo_requests, w->actual);
 }
 
+/* What the drive takes from the bus: NMT and the default SYNC (0x000 to
+ * 0x0ff, emergencies included), its RPDOs and SDO requests, and the SYNC's
+ * identifier when 0x1005 moved it. So it wakes up for its own frames only,
+ * not for every TPDO of the others. */
+static int listen_to(struct co_bus *bus, uint8_t node, uint16_t sync_id)
+{
+	struct co_rx_filter f[7] = {
+		{ 0x000, 0x700 },
+		{ (uint16_t)(CO_ID_SDO_RX + node), 0x7ff },
+		{ co_rpdo_id(1, node), 0x7ff },
+		{ co_rpdo_id(2, node), 0x7ff },
+		{ co_rpdo_id(3, node), 0x7ff },
+		{ co_rpdo_id(4, node), 0x7ff },
+		{ sync_id, 0x7ff },
+	};
+
+	return co_socketcan_filter(bus, f, sync_id > 0xff ? 7 : 6);
+}
+
 static int serve(struct co_bus *bus, struct co_slave *s, uint16_t fault)
 {
 	struct pollfd p = { .fd = co_socketcan_fd(bus), .events = POLLIN };
 	struct co_frame rx[CO_SOCKETCAN_BATCH];
 	int64_t next = co_slave_poll(s, now_ns());
+	uint16_t sync_id = co_slave_sync_id(s);
 
 	while (!stop_sig) {
 		int64_t now = now_ns(), wait = next - now;
@@ -202,6 +222,10 @@ static int serve(struct co_bus *bus, struct co_slave *s, uint16_t fault)
 			return 4;
 		}
 		next = co_slave_poll(s, now_ns());
+		if (co_slave_sync_id(s) != sync_id) {
+			sync_id = co_slave_sync_id(s);
+			listen_to(bus, co_slave_node(s), sync_id);
+		}
 	}
 	return 0;
 }
@@ -218,10 +242,15 @@ int simdrive_can_main(int argc, char **argv)
 
 	if (rc >= 0)
 		return rc;
-	/* every frame: the drive's dictionary decides what is its own */
 	bus = co_socketcan_open(o.iface, NULL, 0, err, sizeof(err));
 	if (!bus) {
 		fprintf(stderr, "strand-simdrive: %s\n", err);
+		return 4;
+	}
+	rc = listen_to(bus, (uint8_t)o.node, CO_ID_SYNC);
+	if (rc) {
+		fprintf(stderr, "strand-simdrive: %s: receive filter: %s\n", o.iface, strerror(-rc));
+		co_bus_close(bus);
 		return 4;
 	}
 	c.node = (uint8_t)o.node;
