@@ -42,10 +42,12 @@ static const char usage[] =
 	"  --feedforward F       velocity feed-forward, 0 to 1 (default 0.9)\n"
 	"  --fault CODE          the emergency code SIGUSR1 injects (default 0x2310,\n"
 	"                        over-current); writing a code to 0x2000 does the same\n"
+	"  --sync-log FILE       the CLOCK_MONOTONIC time (ns) each SYNC was received at,\n"
+	"                        one a line: the SYNC period as a drive sees it\n"
 	"  --quiet               no line when listening\n";
 
 enum { OPT_CAN = 256, OPT_NODE, OPT_NAME, OPT_INITIAL, OPT_BW, OPT_DAMP, OPT_FF, OPT_FAULT,
-       OPT_QUIET };
+       OPT_SYNC_LOG, OPT_QUIET };
 
 static const struct option options[] = {
 	{ "can", required_argument, NULL, OPT_CAN },
@@ -56,6 +58,7 @@ static const struct option options[] = {
 	{ "damping", required_argument, NULL, OPT_DAMP },
 	{ "feedforward", required_argument, NULL, OPT_FF },
 	{ "fault", required_argument, NULL, OPT_FAULT },
+	{ "sync-log", required_argument, NULL, OPT_SYNC_LOG },
 	{ "quiet", no_argument, NULL, OPT_QUIET },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
@@ -96,7 +99,7 @@ static int send_frames(void *ctx, const struct co_frame *f, uint32_t n)
 }
 
 struct can_opts {
-	const char *iface, *name;
+	const char *iface, *name, *sync_log;
 	long node;
 	double initial, bandwidth, damping, feedforward, fault;
 	bool quiet;
@@ -140,6 +143,9 @@ static int parse(struct can_opts *o, int argc, char **argv)
 			break;
 		case OPT_FAULT:
 			ok = number(optarg, 1, 0xffff, &o->fault) && o->fault == (long)o->fault;
+			break;
+		case OPT_SYNC_LOG:
+			o->sync_log = optarg;
 			break;
 		case OPT_QUIET:
 			o->quiet = true;
@@ -194,7 +200,7 @@ static int listen_to(struct co_bus *bus, uint8_t node, uint16_t sync_id)
 	return co_socketcan_filter(bus, f, sync_id > 0xff ? 7 : 6);
 }
 
-static int serve(struct co_bus *bus, struct co_slave *s, uint16_t fault)
+static int serve(struct co_bus *bus, struct co_slave *s, uint16_t fault, FILE *sync_log)
 {
 	struct pollfd p = { .fd = co_socketcan_fd(bus), .events = POLLIN };
 	struct co_frame rx[CO_SOCKETCAN_BATCH];
@@ -214,8 +220,11 @@ static int serve(struct co_bus *bus, struct co_slave *s, uint16_t fault)
 		do {
 			n = co_bus_recv(bus, rx, CO_SOCKETCAN_BATCH);
 			now = now_ns();
-			for (i = 0; i < n; i++)
+			for (i = 0; i < n; i++) {
+				if (sync_log && rx[i].id == sync_id)
+					fprintf(sync_log, "%lld\n", (long long)now);
 				co_slave_rx(s, &rx[i], now);
+			}
 		} while (n == CO_SOCKETCAN_BATCH);
 		if (n < 0) {
 			fprintf(stderr, "strand-simdrive: %s: %s\n", bus->name, strerror(-n));
@@ -237,6 +246,7 @@ int simdrive_can_main(int argc, char **argv)
 	struct sigaction sa;
 	struct co_slave *s;
 	struct co_bus *bus;
+	FILE *sync_log = NULL;
 	char err[256];
 	int rc = parse(&o, argc, argv);
 
@@ -250,8 +260,13 @@ int simdrive_can_main(int argc, char **argv)
 	rc = listen_to(bus, (uint8_t)o.node, CO_ID_SYNC);
 	if (rc) {
 		fprintf(stderr, "strand-simdrive: %s: receive filter: %s\n", o.iface, strerror(-rc));
-		co_bus_close(bus);
-		return 4;
+		rc = 4;
+		goto close_bus;
+	}
+	if (o.sync_log && !(sync_log = fopen(o.sync_log, "w"))) {
+		fprintf(stderr, "strand-simdrive: %s: %s\n", o.sync_log, strerror(errno));
+		rc = 4;
+		goto close_bus;
 	}
 	c.node = (uint8_t)o.node;
 	c.name = o.name;
@@ -264,8 +279,8 @@ int simdrive_can_main(int argc, char **argv)
 	s = co_slave_new(&c);
 	if (!s) {
 		fprintf(stderr, "strand-simdrive: %s\n", strerror(errno));
-		co_bus_close(bus);
-		return 8;
+		rc = 8;
+		goto close_log;
 	}
 	memset(&sa, 0, sizeof(sa));
 	sa.sa_handler = on_signal;
@@ -278,9 +293,13 @@ int simdrive_can_main(int argc, char **argv)
 		printf("strand-simdrive: CiA 402 drive, node %ld on %s, listening\n", o.node, o.iface);
 		fflush(stdout);
 	}
-	rc = serve(bus, s, (uint16_t)o.fault);
+	rc = serve(bus, s, (uint16_t)o.fault, sync_log);
 	report(co_slave_watch(s), c.node);
 	co_slave_free(s);
+close_log:
+	if (sync_log)
+		fclose(sync_log);
+close_bus:
 	co_bus_close(bus);
 	return rc;
 }

@@ -29,7 +29,9 @@
 #     counts per unit (within the rounding of export's 10 digits), for every
 #     tick the export covers: a SYNC too many or too few would shift them;
 #  4. the SYNC period: mean over the loop within 1% of 1/hz, no gap beyond a
-#     period and max_late_us; BENCH lines with the jitter;
+#     period and max_late_us; BENCH lines with the jitter, from candump's
+#     times and, with -v synclog=FILE, from a drive's (strand-simdrive
+#     --sync-log);
 #  5. the stop: every node gets NMT pre-operational after the last SYNC.
 
 function fail(msg) {
@@ -163,14 +165,20 @@ END {
 		       id, sdo
 	}
 
-	# 2. the loop's SYNCs: after the start-up's last cycle (every RPDO 0x0f),
-	# before the stop's first (one that is not)
+	# 2. the loop's SYNCs: after the start-up's last cycle (an RPDO for
+	# every node, each 0x0f), before the stop's first (one that is not)
 	k1 = k2 = 0
 	for (k = 1; k <= ns; k++) {
 		all = 1
+		c = 0
 		for (i = (k > 1 ? S[k - 1] : 0) + 1; i < S[k]; i++)
-			if (hexval(ID[i]) >= 513 && hexval(ID[i]) <= 639 && le16(i, 1) != 15)
-				all = 0
+			if (hexval(ID[i]) >= 513 && hexval(ID[i]) <= 639) {
+				c++
+				if (le16(i, 1) != 15)
+					all = 0
+			}
+		if (c < nn && !k1)
+			continue
 		if (all && !k1)
 			k1 = k
 		if (!all && k1) {
@@ -260,6 +268,35 @@ END {
 	printf "BENCH can_sync_period_mean_us %.2f\n", mean
 	printf "BENCH can_sync_jitter_p50_us %d\nBENCH can_sync_jitter_p99_us %d\n", p50, p99
 	printf "BENCH can_sync_jitter_max_us %d\n", worst
+
+	# the same SYNCs as a drive received them (strand-simdrive --sync-log:
+	# CLOCK_MONOTONIC after its receive, its own wake-up included); it
+	# listened before the first SYNC, so its n-th is candump's n-th
+	if (synclog != "") {
+		ds = 0
+		while ((getline line < synclog) > 0)
+			D[++ds] = line / 1000
+		if (ds < off0 + ticks - 1)
+			fail("the drive's log has " ds " SYNCs, the bus " ns)
+		split("", hist)
+		worst = 0
+		for (k = 1; k < ticks; k++) {
+			dev = D[off0 + k] - D[off0 + k - 1] - period_us
+			if (dev < 0)
+				dev = -dev
+			hist[int(dev)]++
+			if (dev > worst)
+				worst = dev
+		}
+		mean = (D[off0 + ticks - 1] - D[off0]) / (ticks - 1)
+		p50 = quantile(0.5, ticks - 1, int(worst))
+		p99 = quantile(0.99, ticks - 1, int(worst))
+		printf "can: as node %s received them: mean %.2f us; |period - due| p50 %d, " \
+		       "p99 %d, max %d us\n", node[1], mean, p50, p99, worst
+		printf "BENCH can_sync_drive_jitter_p50_us %d\n", p50
+		printf "BENCH can_sync_drive_jitter_p99_us %d\n", p99
+		printf "BENCH can_sync_drive_jitter_max_us %d\n", worst
+	}
 
 	# 5. the stop: NMT pre-operational to every node after the loop's last SYNC
 	for (q = 1; q <= nn; q++) {

@@ -15,7 +15,7 @@ can_up() {
 		fail "candump never listens on vcan0"
 	for _n in "$@"; do
 		bg strand-simdrive --can vcan0 --node "$_n" --initial $((_n * 100)) \
-			>/tmp/drive"$_n".out 2>&1
+			--sync-log /tmp/sync"$_n".log >/tmp/drive"$_n".out 2>&1
 		eval "DRIVE_$_n=$!"
 		wait_for 5 grep -q listening /tmp/drive"$_n".out ||
 			fail "strand-simdrive node $_n: $(cat /tmp/drive"$_n".out)"
