@@ -18,7 +18,11 @@
 #include "canopen/co_load.h"
 #include "canopen/co_master.h"
 #include "canopen/co_sdo.h"
+#include "canopen/co_socketcan.h"
 #include "co_slave.h"
+
+#include <linux/can.h>
+#include <linux/can/error.h>
 
 /* ---- an SDO client talking to one simulated drive ---- */
 
@@ -543,6 +547,32 @@ static void test_load(void **state)
 	assert_false(co_load_fits(&l));
 }
 
+/* The error frames a SocketCAN driver sends, and the state each means. */
+static void test_error_frames(void **state)
+{
+	uint8_t d[8] = { 0 };
+	uint32_t crtl = CAN_ERR_FLAG | CAN_ERR_CRTL;
+
+	d[1] = CAN_ERR_CRTL_TX_WARNING;
+	assert_int_equal(co_socketcan_error_state(CO_BUS_ACTIVE, crtl, d), CO_BUS_WARNING);
+	d[1] = CAN_ERR_CRTL_RX_PASSIVE;
+	assert_int_equal(co_socketcan_error_state(CO_BUS_WARNING, crtl, d), CO_BUS_PASSIVE);
+	d[1] = CAN_ERR_CRTL_TX_PASSIVE | CAN_ERR_CRTL_RX_WARNING;
+	assert_int_equal(co_socketcan_error_state(CO_BUS_ACTIVE, crtl, d), CO_BUS_PASSIVE);
+	d[1] = CAN_ERR_CRTL_ACTIVE;
+	assert_int_equal(co_socketcan_error_state(CO_BUS_PASSIVE, crtl, d), CO_BUS_ACTIVE);
+	d[1] = CAN_ERR_CRTL_RX_OVERFLOW; /* a lost frame: no change of state */
+	assert_int_equal(co_socketcan_error_state(CO_BUS_WARNING, crtl, d), CO_BUS_WARNING);
+	d[1] = 0;
+	assert_int_equal(co_socketcan_error_state(CO_BUS_PASSIVE, CAN_ERR_FLAG | CAN_ERR_BUSOFF, d),
+			 CO_BUS_OFF);
+	assert_int_equal(co_socketcan_error_state(CO_BUS_OFF, CAN_ERR_FLAG | CAN_ERR_RESTARTED, d),
+			 CO_BUS_ACTIVE);
+	/* a bus error alone (a bit error, an ACK missing) says nothing of the state */
+	assert_int_equal(co_socketcan_error_state(CO_BUS_ACTIVE, CAN_ERR_FLAG | CAN_ERR_ACK, d),
+			 CO_BUS_ACTIVE);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -557,6 +587,7 @@ int main(void)
 		cmocka_unit_test(test_emcy),
 		cmocka_unit_test(test_interp_period),
 		cmocka_unit_test(test_load),
+		cmocka_unit_test(test_error_frames),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

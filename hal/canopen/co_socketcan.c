@@ -56,21 +56,23 @@ static int sc_send(struct co_bus *b, const struct co_frame *f, uint32_t n)
 	return 0;
 }
 
-/* An error frame: the controller's state changed (linux/can/error.h). */
-static void error_frame(struct co_socketcan *s, const struct can_frame *c)
+enum co_bus_state co_socketcan_error_state(enum co_bus_state prev, uint32_t can_id,
+					   const uint8_t *data)
 {
-	if (c->can_id & CAN_ERR_BUSOFF) {
-		s->state = CO_BUS_OFF;
-	} else if (c->can_id & CAN_ERR_RESTARTED) {
-		s->state = CO_BUS_ACTIVE;
-	} else if (c->can_id & CAN_ERR_CRTL) {
-		if (c->data[1] & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE))
-			s->state = CO_BUS_PASSIVE;
-		else if (c->data[1] & (CAN_ERR_CRTL_RX_WARNING | CAN_ERR_CRTL_TX_WARNING))
-			s->state = CO_BUS_WARNING;
-		else if (c->data[1] & CAN_ERR_CRTL_ACTIVE)
-			s->state = CO_BUS_ACTIVE;
-	}
+	if (can_id & CAN_ERR_BUSOFF)
+		return CO_BUS_OFF;
+	if (can_id & CAN_ERR_RESTARTED)
+		return CO_BUS_ACTIVE;
+	if (!(can_id & CAN_ERR_CRTL))
+		return prev;
+	/* data[1]: the controller's problem, from its error counters */
+	if (data[1] & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE))
+		return CO_BUS_PASSIVE;
+	if (data[1] & (CAN_ERR_CRTL_RX_WARNING | CAN_ERR_CRTL_TX_WARNING))
+		return CO_BUS_WARNING;
+	if (data[1] & CAN_ERR_CRTL_ACTIVE)
+		return CO_BUS_ACTIVE;
+	return prev;
 }
 
 static int sc_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
@@ -88,7 +90,8 @@ static int sc_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
 		const struct can_frame *c = &s->rx[i];
 
 		if (c->can_id & CAN_ERR_FLAG) {
-			error_frame(s, c);
+			s->state = (uint8_t)co_socketcan_error_state(
+				(enum co_bus_state)s->state, c->can_id, c->data);
 			continue;
 		}
 		if (c->can_id & (CAN_EFF_FLAG | CAN_RTR_FLAG) || s->rxm[i].msg_len < CAN_MTU)

@@ -42,6 +42,11 @@ struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *
 /* [init] Replace the receive filters: 0 or a negative errno. */
 int co_socketcan_filter(struct co_bus *b, const struct co_rx_filter *flt, uint32_t n);
 
+/* The controller's state after an error frame (can_id with CAN_ERR_FLAG,
+ * its 8 data bytes) in state prev: linux/can/error.h's classes. */
+enum co_bus_state co_socketcan_error_state(enum co_bus_state prev, uint32_t can_id,
+					   const uint8_t *data);
+
 /* The socket, for a program's own poll loop (strand-simdrive). */
 int co_socketcan_fd(struct co_bus *b);
 
