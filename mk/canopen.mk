@@ -23,7 +23,8 @@ $(CO_USERS): $(CO_HDR)
 # ---- the VM tests (mk/vm.mk) ------------------------------------------------------
 # strand drives strand-simdrive processes on vcan0, candump records the bus.
 VM_BINS  += $(BUILD)/strand-simdrive
-VM_FILES += /tests/can.awk=tests/vm/can.awk /tests/can.sh=tests/vm/can.sh
+VM_FILES += /tests/can.awk=tests/vm/can.awk /tests/can.sh=tests/vm/can.sh \
+            /examples/canopen_turntable.yaml=examples/canopen_turntable.yaml
 
 # ---- make bench-canopen (part of make bench) ---------------------------------------
 # The master's CPU time per tick for 8 drives on this machine (bench/
