@@ -13,6 +13,10 @@ $(BUILD)/strand: $(CO_OBJ)
 # CiA 402 drive itself with --can
 $(BUILD)/strand-simdrive: $(CO_OBJ)
 
+# the fuzz build compiles hal/*.c and sim/*.c itself (mk/scene.mk): and these
+$(BUILD)/fuzz/fuzz_load: FUZZ_SRC += $(CO_SRC)
+$(BUILD)/fuzz/fuzz_load: $(CO_SRC) $(CO_HDR)
+
 # Everything that may include the master's headers: its own objects, the
 # simulated drive in sim/, the rig and loader in firmware/, the tests.
 CO_USERS := $(CO_OBJ) $(CO_SAN_OBJ) \
