@@ -4,7 +4,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,16 +11,6 @@
 #include "canopen/co_axis.h"
 #include "canopen/co_socketcan.h"
 #include "co_simbus.h"
-
-static int fail(char *err, size_t size, int code, const char *fmt, ...)
-{
-	va_list ap;
-
-	va_start(ap, fmt);
-	vsnprintf(err, size, fmt, ap);
-	va_end(ap);
-	return code;
-}
 
 static bool on(const struct rig_desc *d, uint32_t k, const struct rig_output_desc *o)
 {
@@ -61,7 +50,7 @@ static struct co_bus *simulated(struct rig *r, const struct rig_device_desc *dd,
 	uint32_t i, j;
 
 	if (!sb) {
-		fail(err, size, -ENOMEM, "out of memory");
+		snprintf(err, size, "out of memory");
 		return NULL;
 	}
 	for (i = 0, j = 0; i < r->nout && j < n; i++) {
@@ -86,8 +75,8 @@ static struct co_bus *simulated(struct rig *r, const struct rig_device_desc *dd,
 		c.initial = o->vel_mode ? 0 : (int32_t)hal_scale_counts(&o->scale, o->home, NULL);
 		if (!co_simbus_add(sb, &c, false)) {
 			co_simbus_free(sb);
-			fail(err, size, -errno, "device '%s': simulated drive %u: %s", dd->name,
-			     c.node, strerror(errno));
+			snprintf(err, size, "device '%s': simulated drive %u: %s", dd->name, c.node,
+				 strerror(errno));
 			return NULL;
 		}
 		j++;
@@ -106,6 +95,7 @@ int rig_canopen_make(struct rig *r, const struct rig_desc *d, uint32_t k, uint32
 	struct co_rx_filter flt[4 * CO_NODE_MAX];
 	struct co_axis_cfg ac = { .name = dd->name, .clk = clk };
 	uint32_t i, n = 0;
+	int rc;
 
 	for (i = 0; i < r->nout; i++) {
 		const struct rig_out *o = &r->out[i];
@@ -114,9 +104,11 @@ int rig_canopen_make(struct rig *r, const struct rig_desc *d, uint32_t k, uint32
 
 		if (o->dev != ax)
 			continue;
-		if (n == CO_NODE_MAX || o->ch < 1 || o->ch > CO_NODE_MAX)
-			return fail(err, size, -EINVAL, "outputs[%u] (%s): node-ID %u: must be 1 to "
-				    "127", i, o->channel, o->ch);
+		if (n == CO_NODE_MAX || o->ch < 1 || o->ch > CO_NODE_MAX) {
+			snprintf(err, size, "outputs[%u] (%s): node-ID %u: must be 1 to 127", i,
+				 o->channel, o->ch);
+			return -EINVAL;
+		}
 		drv[n].node = (uint8_t)o->ch;
 		drv[n].mode = o->vel_mode ? 9 : 8;
 		drv[n].quick_stop_dec = dec >= 4294967295.0 ? UINT32_MAX :
@@ -145,14 +137,19 @@ int rig_canopen_make(struct rig *r, const struct rig_desc *d, uint32_t k, uint32
 		}
 		ac.bus = co_socketcan_open(c->interface ? c->interface : "", flt, nf, why,
 					   sizeof(why));
-		if (!ac.bus)
-			return fail(err, size, -errno, "device '%s': %s", dd->name, why);
+		if (!ac.bus) {
+			rc = -errno;
+			snprintf(err, size, "device '%s': %s", dd->name, why);
+			return rc;
+		}
 	}
 	if (!ac.bus)
 		return -ENOMEM;
 	r->axes[ax] = co_axis_new(&ac);
-	if (!r->axes[ax])
-		return fail(err, size, -errno, "device '%s': CANopen master: %s", dd->name,
-			    strerror(errno));
+	if (!r->axes[ax]) {
+		rc = -errno;
+		snprintf(err, size, "device '%s': CANopen master: %s", dd->name, strerror(errno));
+		return rc;
+	}
 	return 0;
 }
