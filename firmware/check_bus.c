@@ -1,12 +1,14 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * check_bus.c - `strand check`'s lines about the rig's buses: for each
- * Modbus device, what one update takes on its bus and the rate it reaches
- * (the loader has already refused a rate it cannot reach).
+ * Modbus device, what one update takes on its bus and the rate it reaches;
+ * for each CANopen bus, the worst-case bits of a tick against what a tick
+ * holds (the loader has already refused a rate or a load it cannot carry).
  */
 #include "check_bus.h"
 
 #include "modbus_dev.h"
+#include "rig_canopen.h"
 
 static void modbus_line(FILE *out, const struct rig_device_desc *dd, uint32_t tick_hz)
 {
@@ -35,11 +37,29 @@ static void modbus_line(FILE *out, const struct rig_device_desc *dd, uint32_t ti
 		every == 1 ? "" : "s");
 }
 
+/* A CANopen bus: its worst-case bits per tick against what a tick holds. */
+static void canopen_line(FILE *out, const struct rig_desc *rig, uint32_t k, uint32_t tick_hz)
+{
+	const struct rig_device_desc *dd = &rig->devices[k];
+	struct co_load l;
+
+	rig_canopen_load(rig, k, tick_hz, &l);
+	if (!l.drives || !l.capacity)
+		return;
+	fprintf(out, "device '%s': canopen %s at %u bit/s: %u drive%s, worst case %u of %u bits "
+		"per tick with bit stuffing (%.0f%%, at most %d%%)\n", dd->name,
+		dd->canopen.interface, dd->canopen.bitrate, l.drives, l.drives == 1 ? "" : "s",
+		l.bits, l.capacity, 100.0 * l.bits / l.capacity, CO_LOAD_MAX_PERCENT);
+}
+
 void check_buses(FILE *out, const struct rig_desc *rig, uint32_t tick_hz)
 {
 	uint32_t k;
 
-	for (k = 0; k < rig->ndevices; k++)
+	for (k = 0; k < rig->ndevices; k++) {
 		if (rig->devices[k].modbus)
 			modbus_line(out, &rig->devices[k], tick_hz);
+		if (rig->devices[k].driver == RIG_DRIVER_CANOPEN)
+			canopen_line(out, rig, k, tick_hz);
+	}
 }

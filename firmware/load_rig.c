@@ -24,6 +24,7 @@ struct rl {
 	const char **chan_names; /* NULL-terminated, for suggestions */
 	const char **dev_names;
 	struct ld_mark *dev_at;
+	yaml_node_t **co_at; /* each device's canopen: mapping, or NULL */
 };
 
 static int find(const char *const *names, const char *name)
@@ -118,7 +119,7 @@ static int ready_output(struct ld *l, yaml_node_t *map, struct rig_device_desc *
 static int devices(struct rl *rl, yaml_node_t *seq)
 {
 	static const char *const keys[] = { "name", "driver", "sim", "chip", "ready", "modbus",
-					    NULL };
+					    "canopen", NULL };
 	static const char *const drivers[] = { "sim", "modbus", "gpio", "canopen", NULL };
 	struct ld *l = rl->l;
 	struct rig_device_desc *dev;
@@ -130,10 +131,11 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 		return err;
 	dev = pool_array(l->pool, count ? count : 1, sizeof(*dev));
 	rl->dev_names = pool_array(l->pool, count + 1, sizeof(*rl->dev_names));
-	if (!dev || !rl->dev_names)
+	rl->co_at = pool_array(l->pool, count ? count : 1, sizeof(*rl->co_at));
+	if (!dev || !rl->dev_names || !rl->co_at)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
-		yaml_node_t *map = ld_node(l, it[i]), *v[6];
+		yaml_node_t *map = ld_node(l, it[i]), *v[7];
 		int drv, k;
 
 		err = ld_map(l, map, "device", keys, v);
@@ -153,8 +155,15 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 			err = ld_str(l, v[3], &dev[i].chip);
 		if (!err && v[4])
 			err = ready_output(l, v[4], &dev[i]);
+		if (!err && (drv == RIG_DRIVER_CANOPEN) != !!v[6])
+			err = ld_fail(l, v[6] ? v[6] : map, -EINVAL, v[6] ?
+				      "a canopen: section belongs to a device of driver canopen" :
+				      "a device of driver canopen needs its canopen: section");
+		if (!err && v[6])
+			err = ld_canopen_bus(l, v[6], &dev[i].canopen);
 		if (err)
 			return err;
+		rl->co_at[i] = v[6];
 		dev[i].driver = (enum rig_driver)drv;
 		/* a Modbus device's bus and register map (load_modbus.c) */
 		if ((dev[i].driver == RIG_DRIVER_MODBUS) != !!v[5])
@@ -187,8 +196,9 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 {
 	static const char *const keys[] = { "channel", "device", "axis", "counts_per_unit",
 					    "offset", "limits", "ferror", "min_ferror",
-					    "in_position", "home", NULL };
-	enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME, O_N };
+					    "in_position", "home", "node", "mode", NULL };
+	enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME,
+	       O_NODE, O_MODE, O_N };
 	struct ld *l = rl->l;
 	yaml_node_t *v[O_N];
 	const struct chan *c;
@@ -218,16 +228,23 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 	for (j = 0; j < i; j++)
 		used += !strcmp(rl->r->outputs[j].device, o->device);
 	axis = used; /* by default the next axis of the device */
-	if (v[O_AXIS])
+	if (rl->r->devices[dev].driver == RIG_DRIVER_CANOPEN)
+		err = ld_canopen_output(l, map, v[O_AXIS], v[O_NODE], v[O_MODE], c, o, &axis);
+	else if (v[O_NODE] || v[O_MODE])
+		err = ld_fail(l, v[O_NODE] ? v[O_NODE] : v[O_MODE], -EINVAL,
+			      "node: and mode: place an output on a canopen device; '%s' is not one",
+			      o->device);
+	else if (v[O_AXIS])
 		err = ld_int(l, v[O_AXIS], 0, 1023, &axis);
 	if (err)
 		return err;
 	o->axis = (uint32_t)axis;
 	for (j = 0; j < i; j++)
 		if (!strcmp(rl->r->outputs[j].device, o->device) && rl->r->outputs[j].axis == o->axis)
-			return ld_fail(l, v[O_AXIS] ? v[O_AXIS] : map, -EINVAL,
-				       "axis %u of device '%s' already drives '%s' (line %u)",
-				       o->axis, o->device, rl->r->outputs[j].channel,
+			return ld_fail(l, v[O_NODE] ? v[O_NODE] : v[O_AXIS] ? v[O_AXIS] : map,
+				       -EINVAL, "%s %u of device '%s' already drives '%s' (line %u)",
+				       v[O_NODE] ? "node" : "axis", o->axis, o->device,
+				       rl->r->outputs[j].channel,
 				       (unsigned)ld_mark_of(ld_node(l, it[j])).line);
 	err = ld_num(l, v[O_CPU], &o->counts_per_unit);
 	if (err)
@@ -486,6 +503,8 @@ int ld_rig(struct ld *l, const struct ld_rig_sections *s)
 		err = outputs(&rl, s->outputs);
 	if (!err)
 		err = ld_modbus_outputs(l, rl.r, s->outputs);
+	if (!err)
+		err = ld_canopen_buses(l, rl.r, rl.co_at);
 	if (!err && s->triggers)
 		err = lines(&rl, s->triggers, true);
 	if (!err && s->inputs)

@@ -149,6 +149,10 @@ static void *rt_main(void *arg)
 	if (!p->clk.is_virtual) {
 		/* tick 0 a millisecond from now, on a whole millisecond */
 		t0 = (hal_clock_now(&p->clk) / 1000000 + 2) * 1000000;
+	} else {
+		/* where starting the devices left virtual time (a CANopen
+		 * start-up takes some), on a whole millisecond */
+		t0 = (hal_clock_now(&p->clk) + 999999) / 1000000 * 1000000;
 	}
 	play_in_loop = true;
 	loop_run(&p->L, t0);

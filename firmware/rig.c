@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "co_simbus.h"
+#include "rig_canopen.h"
 #include "rig_modbus.h"
 #include "sim_camera.h"
 #include "sim_drive.h"
@@ -475,7 +477,9 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	dev_axis = calloc(d->ndevices ? d->ndevices : 1, sizeof(*dev_axis));
 	r->axes = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->axes));
 	r->sim_drive = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->sim_drive));
-	if (!r->out || !r->trig || !r->in || !dev_axis || !r->axes || !r->sim_drive) {
+	r->co_sim = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->co_sim));
+	if (!r->out || !r->trig || !r->in || !dev_axis || !r->axes || !r->sim_drive ||
+	    !r->co_sim) {
 		rc = fail(err, errsize, -ENOMEM, "out of memory");
 		goto out;
 	}
@@ -512,6 +516,13 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	for (k = 0; k < d->ndevices; k++) {
 		if (dev_axis[k] < 0)
 			continue;
+		if (!o->sim && d->devices[k].driver == RIG_DRIVER_CANOPEN) {
+			rc = rig_canopen_make(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz,
+					      clk, err, errsize);
+			if (rc)
+				goto out;
+			continue;
+		}
 		if (!o->sim && d->devices[k].driver == RIG_DRIVER_MODBUS) {
 			rc = rig_modbus_open(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz,
 					     clk->is_virtual, err, errsize);
@@ -639,6 +650,8 @@ void rig_free(struct rig *r)
 		sim_camera_free(r->camera[i]);
 	for (i = 0; i < r->nsim_gpio; i++)
 		sim_gpio_free(r->sim_gpio[i]);
+	for (i = 0; r->co_sim && i < r->naxes; i++)
+		co_simbus_free(r->co_sim[i]);
 	for (i = 0; i < r->ngpio; i++) {
 		if (r->gpio[i].trig)
 			hal_dout_close(r->douts[r->gpio[i].at]);
@@ -653,6 +666,7 @@ void rig_free(struct rig *r)
 	free(r->trig);
 	free(r->in);
 	free(r->sim_drive);
+	free(r->co_sim);
 	free(r->sim_gpio);
 	free(r->gpio);
 	free(r->ready);

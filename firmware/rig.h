@@ -91,6 +91,7 @@ struct rig {
 	uint32_t nsim_gpio;
 	struct sim_gpio **sim_gpio;
 	struct sim_camera **camera;    /* ntrig */
+	struct co_simbus **co_sim;     /* naxes: a CANopen bus with interface "sim" */
 	uint32_t nready;               /* rig-ready outputs: douts[dev], line */
 	struct rig_line *ready;
 	uint32_t ngpio;                /* real GPIO lines (gpio.h): rig_start requests */

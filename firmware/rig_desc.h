@@ -59,6 +59,16 @@ struct rig_sim_desc {
 	double readout_ms;
 };
 
+/* A CANopen bus of CiA 402 drives (driver canopen); its outputs name the
+ * drives by node-ID.
+ *   canopen: {interface: can0, bitrate: 500000, sync_id: 0x80, heartbeat_ms: 50} */
+struct rig_canopen_desc {
+	const char *interface; /* a SocketCAN interface, or "sim": simulated drives */
+	uint32_t bitrate;      /* bit/s, for the bus load check */
+	uint32_t sync_id;      /* COB-ID of the SYNC (default 0x80) */
+	uint32_t heartbeat_ms; /* asked of every drive (default RIG_CO_HEARTBEAT_MS) */
+};
+
 struct rig_device_desc {
 	const char *name;
 	enum rig_driver driver;
@@ -73,6 +83,13 @@ struct rig_device_desc {
 	uint32_t ready_line;
 	const char *ready_line_name; /* by name; NULL: by number */
 	bool ready_active_low;
+	struct rig_canopen_desc canopen; /* driver canopen: the bus */
+};
+
+/* An output on a CANopen bus: its drive's node-ID is the output's axis
+ * (the file says node:), its mode of operation follows the channel. */
+struct rig_canopen_out_desc {
+	uint8_t mode; /* 8 CSP, 9 CSV (rpm channels); 0: from the channel */
 };
 
 struct rig_output_desc {
@@ -86,6 +103,7 @@ struct rig_output_desc {
 	double min_ferror;       /* bound at rest (<= ferror) */
 	double in_position;      /* step mode tolerance; 0: the default */
 	double home;             /* where the axis stands at start when it has no feedback */
+	struct rig_canopen_out_desc canopen; /* driver canopen: node: and mode: */
 };
 
 struct rig_trigger_desc {

@@ -565,6 +565,123 @@ static const struct err_case cases[] = {
 	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
 	  "inputs: [{name: estop, device: io, line: 1, role: estop, active_low: yes}]\n",
 	  "t.yaml:5:70: expected true or false, found 'yes'" },
+	{ "canopen: settings missing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen}]\n",
+	  "t.yaml:5:11: a device of driver canopen needs its canopen: section" },
+	{ "canopen: settings on another driver",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: sim, canopen: {interface: can0, bitrate: 500000}}]\n",
+	  "t.yaml:5:45: a canopen: section belongs to a device of driver canopen" },
+	{ "canopen: bitrate missing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0}}]\n",
+	  "t.yaml:5:49: missing field 'bitrate' in canopen" },
+	{ "canopen: bitrate too high",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 2000000}}]\n",
+	  "t.yaml:5:76: '2000000' is out of range (10000 to 1000000)" },
+	{ "canopen: SYNC COB-ID",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000, sync_id: 0x900}}]\n",
+	  "t.yaml:5:93: '0x900' is not an 11-bit COB-ID (1 to 0x7ff)" },
+	{ "canopen: interface name",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: a-very-long-interface-name, bitrate: 500000}}]\n",
+	  "t.yaml:5:61: interface 'a-very-long-interface-name': a network interface name (1 to 15 characters: can0, vcan0) or sim" },
+	{ "canopen: axis on a bus",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, axis: 1, counts_per_unit: 100}]\n",
+	  "t.yaml:6:49: an output on canopen device 'bus' is placed by node:, not axis:" },
+	{ "canopen: node missing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, counts_per_unit: 100}]\n",
+	  "t.yaml:6:11: missing field 'node' in output on a canopen device" },
+	{ "canopen: node range",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 128, counts_per_unit: 100}]\n",
+	  "t.yaml:6:49: '128' is out of range (1 to 127)" },
+	{ "canopen: node twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100},\n"
+	  "          {channel: s.angle, device: bus, node: 3, counts_per_unit: 100,\n"
+	  "           limits: {velocity: 10, acceleration: 10}}]\n",
+	  "t.yaml:7:49: node 3 of device 'bus' already drives 'a.angle' (line 6)" },
+	{ "canopen: mode of a position",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, mode: csv, counts_per_unit: 100}]\n",
+	  "t.yaml:6:58: mode csv: 'a.angle' is not a spin speed; it needs mode csp" },
+	{ "canopen: mode of a speed",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: s.rpm, device: bus, node: 4, mode: csp, counts_per_unit: 100,\n"
+	  "           limits: {velocity: 10, acceleration: 10}}]\n",
+	  "t.yaml:6:56: mode csp: 's.rpm' is a spin speed; it needs mode csv" },
+	{ "canopen: node on another driver",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, node: 3, counts_per_unit: 100}]\n",
+	  "t.yaml:6:49: node: and mode: place an output on a canopen device; 'arm' is not one" },
+	{ "canopen: bus too slow",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 250000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100}]\n",
+	  "t.yaml:5:49: canopen bus 'bus': the worst case of a tick is 350 bits (1 drive, bit stuffing) of the 250 a tick holds at 250000 bit/s and 1000 ticks/s: 140%, above 70%; lower tick_hz, drive fewer outputs on this bus or raise the bitrate" },
+	{ "canopen: SYNC on a node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 1000000, sync_id: 0x83}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100}]\n",
+	  "t.yaml:5:49: canopen bus 'bus': sync_id 0x83 is an identifier of node 3" },
 	{ "rig: chip on a simulated device",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "devices: [{name: io, driver: sim, chip: gpiochip0}]\n",

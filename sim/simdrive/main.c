@@ -13,6 +13,7 @@
 
 static const char usage[] =
 	"usage: strand-simdrive SCENE.yaml [--device NAME] [options]\n"
+	"       strand-simdrive --can IFACE --node N [options]   (--can --help)\n"
 	"\n"
 	"Plays one device of the scene's rig with strand's simulated drive behind a real\n"
 	"Modbus server: TCP on the device's host and port, or RTU on a pseudo-terminal\n"
@@ -220,6 +221,10 @@ int main(int argc, char **argv)
 	struct simdrive sd;
 	int rc;
 
+	/* a CANopen drive needs no scene: its master configures it */
+	for (rc = 1; rc < argc; rc++)
+		if (!strcmp(argv[rc], "--can") || !strncmp(argv[rc], "--can=", 6))
+			return simdrive_can_main(argc, argv);
 	memset(&sd, 0, sizeof(sd));
 	rc = parse(&sd, argc, argv);
 	if (rc < 0)

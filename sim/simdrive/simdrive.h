@@ -7,9 +7,9 @@
  *   main.c          options, the scene, the model; picks a protocol
  *   model.c         the model driven by what the server receives
  *   modbus_serve.c  Modbus TCP and RTU (over a pseudo-terminal), libmodbus
- *
- * A protocol is a struct simdrive_proto: issue 7 adds CANopen
- * (`--can IFACE --node N`) beside Modbus, with the same model and faults.
+ *   can.c           --can IFACE --node N: a CiA 402 drive on SocketCAN
+ *                   (sim/co_slave.h around the same plant), no scene needed:
+ *                   the master configures it by SDO
  *
  * The model's time: when the loop's tick arrives with the setpoints (a
  * heartbeat register), the plant advances to that tick, so a run on the
@@ -78,6 +78,9 @@ struct simdrive_proto {
 };
 
 extern const struct simdrive_proto simdrive_modbus;
+
+/* can.c: the whole program in CAN mode (its own options); the exit code. */
+int simdrive_can_main(int argc, char **argv);
 
 /* model.c */
 /* Power on (the enable set) or off. */

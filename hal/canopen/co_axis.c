@@ -1,0 +1,270 @@
+/* SPDX-License-Identifier: MIT */
+/* co_axis.c - CANopen drives behind the HAL axis interface (see co_axis.h). */
+#include "co_axis.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct co_axis {
+	struct hal_axis ax; /* first: the HAL view */
+	struct co_master m;
+	struct co_bus *bus;
+	struct hal_clock *clk;
+	uint8_t bus_state;  /* enum co_bus_state, as last told to the master */
+	bool started;
+	struct hal_fault hf;
+	char msg[256];      /* a start or stop failure in words ([init] only) */
+	char emcy[96];      /* "emergency 0x2310 (its class)", composed in fault() */
+	struct co_node *nodes;
+	struct co_frame *cycle;
+	struct co_frame rx[CO_AXIS_RX_BATCH];
+};
+
+static const struct hal_axis_ops co_axis_ops;
+
+static struct co_axis *axis_of(struct hal_axis *ax)
+{
+	return (struct co_axis *)ax; /* ax is the first member */
+}
+
+static int bus_send(void *ctx, const struct co_frame *f, uint32_t n)
+{
+	return co_bus_send(((struct co_axis *)ctx)->bus, f, n);
+}
+
+/* Everything received so far, up to a tick's worth, then the bus state. */
+static void drain(struct co_axis *a, int64_t now)
+{
+	uint32_t total = 0;
+	enum co_bus_state st;
+	int n, i;
+
+	do {
+		n = co_bus_recv(a->bus, a->rx, CO_AXIS_RX_BATCH);
+		for (i = 0; i < n; i++)
+			co_master_rx(&a->m, &a->rx[i], now);
+		total += n > 0 ? (uint32_t)n : 0;
+	} while (n == CO_AXIS_RX_BATCH && total < CO_AXIS_RX_MAX_PER_TICK);
+	/* an interface that went away is off the bus as far as we can tell */
+	st = n < 0 ? CO_BUS_OFF : co_bus_state(a->bus);
+	if (st != a->bus_state) {
+		a->bus_state = (uint8_t)st;
+		co_master_bus(&a->m, st);
+	}
+}
+
+/* Run the master's timers until it leaves phase `during`. */
+static void run_until_not(struct co_axis *a, enum co_master_phase during)
+{
+	int64_t now = hal_clock_now(a->clk), next;
+
+	while (co_master_phase(&a->m) == during) {
+		drain(a, now);
+		next = co_master_poll(&a->m, now);
+		if (co_master_phase(&a->m) != during)
+			break;
+		co_bus_wait(a->bus, next);
+		now = hal_clock_now(a->clk);
+	}
+}
+
+static void describe(struct co_axis *a)
+{
+	struct co_fault f;
+
+	if (co_master_fault(&a->m, &f))
+		co_master_describe(&a->m, &f, a->msg, sizeof(a->msg));
+}
+
+static int ca_stop(struct hal_axis *ax);
+
+static int ca_start(struct hal_axis *ax)
+{
+	struct co_axis *a = axis_of(ax);
+	struct co_fault f;
+	int rc;
+
+	a->started = true;
+	/* what came before the start (boot-ups of drives powered on since
+	 * the interface opened) is not an answer to anything of this run */
+	while (co_bus_recv(a->bus, a->rx, CO_AXIS_RX_BATCH) == CO_AXIS_RX_BATCH)
+		;
+	co_master_start(&a->m, hal_clock_now(a->clk));
+	run_until_not(a, CO_MASTER_STARTING);
+	if (co_master_phase(&a->m) == CO_MASTER_RUNNING)
+		return 0;
+	rc = co_master_fault(&a->m, &f);
+	describe(a);
+	/* leave no drive enabled behind: shut down those that got that far */
+	ca_stop(ax);
+	return rc ? rc : -EIO;
+}
+
+static int ca_input(struct hal_axis *ax, int64_t tick)
+{
+	struct co_axis *a = axis_of(ax);
+	int64_t now = hal_clock_now(a->clk);
+
+	drain(a, now);
+	co_master_poll(&a->m, now);
+	return co_master_fault(&a->m, NULL);
+}
+
+static bool ca_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
+{
+	struct co_axis *a = axis_of(ax);
+	int i = co_master_index(&a->m, (uint8_t)ch);
+	int32_t c;
+
+	if (ch > CO_NODE_MAX || i < 0 || !co_master_actual(&a->m, (uint32_t)i, &c))
+		return false;
+	*counts = c;
+	return true;
+}
+
+static void ca_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
+{
+	struct co_axis *a = axis_of(ax);
+	int i = ch <= CO_NODE_MAX ? co_master_index(&a->m, (uint8_t)ch) : -1;
+
+	if (i < 0)
+		return;
+	co_master_stage(&a->m, (uint32_t)i,
+			a->m.node[i].cfg.mode == CO402_MODE_CSV ? sp->vel : sp->pos);
+}
+
+static int ca_commit(struct hal_axis *ax, int64_t tick)
+{
+	struct co_axis *a = axis_of(ax);
+
+	co_master_cycle(&a->m, hal_clock_now(a->clk));
+	return co_master_fault(&a->m, NULL);
+}
+
+/* "emergency 0x2310 (current, device output side)": four hex digits and a
+ * static class, put together by hand in the loop's thread, where printf
+ * has no place. */
+static const char *emcy_text(struct co_axis *a, uint16_t code)
+{
+	static const char head[] = "emergency 0x", hex[] = "0123456789ABCDEF";
+	const char *cls = co_emcy_class(code);
+	size_t n = sizeof(head) - 1, len = strlen(cls);
+	int i;
+
+	memcpy(a->emcy, head, n);
+	for (i = 12; i >= 0; i -= 4)
+		a->emcy[n++] = hex[(code >> i) & 0xf];
+	a->emcy[n++] = ' ';
+	a->emcy[n++] = '(';
+	if (len > sizeof(a->emcy) - n - 2)
+		len = sizeof(a->emcy) - n - 2;
+	memcpy(a->emcy + n, cls, len);
+	n += len;
+	a->emcy[n++] = ')';
+	a->emcy[n] = '\0';
+	return a->emcy;
+}
+
+static int ca_fault(struct hal_axis *ax, struct hal_fault *hf)
+{
+	struct co_axis *a = axis_of(ax);
+	struct co_fault f;
+	int code = co_master_fault(&a->m, &f);
+
+	if (!code)
+		return 0;
+	hf->code = code;
+	hf->channel = f.node ? f.node : -1;
+	/* a start or stop failure was put in words by [init] code; in the
+	 * loop only static text */
+	hf->cause = a->msg[0] ? a->msg :
+		    f.kind == CO_FAULT_EMCY ? emcy_text(a, (uint16_t)f.detail) : co_fault_cause(&f);
+	hf->detail = f.kind == CO_FAULT_EMCY || f.kind == CO_FAULT_SDO ? f.detail : 0;
+	return code;
+}
+
+static void ca_disable(struct hal_axis *ax)
+{
+	struct co_axis *a = axis_of(ax);
+
+	co_master_disable(&a->m, hal_clock_now(a->clk));
+}
+
+static int ca_stop(struct hal_axis *ax)
+{
+	struct co_axis *a = axis_of(ax);
+
+	if (!a->started)
+		return 0;
+	co_master_stop(&a->m, hal_clock_now(a->clk));
+	run_until_not(a, CO_MASTER_STOPPING);
+	if (co_master_phase(&a->m) == CO_MASTER_STOPPED)
+		return 0;
+	if (!a->msg[0])
+		describe(a);
+	return -EIO;
+}
+
+static void ca_close(struct hal_axis *ax)
+{
+	struct co_axis *a = axis_of(ax);
+
+	co_bus_close(a->bus);
+	free(a->nodes);
+	free(a->cycle);
+	free(a);
+}
+
+static const struct hal_axis_ops co_axis_ops = {
+	.start = ca_start,
+	.input = ca_input,
+	.actual = ca_actual,
+	.set = ca_set,
+	.commit = ca_commit,
+	.fault = ca_fault,
+	.disable = ca_disable,
+	.stop = ca_stop,
+	.close = ca_close,
+};
+
+struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
+{
+	struct co_master_cfg mc = cfg->master;
+	struct co_axis *a = calloc(1, sizeof(*a));
+	int rc;
+
+	if (a) {
+		a->nodes = calloc(cfg->ndrives ? cfg->ndrives : 1, sizeof(*a->nodes));
+		a->cycle = calloc(cfg->ndrives + 1, sizeof(*a->cycle));
+	}
+	if (!a || !a->nodes || !a->cycle) {
+		if (a) {
+			free(a->nodes);
+			free(a->cycle);
+		}
+		free(a);
+		co_bus_close(cfg->bus);
+		errno = ENOMEM;
+		return NULL;
+	}
+	a->ax.ops = &co_axis_ops;
+	a->ax.name = cfg->name;
+	a->ax.nch = CO_NODE_MAX + 1;
+	a->bus = cfg->bus;
+	a->clk = cfg->clk;
+	mc.send = bus_send;
+	mc.ctx = a;
+	rc = co_master_init(&a->m, &mc, cfg->drives, a->nodes, a->cycle, cfg->ndrives);
+	if (rc) {
+		ca_close(&a->ax);
+		errno = -rc;
+		return NULL;
+	}
+	return &a->ax;
+}
+
+struct co_master *co_axis_master(struct hal_axis *ax)
+{
+	return ax->ops == &co_axis_ops ? &axis_of(ax)->m : NULL;
+}

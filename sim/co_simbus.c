@@ -1,0 +1,262 @@
+/* SPDX-License-Identifier: MIT */
+/* co_simbus.c - the simulated CAN bus (see co_simbus.h). */
+#include "co_simbus.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A drive's connection to the bus: the ctx of its send callback. */
+struct port {
+	struct co_simbus *b;
+	struct co_slave *s;
+	uint8_t node;
+	int64_t next; /* when its timers next need it */
+};
+
+struct co_simbus {
+	struct co_bus bus; /* first: the master's transport */
+	struct hal_clock *clk;
+	uint8_t state;     /* enum co_bus_state */
+	bool bus_open;     /* the master's transport not closed yet */
+	bool freed;        /* co_simbus_free called */
+	struct port port[CO_NODE_MAX];
+	uint32_t nslaves;
+	/* the master's receive queue */
+	struct co_frame *q;
+	uint32_t qcap, qhead, qlen;
+	uint64_t overflows;
+	struct co_simbus_rec *log;
+	uint64_t log_cap, nlog;
+};
+
+static struct co_simbus *simbus_of(struct co_bus *bus)
+{
+	return (struct co_simbus *)bus; /* bus is the first member */
+}
+
+static void record(struct co_simbus *b, const struct co_frame *f, int16_t from)
+{
+	struct co_simbus_rec *r;
+
+	if (b->nlog >= b->log_cap)
+		return;
+	r = &b->log[b->nlog++];
+	r->t = hal_clock_now(b->clk);
+	r->f = *f;
+	r->from = from;
+}
+
+/* A drive sends: logged and queued for the master. */
+static int slave_send(void *ctx, const struct co_frame *f, uint32_t n)
+{
+	struct port *p = ctx;
+	struct co_simbus *b = p->b;
+	uint32_t i;
+
+	for (i = 0; i < n; i++) {
+		record(b, &f[i], p->node);
+		if (b->qlen == b->qcap) {
+			b->overflows++;
+			continue;
+		}
+		b->q[(b->qhead + b->qlen++) % b->qcap] = f[i];
+	}
+	return 0;
+}
+
+void co_simbus_run(struct co_simbus *b, int64_t now)
+{
+	uint32_t i;
+
+	for (i = 0; i < b->nslaves; i++)
+		b->port[i].next = co_slave_poll(b->port[i].s, now);
+}
+
+/* ---- the master's transport ---- */
+
+static int sb_send(struct co_bus *bus, const struct co_frame *f, uint32_t n)
+{
+	struct co_simbus *b = simbus_of(bus);
+	int64_t now = hal_clock_now(b->clk);
+	uint32_t i, k;
+
+	if (b->state == CO_BUS_OFF)
+		return -ENETDOWN;
+	co_simbus_run(b, now);
+	for (i = 0; i < n; i++) {
+		record(b, &f[i], -1);
+		for (k = 0; k < b->nslaves; k++) {
+			struct port *p = &b->port[k];
+
+			co_slave_rx(p->s, &f[i], now);
+			/* what it received may start a timer (a quick stop) */
+			p->next = co_slave_poll(p->s, now);
+		}
+	}
+	return 0;
+}
+
+static int sb_recv(struct co_bus *bus, struct co_frame *f, uint32_t max)
+{
+	struct co_simbus *b = simbus_of(bus);
+	uint32_t n = 0;
+
+	co_simbus_run(b, hal_clock_now(b->clk));
+	while (n < max && b->qlen) {
+		f[n++] = b->q[b->qhead];
+		b->qhead = (b->qhead + 1) % b->qcap;
+		b->qlen--;
+	}
+	return (int)n;
+}
+
+static enum co_bus_state sb_state(struct co_bus *bus)
+{
+	return (enum co_bus_state)simbus_of(bus)->state;
+}
+
+static void sb_wait(struct co_bus *bus, int64_t until)
+{
+	struct co_simbus *b = simbus_of(bus);
+	uint32_t i;
+
+	if (b->qlen)
+		return;
+	for (i = 0; i < b->nslaves; i++)
+		if (b->port[i].next < until)
+			until = b->port[i].next;
+	hal_clock_sleep_until(b->clk, until);
+}
+
+static void destroy(struct co_simbus *b)
+{
+	uint32_t i;
+
+	for (i = 0; i < b->nslaves; i++)
+		co_slave_free(b->port[i].s);
+	free(b->q);
+	free(b->log);
+	free(b);
+}
+
+static void sb_close(struct co_bus *bus)
+{
+	struct co_simbus *b = simbus_of(bus);
+
+	b->bus_open = false;
+	if (b->freed)
+		destroy(b);
+}
+
+static const struct co_bus_ops simbus_ops = {
+	.send = sb_send,
+	.recv = sb_recv,
+	.state = sb_state,
+	.wait = sb_wait,
+	.close = sb_close,
+};
+
+/* ---- set-up ---- */
+
+struct co_simbus *co_simbus_new(struct hal_clock *clk, uint32_t queue, uint64_t log_cap)
+{
+	struct co_simbus *b = calloc(1, sizeof(*b));
+
+	if (!b)
+		return NULL;
+	b->bus.ops = &simbus_ops;
+	b->bus.name = "sim";
+	b->clk = clk;
+	b->qcap = queue ? queue : 1;
+	b->q = calloc(b->qcap, sizeof(*b->q));
+	b->log_cap = log_cap;
+	b->log = log_cap ? calloc(log_cap, sizeof(*b->log)) : NULL;
+	if (!b->q || (log_cap && !b->log)) {
+		free(b->q);
+		free(b->log);
+		free(b);
+		errno = ENOMEM;
+		return NULL;
+	}
+	b->bus_open = true;
+	return b;
+}
+
+void co_simbus_free(struct co_simbus *b)
+{
+	if (!b)
+		return;
+	b->freed = true;
+	if (!b->bus_open)
+		destroy(b);
+}
+
+struct co_slave *co_simbus_add(struct co_simbus *b, const struct co_slave_cfg *cfg, bool off)
+{
+	struct co_slave_cfg c = *cfg;
+	struct port *p;
+
+	if (b->nslaves == CO_NODE_MAX || co_simbus_node(b, cfg->node)) {
+		errno = EINVAL;
+		return NULL;
+	}
+	p = &b->port[b->nslaves];
+	c.send = slave_send;
+	c.ctx = p;
+	p->b = b;
+	p->node = cfg->node;
+	p->s = co_slave_new(&c);
+	if (!p->s)
+		return NULL;
+	b->nslaves++;
+	p->next = INT64_MAX;
+	if (!off) {
+		int64_t now = hal_clock_now(b->clk);
+
+		co_slave_power_on(p->s, now);
+		p->next = co_slave_poll(p->s, now);
+	}
+	return p->s;
+}
+
+uint32_t co_simbus_count(const struct co_simbus *b)
+{
+	return b->nslaves;
+}
+
+struct co_slave *co_simbus_slave(struct co_simbus *b, uint32_t i)
+{
+	return i < b->nslaves ? b->port[i].s : NULL;
+}
+
+struct co_slave *co_simbus_node(struct co_simbus *b, uint8_t node)
+{
+	uint32_t i;
+
+	for (i = 0; i < b->nslaves; i++)
+		if (b->port[i].node == node)
+			return b->port[i].s;
+	return NULL;
+}
+
+struct co_bus *co_simbus_bus(struct co_simbus *b)
+{
+	return &b->bus;
+}
+
+void co_simbus_set_state(struct co_simbus *b, enum co_bus_state s)
+{
+	b->state = (uint8_t)s;
+}
+
+const struct co_simbus_rec *co_simbus_log(const struct co_simbus *b, uint64_t *n)
+{
+	*n = b->nlog;
+	return b->log;
+}
+
+uint64_t co_simbus_overflows(const struct co_simbus *b)
+{
+	return b->overflows;
+}

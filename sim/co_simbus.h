@@ -1,0 +1,67 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * co_simbus.h - a simulated CAN bus with simulated CiA 402 drives on it
+ * (co_slave.h), behind the transport interface of the master (co_bus.h).
+ *
+ * The bus is ideal and instant: a frame the master sends reaches every
+ * drive at once, and what a drive answers waits in a queue for the master's
+ * next recv(). Drives see time from the clock given (virtual in the tests),
+ * and wait() advances that clock no further than the next thing a drive
+ * will do by itself (a heartbeat, a step of a quick stop), so heartbeats
+ * come at their times even while the master waits for something else.
+ *
+ * Faults to inject: a drive's power cut (co_slave_power_off), a drive's own
+ * faults (co_slave.h), and the controller's error state: while bus-off,
+ * what the master sends is refused and lost, never delivered later.
+ *
+ * Every frame on the bus is logged with its time and sender, as candump
+ * would record it, for the tests to read.
+ *
+ * [init]; the bus side runs in whichever thread the master runs in.
+ */
+#ifndef CO_SIMBUS_H
+#define CO_SIMBUS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "canopen/co_bus.h"
+#include "clock.h"
+#include "co_slave.h"
+
+struct co_simbus_rec {
+	int64_t t;          /* clock time */
+	struct co_frame f;
+	int16_t from;       /* -1: the master, else the drive's node-ID */
+};
+
+/* A bus whose master can have up to queue frames waiting, logging up to
+ * log_cap frames (0: no log). NULL with errno. */
+struct co_simbus *co_simbus_new(struct hal_clock *clk, uint32_t queue, uint64_t log_cap);
+/* Free the bus and its drives, unless the master's transport still uses
+ * it: then the last of co_simbus_free and the transport's close does. */
+void co_simbus_free(struct co_simbus *b);
+
+/* Add a drive (its send and ctx are the bus's own); powered on at once
+ * unless off. Returns it, or NULL with errno. */
+struct co_slave *co_simbus_add(struct co_simbus *b, const struct co_slave_cfg *cfg, bool off);
+uint32_t co_simbus_count(const struct co_simbus *b);
+struct co_slave *co_simbus_slave(struct co_simbus *b, uint32_t i);
+/* The drive with a node-ID, or NULL. */
+struct co_slave *co_simbus_node(struct co_simbus *b, uint8_t node);
+
+/* The master's side: a transport named "sim". */
+struct co_bus *co_simbus_bus(struct co_simbus *b);
+
+/* The controller's state from now on (CO_BUS_OFF refuses sends). */
+void co_simbus_set_state(struct co_simbus *b, enum co_bus_state s);
+
+/* Let the drives' timers run up to now (recv does it too). */
+void co_simbus_run(struct co_simbus *b, int64_t now);
+
+/* The log so far. */
+const struct co_simbus_rec *co_simbus_log(const struct co_simbus *b, uint64_t *n);
+/* Frames the master's queue could not hold (lost). */
+uint64_t co_simbus_overflows(const struct co_simbus *b);
+
+#endif /* CO_SIMBUS_H */

@@ -1,0 +1,39 @@
+#!/bin/sh
+# README's "Turn one CiA 402 servo", as written there: a virtual CAN bus,
+# strand-simdrive as node 5, strand check and strand play of
+# examples/canopen_turntable.yaml; the run finishes, the drive took a SYNC
+# for every tick, and it is left switched off and pre-operational.
+# vm-timeout: 90
+. /tests/lib.sh
+
+ip link add dev vcan0 type vcan || fail "ip link add"
+ip link set up vcan0 || fail "ip link set up"
+bg candump -ta vcan0 >/tmp/bus.log
+wait_for 5 grep -q '^ *vcan0 .* raw$' /proc/net/can/rcvlist_all || fail "candump never listens"
+strand-simdrive --can vcan0 --node 5 >/tmp/drive.out 2>&1 &
+drive=$!
+wait_for 5 grep -q listening /tmp/drive.out || fail "strand-simdrive: $(cat /tmp/drive.out)"
+
+strand check /examples/canopen_turntable.yaml || fail "strand check"
+strand play /examples/canopen_turntable.yaml --journal /tmp/journal >/tmp/play.out 2>&1
+rc=$?
+cat /tmp/play.out
+[ $rc = 0 ] || fail "strand play exited $rc"
+kill "$drive"
+wait "$drive"
+cat /tmp/drive.out
+echo "the start-up on the bus:"
+head -n 48 /tmp/bus.log
+echo "..."
+start=$(grep -n ' 000 *\[2\]  01 05' /tmp/bus.log | cut -d: -f1)
+sed -n "$((start - 4)),$((start + 14))p" /tmp/bus.log
+echo "... and the end:"
+tail -n 8 /tmp/bus.log
+ticks=$(sed -n 's/.*frames fired [0-9]*, ticks \([0-9]*\).*/\1/p' /tmp/play.out)
+syncs=$(sed -n 's/.*; \([0-9]*\) SYNCs,.*/\1/p' /tmp/drive.out)
+grep -q "node 5: ready to switch on, NMT 0x7f" /tmp/drive.out ||
+	fail "the drive is not left switched off and pre-operational: $(tail -n 1 /tmp/drive.out)"
+# the loop's ticks, the start-up's cycles until enabled, the stop's
+[ "$syncs" -ge "$ticks" ] && [ "$syncs" -le $((ticks + 8)) ] ||
+	fail "the drive took $syncs SYNCs for $ticks ticks"
+pass "193 frames, $ticks ticks, the drive took $syncs SYNCs and was left off"
