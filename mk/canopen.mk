@@ -48,7 +48,7 @@ $(BUILD)/bench/canopen_bench: bench/canopen_bench.c $(CO_OBJ) $(CO_BENCH_LINK) $
 bench-canopen: $(BUILD)/bench/canopen_bench $(BUILD)/vm/initrd.cpio.gz
 	$(Q)$(BUILD)/bench/canopen_bench
 	$(Q)VM_ONLY=t_can_play VM_APPEND="strand.bench_passes=5" \
-		sh tests/vm/run.sh $(BUILD)/vm-cache/kernel-$(VM_KERNEL_VERSION)/vmlinux \
+		sh tests/vm/run.sh $(VM_KDIR)/vmlinux \
 		$(BUILD)/vm/initrd.cpio.gz $(BUILD)/bench-canopen >$(BUILD)/bench-canopen.log 2>&1 || \
 		{ cat $(BUILD)/bench-canopen.log; exit 1; }
 	$(Q)echo "bench-canopen: the SYNC on vcan0 in the VM ($$(sed -n \

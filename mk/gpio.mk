@@ -66,7 +66,7 @@ $(BUILD)/san/tests/test_gpio.o: tests/fake/gpio_line_fake.h $(GPIOD_HDR)
 bench: bench-gpio
 bench-gpio: $(BUILD)/vm/initrd.cpio.gz
 	$(Q)VM_ONLY=t_gpio_trigger VM_APPEND="strand.bench_passes=10 strand.max_late_us=100000" \
-		sh tests/vm/run.sh $(BUILD)/vm-cache/kernel-$(VM_KERNEL_VERSION)/vmlinux $< \
+		sh tests/vm/run.sh $(VM_KDIR)/vmlinux $< \
 		$(BUILD)/bench-gpio >$(BUILD)/bench-gpio.log 2>&1 || \
 		{ cat $(BUILD)/bench-gpio.log; exit 1; }
 	$(Q)echo "bench-gpio: trigger edges in the VM ($$(sed -n 's/^vm: booting [^ ]* (\([A-Z]*\)).*/\1/p' \

@@ -26,6 +26,10 @@ struct co_simbus {
 	struct co_frame *q;
 	uint32_t qcap, qhead, qlen;
 	uint64_t overflows;
+	/* what the master sent while the drives were held (co_simbus_hold) */
+	struct co_frame held[CO_SIMBUS_HELD];
+	uint32_t nheld;
+	bool hold;
 	struct co_simbus_rec *log;
 	uint64_t log_cap, nlog;
 };
@@ -75,26 +79,61 @@ void co_simbus_run(struct co_simbus *b, int64_t now)
 
 /* ---- the master's transport ---- */
 
+/* Every drive receives f now. */
+static void deliver(struct co_simbus *b, const struct co_frame *f, int64_t now)
+{
+	uint32_t k;
+
+	for (k = 0; k < b->nslaves; k++) {
+		struct port *p = &b->port[k];
+
+		co_slave_rx(p->s, f, now);
+		/* what it received may start a timer (a quick stop) */
+		p->next = co_slave_poll(p->s, now);
+	}
+}
+
 static int sb_send(struct co_bus *bus, const struct co_frame *f, uint32_t n)
 {
 	struct co_simbus *b = simbus_of(bus);
 	int64_t now = hal_clock_now(b->clk);
-	uint32_t i, k;
+	uint32_t i;
 
 	if (b->state == CO_BUS_OFF)
 		return -ENETDOWN;
 	co_simbus_run(b, now);
 	for (i = 0; i < n; i++) {
 		record(b, &f[i], -1);
-		for (k = 0; k < b->nslaves; k++) {
-			struct port *p = &b->port[k];
-
-			co_slave_rx(p->s, &f[i], now);
-			/* what it received may start a timer (a quick stop) */
-			p->next = co_slave_poll(p->s, now);
-		}
+		if (!b->hold)
+			deliver(b, &f[i], now);
+		else if (b->nheld < CO_SIMBUS_HELD)
+			b->held[b->nheld++] = f[i];
+		else
+			b->overflows++;
 	}
 	return 0;
+}
+
+void co_simbus_hold(struct co_simbus *b, bool hold)
+{
+	b->hold = hold;
+	if (!hold)
+		co_simbus_deliver(b, b->nheld);
+}
+
+uint32_t co_simbus_deliver(struct co_simbus *b, uint32_t n)
+{
+	int64_t now = hal_clock_now(b->clk);
+	uint32_t i;
+
+	if (n > b->nheld)
+		n = b->nheld;
+	co_simbus_run(b, now);
+	for (i = 0; i < n; i++)
+		deliver(b, &b->held[i], now);
+	memmove(b->held, b->held + n, (b->nheld - n) * sizeof(b->held[0]));
+	b->nheld -= n;
+	return n;
 }
 
 static int sb_recv(struct co_bus *bus, struct co_frame *f, uint32_t max)

@@ -11,8 +11,11 @@
  * come at their times even while the master waits for something else.
  *
  * Faults to inject: a drive's power cut (co_slave_power_off), a drive's own
- * faults (co_slave.h), and the controller's error state: while bus-off,
- * what the master sends is refused and lost, never delivered later.
+ * faults (co_slave.h), the controller's error state (while bus-off, what
+ * the master sends is refused and lost, never delivered later), and drives
+ * that answer late (co_simbus_hold: what the master sends is on the bus at
+ * once but reaches the drives only when released, as with a drive process
+ * that gets no CPU while the master's loop catches up on late ticks).
  *
  * Every frame on the bus is logged with its time and sender, as candump
  * would record it, for the tests to read.
@@ -56,12 +59,21 @@ struct co_bus *co_simbus_bus(struct co_simbus *b);
 /* The controller's state from now on (CO_BUS_OFF refuses sends). */
 void co_simbus_set_state(struct co_simbus *b, enum co_bus_state s);
 
+/* Frames held at most; more are lost (counted as overflows). */
+#define CO_SIMBUS_HELD 64
+
+/* Hold what the master sends from now on (true), or deliver everything
+ * held and stop holding (false). */
+void co_simbus_hold(struct co_simbus *b, bool hold);
+/* Deliver the n oldest frames held, now; returns how many there were. */
+uint32_t co_simbus_deliver(struct co_simbus *b, uint32_t n);
+
 /* Let the drives' timers run up to now (recv does it too). */
 void co_simbus_run(struct co_simbus *b, int64_t now);
 
 /* The log so far. */
 const struct co_simbus_rec *co_simbus_log(const struct co_simbus *b, uint64_t *n);
-/* Frames the master's queue could not hold (lost). */
+/* Frames lost: the master's queue or the held frames were full. */
 uint64_t co_simbus_overflows(const struct co_simbus *b);
 
 #endif /* CO_SIMBUS_H */

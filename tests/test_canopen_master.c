@@ -5,7 +5,8 @@
  * start-up sequence frame by frame, the cyclic exchange, aborts and timeouts
  * at start, a drive in fault at start, heartbeat loss, an emergency, a drive
  * that reboots, TPDOs that stop, bus-off, error-passive, the quick stop, the
- * orderly stop, a target beyond 32 bits.
+ * orderly stop, a target beyond 32 bits, answers that come after the next
+ * SYNC.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -702,6 +703,84 @@ static void test_sync_id(void **state)
 	cu_free(&r);
 }
 
+/* ---- answers that come late ---- */
+
+/* The last TPDO of node id in the log: its position actual. */
+static int32_t last_actual(const struct cu_rig *r, uint8_t id)
+{
+	uint64_t n, i;
+	const struct co_simbus_rec *log = co_simbus_log(r->sb, &n);
+
+	for (i = n; i-- > 0;)
+		if (log[i].from == id && log[i].f.id == 0x180 + id)
+			return (int32_t)co_get32(&log[i].f.data[2]);
+	fail_msg("no TPDO from node %u", id);
+	return 0;
+}
+
+/* Ticks k0..k1-1 of a ramp of 10 counts a tick from 1000, node 1's. */
+static void ramp(struct cu_rig *r, int k0, int k1)
+{
+	int64_t tg[1];
+	int k;
+
+	for (k = k0; k < k1; k++) {
+		tg[0] = 1000 + 10 * k;
+		assert_int_equal(cu_tick(r, tg), 0);
+	}
+}
+
+/* A drive that answers a SYNC only after the next one went out (its
+ * process starved of CPU while the loop caught up on late ticks): its
+ * answer is not taken for the latest SYNC's, so the following error the
+ * loop computes (latest target - actual) is the one the drive had. Before
+ * this was fixed, each SYNC of delay added a tick of motion (here 10
+ * counts) to it. */
+static void test_late_tpdo(void **state)
+{
+	struct cu_rig r;
+	int64_t c;
+	int32_t a;
+
+	cu_init(&r, 1, 1000);
+	start_ok(&r);
+	ramp(&r, 0, 50);
+	/* on time: the answer to the SYNC of target 1490 */
+	assert_int_equal(hal_axis_input(r.ax, 50), 0);
+	assert_true(hal_axis_actual(r.ax, 1, &c));
+	assert_int_equal(c, last_actual(&r, 1));
+	assert_int_equal(r.m->node[0].tpdo_late, 0);
+
+	/* ticks 50 and 51 go out; the drive sees neither until released */
+	co_simbus_hold(r.sb, true);
+	ramp(&r, 50, 52);
+	assert_false(hal_axis_actual(r.ax, 1, &c)); /* none since the latest SYNC */
+	/* the drive takes tick 50's RPDO and SYNC and answers that SYNC only */
+	assert_int_equal(co_simbus_deliver(r.sb, 2), 2);
+	assert_int_equal(hal_axis_input(r.ax, 52), 0);
+	assert_true(hal_axis_actual(r.ax, 1, &c));
+	a = last_actual(&r, 1);
+	assert_true(1500 - a > 0); /* behind target 1500 of tick 50 */
+	assert_int_equal(1510 - c, 1500 - a);
+	assert_int_equal(r.m->node[0].tpdo_late, 1);
+
+	/* released: the answer to tick 51's SYNC is certain again */
+	co_simbus_hold(r.sb, false);
+	assert_int_equal(hal_axis_input(r.ax, 52), 0);
+	assert_true(hal_axis_actual(r.ax, 1, &c));
+	assert_int_equal(c, last_actual(&r, 1));
+	assert_int_equal(r.m->node[0].tpdo_lo, r.m->node[0].tpdo_sync);
+
+	/* and on time from then on */
+	ramp(&r, 52, 60);
+	assert_int_equal(hal_axis_input(r.ax, 60), 0);
+	assert_true(hal_axis_actual(r.ax, 1, &c));
+	assert_int_equal(c, last_actual(&r, 1));
+	assert_int_equal(r.m->node[0].tpdo_late, 1);
+	assert_int_equal(co_simbus_overflows(r.sb), 0);
+	cu_free(&r);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -724,6 +803,7 @@ int main(void)
 		cmocka_unit_test(test_stop),
 		cmocka_unit_test(test_target_range),
 		cmocka_unit_test(test_sync_id),
+		cmocka_unit_test(test_late_tpdo),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -115,12 +115,8 @@ static bool ca_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 {
 	struct co_axis *a = axis_of(ax);
 	int i = co_master_index(&a->m, (uint8_t)ch);
-	int32_t c;
 
-	if (ch > CO_NODE_MAX || i < 0 || !co_master_actual(&a->m, (uint32_t)i, &c))
-		return false;
-	*counts = c;
-	return true;
+	return ch <= CO_NODE_MAX && i >= 0 && co_master_actual(&a->m, (uint32_t)i, counts);
 }
 
 static void ca_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)

@@ -203,6 +203,11 @@ static void tpdo(struct co_master *m, struct co_node *n, const struct co_frame *
 		return;
 	n->sw = co_get16(&f->data[0]);
 	n->actual = (int32_t)co_get32(&f->data[2]);
+	/* the answer to the SYNC after the previous answer's, unless that
+	 * would be one not sent yet (then the previous guess was too late) */
+	n->tpdo_lo = n->tpdo_seen && n->tpdo_lo < m->syncs ? n->tpdo_lo + 1 : m->syncs;
+	if (n->tpdo_lo < m->syncs)
+		n->tpdo_late++;
 	n->tpdo_seen = true;
 	n->tpdo_sync = m->syncs;
 	n->tpdo_last = now;
@@ -283,6 +288,7 @@ static void send_cycle(struct co_master *m)
 		co_frame_init(f, co_rpdo_id(1, n->cfg.node), 6);
 		co_put16(&f->data[0], n->cw);
 		co_put32(&f->data[2], (uint32_t)n->target);
+		m->node[i].sent[(m->syncs + 1) % CO_SENT_KEPT] = n->target;
 		k++;
 	}
 	co_frame_init(&m->cycle[k++], m->cfg.sync_id, 0);
@@ -509,12 +515,30 @@ int64_t co_master_poll(struct co_master *m, int64_t now)
 	return next;
 }
 
-bool co_master_actual(const struct co_master *m, uint32_t i, int32_t *counts)
+bool co_master_actual(const struct co_master *m, uint32_t i, int64_t *counts)
 {
 	const struct co_node *n = &m->node[i];
+	uint64_t s, best, lo;
+	int64_t d, dbest;
 
 	if (!n->tpdo_seen || n->tpdo_sync != m->syncs)
 		return false;
+	if (n->cfg.mode == CO402_MODE_CSP && n->tpdo_sync - n->tpdo_lo >= CO_SENT_KEPT)
+		return false; /* its target is no longer known */
 	*counts = n->actual;
+	if (n->cfg.mode != CO402_MODE_CSP || n->tpdo_lo == n->tpdo_sync)
+		return true;
+	lo = n->tpdo_lo;
+	best = n->tpdo_sync;
+	dbest = INT64_MAX;
+	for (s = lo; s <= n->tpdo_sync; s++) {
+		d = (int64_t)n->sent[s % CO_SENT_KEPT] - n->actual;
+		d = d < 0 ? -d : d;
+		if (d < dbest) {
+			dbest = d;
+			best = s;
+		}
+	}
+	*counts += (int64_t)n->sent[n->tpdo_sync % CO_SENT_KEPT] - n->sent[best % CO_SENT_KEPT];
 	return true;
 }

@@ -133,6 +133,11 @@ enum co_bus_state {
 	CO_BUS_OFF,
 };
 
+/* Targets kept per node: a TPDO later than this many SYNCs is not matched
+ * to its target (co_master_actual). 16 cover 32 ms of a loop at 500 Hz
+ * catching up. */
+#define CO_SENT_KEPT 16
+
 struct co_node {
 	struct co_drive_cfg cfg;
 	uint8_t phase;       /* enum co_node_phase */
@@ -146,6 +151,15 @@ struct co_node {
 	int32_t target;      /* for the next RPDO */
 	int32_t actual;      /* position actual of the last TPDO */
 	uint64_t tpdo_sync;  /* SYNCs sent when the last TPDO came */
+	/* A TPDO carries no SYNC number: the one that came when tpdo_sync
+	 * SYNCs were out answers one of SYNCs tpdo_lo..tpdo_sync. tpdo_lo is
+	 * the previous TPDO's plus one (each SYNC has one answer, in order),
+	 * never above tpdo_sync; they differ only when the drive answered
+	 * after the next SYNC had gone (a drive starved of CPU, a loop that
+	 * caught up on late ticks). */
+	uint64_t tpdo_lo;
+	uint32_t tpdo_late;  /* TPDOs that came after the next SYNC */
+	int32_t sent[CO_SENT_KEPT]; /* sent[s % CO_SENT_KEPT]: target before SYNC s */
 	int64_t hb_last;     /* the last heartbeat; consumer runs when >= 0 */
 	int64_t tpdo_last;   /* the last TPDO */
 	int64_t deadline;    /* of the phase */
@@ -226,9 +240,16 @@ static inline enum co_master_phase co_master_phase(const struct co_master *m)
 /* The first fault: 0 while healthy, else its negative errno and *f. */
 int co_master_fault(const struct co_master *m, struct co_fault *f);
 
-/* Drive i's position actual from a TPDO that answered the latest SYNC:
- * false when none has (late, or lost). */
-bool co_master_actual(const struct co_master *m, uint32_t i, int32_t *counts);
+/* Drive i's position actual from a TPDO that came since the latest SYNC:
+ * false when none has (late, or lost). In cyclic synchronous position the
+ * value is moved by as much as the target moved since the SYNC the TPDO
+ * answers, so that the latest target minus it is the following error the
+ * drive had then, however late its answer. When that SYNC is not certain
+ * (struct co_node: tpdo_lo) it is the one of the possible SYNCs whose
+ * target the drive was closest to: a late answer never reads as a
+ * following error it did not have. False too when the answer may be older
+ * than the targets kept (CO_SENT_KEPT SYNCs). */
+bool co_master_actual(const struct co_master *m, uint32_t i, int64_t *counts);
 
 /* Index of the drive with this node-ID, or -1. */
 int co_master_index(const struct co_master *m, uint8_t node);
