@@ -21,7 +21,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "testutil.h"
+#include "tests/testutil.h"
 
 /* Repeats of every timed measurement; fixed and double alternate within. */
 #define BENCH_REPEATS 9

@@ -17,8 +17,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "canopen/co_axis.h"
-#include "co_simbus.h"
+#include "hal/canopen/co_axis.h"
+#include "sim/co_simbus.h"
 
 #define NDRIVES 8
 #define TICKS 2000000

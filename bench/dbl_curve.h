@@ -16,8 +16,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "curve.h"
-#include "scene_desc.h"
+#include "motion/curve.h"
+#include "scene/scene_desc.h"
 
 /* The trapezoidal slow-in/slow-out of ease.h, prepared. */
 struct dbl_ease {

@@ -30,7 +30,7 @@
 
 #include "dbl_curve.h"
 #include "dbl_mat.h"
-#include "scene_desc.h"
+#include "scene/scene_desc.h"
 
 struct dbl_rot_seg {
 	struct dbl_slerp arc, inner; /* inner: squad's s(i) -> s(i+1), else arc */

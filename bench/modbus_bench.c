@@ -28,8 +28,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "mbpeer.h"
-#include "modbus_dev.h"
+#include "hal/modbus/modbus_dev.h"
+#include "tests/mbpeer.h"
 
 #define ROUNDS 5
 #define BARE_UPDATES 20000

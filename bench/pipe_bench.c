@@ -19,10 +19,10 @@
 
 #include "bench.h"
 #include "dbl_mat.h"
-#include "decomp.h"
+#include "motion/decomp.h"
 #include "motion_bench.h"
-#include "ref_mat.h"
-#include "scene_desc.h"
+#include "scene/scene_desc.h"
+#include "tests/ref_mat.h"
 
 #define NPAIR 256   /* key pairs */
 #define NSTEP 64    /* in-betweens per pair, t = j / NSTEP */

@@ -18,10 +18,10 @@
 #include "bench.h"
 #include "dbl_curve.h"
 #include "dbl_mat.h"
-#include "decomp.h"
+#include "motion/decomp.h"
+#include "motion/trig.h"
 #include "motion_bench.h"
-#include "scene_desc.h"
-#include "trig.h"
+#include "scene/scene_desc.h"
 
 #define NIN 1024
 #define ROUNDS 64 /* trig batches: NIN * ROUNDS calls */

@@ -23,9 +23,9 @@
 #include "bench.h"
 #include "dbl_scene.h"
 #include "motion_bench.h"
-#include "ref_scene.h"
-#include "scene_desc.h"
-#include "synth.h"
+#include "scene/scene_desc.h"
+#include "tests/ref_scene.h"
+#include "tests/synth.h"
 
 #define NODES 1000
 #define FRAMES_1000 96

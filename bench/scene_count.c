@@ -16,8 +16,8 @@
 #include <string.h>
 
 #include "dbl_scene.h"
-#include "scene_desc.h"
-#include "synth.h"
+#include "scene/scene_desc.h"
+#include "tests/synth.h"
 
 #define NODES 1000
 #define FRAMES_1000 96

@@ -10,12 +10,17 @@ static int64_t ts_ns(const struct timespec *ts)
 	return (int64_t)ts->tv_sec * 1000000000 + ts->tv_nsec;
 }
 
-static int64_t real_now(struct hal_clock *c)
+int64_t hal_mono_ns(void)
 {
 	struct timespec ts;
 
 	clock_gettime(CLOCK_MONOTONIC, &ts);
 	return ts_ns(&ts);
+}
+
+static int64_t real_now(struct hal_clock *c)
+{
+	return hal_mono_ns();
 }
 
 static void real_sleep_until(struct hal_clock *c, int64_t t)

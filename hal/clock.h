@@ -53,6 +53,11 @@ static inline int64_t hal_clock_wall(struct hal_clock *c)
 /* The virtual clock's wall time at virtual 0: 2000-01-01T00:00:00Z. */
 #define HAL_CLOCK_VIRTUAL_EPOCH_NS (946684800LL * 1000000000LL)
 
+/* [any thread] CLOCK_MONOTONIC in nanoseconds, whatever clock a run is
+ * on: for timeouts, service rounds and durations measured outside the
+ * loop's time (a vDSO call, no system call). */
+int64_t hal_mono_ns(void);
+
 /* [init] A clock of either kind; virtual starts at 0. */
 void hal_clock_init(struct hal_clock *c, bool is_virtual);
 

@@ -45,16 +45,15 @@ MB_SRC      := bench/motion_bench.c bench/scene_bench.c bench/pipe_bench.c \
                bench/prim_bench.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c \
                tests/synth.c tests/ref_scene.c tests/ref_curve.c tests/ref_mat.c
 MB_OBJ      := $(MB_SRC:%.c=$(BUILD)/bench/%.o)
-MB_HDR       = $(wildcard bench/*.h) $(wildcard tests/*.h) $(MOTION_HDR) $(FW_HDR)
 MB_CFLAGS    = -std=gnu11 -D_GNU_SOURCE -O2 $(filter-out -Wpedantic,$(WARN)) -Werror \
-               -ffp-contract=off -Ibench -Imotion -Ifirmware -Itests \
+               -ffp-contract=off -iquote . -iquote firmware -iquote bench -iquote tests \
                $(shell pkg-config --cflags cmocka 2>/dev/null)
-MB_LINK     := $(BUILD)/firmware/scene_build.o $(BUILD)/firmware/scene_desc.o \
+MB_LINK     := $(BUILD)/firmware/scene/scene_build.o $(BUILD)/firmware/scene/scene_desc.o \
                $(BUILD)/libmotion.a
 
-$(BUILD)/bench/%.o: %.c $(MB_HDR) | $(BUILD)/.deps-test
+$(BUILD)/bench/%.o: %.c | $(BUILD)/.deps-test
 	@mkdir -p $(@D)
-	$(Q)$(CC) $(MB_CFLAGS) -c $< -o $@
+	$(Q)$(CC) $(MB_CFLAGS) $(DEPFLAGS) -c $< -o $@
 
 $(BUILD)/bench/motion_bench: $(MB_OBJ) $(MB_LINK)
 	$(Q)$(CC) $^ -lm -o $@

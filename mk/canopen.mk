@@ -1,28 +1,9 @@
-# mk/canopen.mk - the CANopen master (hal/canopen/): built like hal/ (the
-# pattern rules of mk/play.mk cover the sub-folder), into the program and
-# the tests' archive.
+# mk/canopen.mk - the CANopen master (hal/canopen/) builds with every other
+# library folder (the Makefile finds it in mk/layers); what is its own here
+# is the benchmark and what the VM tests need.
 
 CO_SRC := $(wildcard hal/canopen/*.c)
-CO_HDR := $(wildcard hal/canopen/*.h)
 CO_OBJ := $(CO_SRC:%.c=$(BUILD)/%.o)
-CO_SAN_OBJ := $(CO_SRC:%.c=$(BUILD)/san/%.o)
-
-$(BUILD)/san/libfw.a: $(CO_SAN_OBJ)
-$(BUILD)/strand: $(CO_OBJ)
-# strand-simdrive (mk/modbus.mk) links the program's objects, and plays a
-# CiA 402 drive itself with --can
-$(BUILD)/strand-simdrive: $(CO_OBJ)
-
-# the fuzz build compiles hal/*.c and sim/*.c itself (mk/scene.mk): and these
-$(BUILD)/fuzz/fuzz_load: FUZZ_SRC += $(CO_SRC)
-$(BUILD)/fuzz/fuzz_load: $(CO_SRC) $(CO_HDR)
-
-# Everything that may include the master's headers: its own objects, the
-# simulated drive in sim/, the rig and loader in firmware/, the tests.
-CO_USERS := $(CO_OBJ) $(CO_SAN_OBJ) \
-	$(patsubst %.c,$(BUILD)/%.o,$(wildcard sim/*.c sim/simdrive/*.c firmware/*.c)) \
-	$(patsubst %.c,$(BUILD)/san/%.o,$(wildcard sim/*.c firmware/*.c tests/*.c))
-$(CO_USERS): $(CO_HDR)
 
 # ---- the VM tests (mk/vm.mk) ------------------------------------------------------
 # strand drives strand-simdrive processes on vcan0, candump records the bus.
@@ -41,10 +22,9 @@ VM_FILES += /tests/can.awk=tests/vm/can.awk /tests/can.sh=tests/vm/can.sh \
 bench: bench-canopen
 CO_BENCH_LINK := $(BUILD)/sim/co_simbus.o $(BUILD)/sim/co_slave.o $(BUILD)/sim/co_slave_od.o \
                  $(BUILD)/sim/sim_drive.o $(BUILD)/hal/clock.o
-$(BUILD)/bench/canopen_bench: bench/canopen_bench.c $(CO_OBJ) $(CO_BENCH_LINK) $(CO_HDR)
+$(BUILD)/bench/canopen_bench: bench/canopen_bench.c $(CO_OBJ) $(CO_BENCH_LINK)
 	@mkdir -p $(@D)
-	$(Q)$(CC) $(BENCH_CFLAGS) -Ihal -Isim -Imotion $< $(CO_OBJ) $(CO_BENCH_LINK) \
-		-lm -o $@
+	$(Q)$(CC) $(BENCH_CFLAGS) -iquote . $(DEPFLAGS) $< $(CO_OBJ) $(CO_BENCH_LINK) -lm -o $@
 bench-canopen: $(BUILD)/bench/canopen_bench $(BUILD)/vm/initrd.cpio.gz
 	$(Q)$(BUILD)/bench/canopen_bench
 	$(Q)VM_ONLY=t_can_play VM_APPEND="strand.bench_passes=5" \

@@ -1,35 +1,16 @@
 #!/bin/sh
-# check-includes.sh FILE... - a file of the motion core may include only the
+# check-includes.sh FILE... - the motion core's line of the layer table
+# (mk/layers.txt) applied to FILEs: a file of the core may include only the
 # headers beside it ("name.h") and <stdint.h>, <stddef.h>, <stdbool.h>.
-# Anything else (libc, hal/, a path, a macro) is printed with its line and
-# fails.
+# `mk/layers.sh check` applies every line of the table to every folder;
+# this is its one-folder form, for the freestanding self-test.
 set -eu
 [ $# -ge 1 ] || { echo "usage: check-includes.sh FILE..." >&2; exit 2; }
+here=$(dirname "$0")
+args=
 for f in "$@"; do
 	[ -r "$f" ] || { echo "check-includes: cannot read $f" >&2; exit 2; }
+	args="$args motion=$f"
 done
-bad=$(for f in "$@"; do
-	dir=$(dirname "$f")
-	# "lineno:text" of every include directive, however it is spaced
-	grep -n '^[[:space:]]*#[[:space:]]*include' "$f" | while IFS= read -r line; do
-		hdr=$(printf '%s\n' "${line#*:}" | sed -n \
-			's/^[[:space:]]*#[[:space:]]*include[[:space:]]*\([<"][^>"]*[>"]\)[[:space:]]*\(\/[*/].*\)\{0,1\}$/\1/p')
-		case $hdr in
-		"<stdint.h>" | "<stddef.h>" | "<stdbool.h>")
-			continue ;;
-		\"*.h\")
-			name=${hdr#\"}
-			name=${name%\"}
-			case $name in
-			*/*) ;;
-			*) [ -f "$dir/$name" ] && continue ;;
-			esac ;;
-		esac
-		echo "check-includes: $f:${line%%:*}: not allowed in the core: ${line#*:}"
-	done
-done)
-if [ -n "$bad" ]; then
-	printf '%s\n' "$bad" >&2
-	exit 1
-fi
-echo "check-includes: $# file(s) include only their own headers and <stdint.h> <stddef.h> <stdbool.h>"
+# shellcheck disable=SC2086 # one word per file
+exec sh "$here/layers.sh" check "$here/layers.txt" ". firmware" $args

@@ -28,8 +28,10 @@ cross_run.aarch64  := qemu-aarch64
 cross_run.armhf    := qemu-arm
 
 # The scene workloads build scenes in code through the firmware's builder.
-DIGEST_SRC := tests/digest/digest.c tests/synth.c firmware/scene_build.c firmware/scene_desc.c
-DIGEST_CFLAGS := -std=gnu11 -O2 $(WARN) -Werror -ffp-contract=off -Imotion -Ifirmware -Itests
+DIGEST_SRC := tests/digest/digest.c tests/synth.c firmware/scene/scene_build.c \
+              firmware/scene/scene_desc.c
+DIGEST_CFLAGS := -std=gnu11 -O2 $(WARN) -Werror -ffp-contract=off -iquote . -iquote firmware \
+                 -iquote tests
 
 # The core's flags for variant $(1). '=' and $(shell) at recipe time: a cross
 # compiler is asked for its include directory after mk/deps.sh installed it.
@@ -45,12 +47,12 @@ $(shell mkdir -p $(BUILD)/cross && { echo '$(MOTION_SRC)' | cmp -s - $(CROSS_SOU
 	echo '$(MOTION_SRC)' >$(CROSS_SOURCES); })
 
 define cross_variant
-$(BUILD)/cross/$(1)/motion/%.o: motion/%.c $(MOTION_HDR) | $(BUILD)/.deps-cross
+$(BUILD)/cross/$(1)/motion/%.o: motion/%.c | $(BUILD)/.deps-cross
 	@mkdir -p $$(@D)
-	$$(Q)$$(cross_cc.$(1)) $$(call cross_core_cflags,$(1)) -c $$< -o $$@
+	$$(Q)$$(cross_cc.$(1)) $$(call cross_core_cflags,$(1)) $(DEPFLAGS) -c $$< -o $$@
 
 $(BUILD)/cross/$(1)/digest: $(DIGEST_SRC) $(MOTION_SRC:%.c=$(BUILD)/cross/$(1)/%.o) \
-		$(MOTION_HDR) $(FW_HDR) tests/synth.h $(CROSS_SOURCES) | $(BUILD)/.deps-cross
+		$(MOTION_HDR) $(ALL_HDR) tests/synth.h $(CROSS_SOURCES) | $(BUILD)/.deps-cross
 	$$(Q)$$(cross_cc.$(1)) $$(DIGEST_CFLAGS) $$(cross_def.$(1)) $(DIGEST_SRC) \
 		$$(filter %.o,$$^) $$(cross_ld.$(1)) -lm -o $$@
 endef

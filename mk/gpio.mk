@@ -1,23 +1,25 @@
-# mk/gpio.mk - the GPIO backend's libgpiod side (hal/gpio.h, hal/gpio_line.h).
+# mk/gpio.mk - the GPIO backend's libgpiod side (hal/gpio/gpio.h,
+# hal/gpio/gpio_line.h).
 #
-# hal/gpio_*.c (the HAL backend) build with the rest of hal/ (mk/play.mk).
-# What talks to libgpiod is in hal/gpiod/, in an archive of its own,
+# hal/gpio/*.c (the HAL backend) build with every library folder. What
+# talks to libgpiod is in hal/gpio/gpiod/, in an archive of its own,
 # $(GPIOD_LIB): the implementation of gpio_line.h for the installed
 # library's API, and the messages both implementations share.
 #
 # libgpiod's API changed at 2.0 (Debian 12 has 1.6.3). HAVE_GPIOD_V2 is
 # decided once, by mk/gpiod-api.sh from pkg-config's version of the
 # library, when the archive is built: it names the one file to compile,
-# hal/gpiod/gpio_line_v1.c or gpio_line_v2.c. No source file tests a
+# hal/gpio/gpiod/gpio_line_v1.c or gpio_line_v2.c. No source file tests a
 # version. (`make gpiod-api` says which.)
 #
-# tests/test_gpio runs the backend over a fake chip (tests/fake/), linked
+# tests/hal/test_gpio.c runs the backend over a fake chip (tests/fake/), linked
 # ahead of the archive; the real chip is tested in the VM (mk/vm.mk).
 
 DEB_GPIO  := libgpiod-dev
 GPIOD_LIB := $(BUILD)/hal/libgpioline.a
-GPIOD_SRC := hal/gpiod/gpio_line_v1.c hal/gpiod/gpio_line_v2.c
-GPIOD_HDR := hal/gpio_line.h
+GPIOD_SRC := hal/gpio/gpiod/gpio_line_v1.c hal/gpio/gpiod/gpio_line_v2.c
+GPIOD_HDR := hal/gpio/gpio_line.h
+GPIOD_VIEW := -iquote $(VIEWS)/hal-gpio-gpiod
 
 .PHONY: gpiod-api
 
@@ -29,14 +31,16 @@ gpiod-api: | $(BUILD)/.deps-gpio
 	$(Q)echo "libgpiod $$(pkg-config --modversion libgpiod): $$(sh mk/gpiod-api.sh --have)," \
 		"compiling $$(sh mk/gpiod-api.sh)"
 
-$(BUILD)/hal/gpiod/gpio_line_api.o: $(GPIOD_SRC) $(GPIOD_HDR) mk/gpiod-api.sh | $(BUILD)/.deps-gpio
+$(BUILD)/hal/gpio/gpiod/gpio_line_api.o: $(GPIOD_SRC) $(GPIOD_HDR) mk/gpiod-api.sh | \
+		$(BUILD)/.deps-gpio $(VIEWS)/.stamp
 	@mkdir -p $(@D)
 	$(Q)src=$$(sh mk/gpiod-api.sh) && \
-		$(CC) $(FW_CFLAGS) $(OPT) -g $$(pkg-config --cflags libgpiod) -c $$src -o $@
-$(BUILD)/hal/gpiod/gpio_line_msg.o: hal/gpiod/gpio_line_msg.c $(GPIOD_HDR) | $(BUILD)/.deps-build
+		$(CC) $(FW_CFLAGS) $(GPIOD_VIEW) $(OPT) -g $$(pkg-config --cflags libgpiod) -c $$src -o $@
+$(BUILD)/hal/gpio/gpiod/gpio_line_msg.o: hal/gpio/gpiod/gpio_line_msg.c $(GPIOD_HDR) | \
+		$(BUILD)/.deps-build $(VIEWS)/.stamp
 	@mkdir -p $(@D)
-	$(Q)$(CC) $(FW_CFLAGS) $(OPT) -g -c $< -o $@
-$(GPIOD_LIB): $(BUILD)/hal/gpiod/gpio_line_api.o $(BUILD)/hal/gpiod/gpio_line_msg.o
+	$(Q)$(CC) $(FW_CFLAGS) $(GPIOD_VIEW) $(OPT) -g -c $< -o $@
+$(GPIOD_LIB): $(BUILD)/hal/gpio/gpiod/gpio_line_api.o $(BUILD)/hal/gpio/gpiod/gpio_line_msg.o
 	$(Q)rm -f $@ && ar rcs $@ $^
 
 # Everything that links the firmware links the archive and libgpiod: the
@@ -44,17 +48,12 @@ $(GPIOD_LIB): $(BUILD)/hal/gpiod/gpio_line_api.o $(BUILD)/hal/gpiod/gpio_line_ms
 # backend) and the fuzzer. '=': pkg-config is asked when a link runs, after
 # mk/deps.sh installed the library.
 FW_LIBS += $(GPIOD_LIB) $(shell pkg-config --libs libgpiod 2>/dev/null || echo -lgpiod)
-$(BUILD)/strand: $(GPIOD_LIB)
+$(BUILD)/strand $(BUILD)/strand-simdrive: $(GPIOD_LIB)
 $(TEST_BIN): | $(GPIOD_LIB)
 $(BUILD)/fuzz/fuzz_load: | $(GPIOD_LIB)
 
 # test_gpio: the fake chip, ahead of the archive in the link.
-$(BUILD)/san/tests/fake/%.o: tests/fake/%.c tests/fake/%.h $(GPIOD_HDR) | $(BUILD)/.deps-test
-	@mkdir -p $(@D)
-	$(Q)$(CC) $(TEST_CFLAGS) -c $< -o $@
 $(BUILD)/tests/test_gpio: $(BUILD)/san/tests/fake/gpio_line_fake.o
-$(BUILD)/san/tests/test_gpio.o: TEST_CFLAGS += -Itests/fake
-$(BUILD)/san/tests/test_gpio.o: tests/fake/gpio_line_fake.h $(GPIOD_HDR)
 
 # make bench-gpio (part of make bench): the trigger's edge jitter measured
 # in the test VM: tests/vm/t_gpio_trigger.sh over the scene ten times (760

@@ -1,6 +1,6 @@
-# mk/modbus.mk - Modbus drives over libmodbus (hal/modbus_*.c), the simulated
-# drive behind a real Modbus server (strand-simdrive, sim/simdrive/), their
-# tests against it and their benchmark.
+# mk/modbus.mk - Modbus drives over libmodbus (hal/modbus/), the simulated
+# drive behind a real Modbus server (sim/mb_server.c, strand-simdrive's
+# Modbus mode), their tests against it and their benchmark.
 #
 #   make build/strand-simdrive   the simulated drive as a Modbus server
 #   make bench-modbus            Modbus update rate against a bare libmodbus loop
@@ -12,25 +12,16 @@ MODBUS_CFLAGS = $(shell pkg-config --cflags libmodbus 2>/dev/null)
 FW_CFLAGS   += $(MODBUS_CFLAGS)
 TEST_CFLAGS += $(MODBUS_CFLAGS)
 FW_LIBS     += $(shell pkg-config --libs libmodbus 2>/dev/null || echo -lmodbus)
-# the fuzz build compiles hal/*.c too (mk/scene.mk)
+# the fuzz build compiles every library folder too (mk/scene.mk)
 $(BUILD)/fuzz/fuzz_load: FUZZ_CFLAGS += $(MODBUS_CFLAGS)
 
 # ---- strand-simdrive ----------------------------------------------------------
-# Its own sources and the program's objects (the scene loader, the rig, the
-# simulated drive), at -O2 like the program.
-SIMDRIVE_SRC := $(wildcard sim/simdrive/*.c)
-SIMDRIVE_HDR := $(wildcard sim/simdrive/*.h)
+# The program (firmware/simdrive/) on the library folders: the scene
+# loader, the rig for the device's simulated twin, sim/'s Modbus server.
+SIMDRIVE_SRC := $(wildcard firmware/simdrive/*.c)
 SIMDRIVE_OBJ := $(SIMDRIVE_SRC:%.c=$(BUILD)/%.o)
-# mk/play.mk's lists, which are not defined yet when this file is read
-SIMDRIVE_LINK := $(patsubst %.c,$(BUILD)/%.o,$(filter-out firmware/main.c,$(wildcard \
-                 firmware/*.c)) $(wildcard hal/*.c sim/*.c)) $(BUILD)/libmotion.a
 
-$(BUILD)/sim/simdrive/%.o: sim/simdrive/%.c $(SIMDRIVE_HDR) $(MOTION_HDR) $(FW_HDR) \
-		$(wildcard hal/*.h sim/*.h) | $(BUILD)/.deps-build
-	@mkdir -p $(@D)
-	$(Q)$(CC) $(FW_CFLAGS) -Isim/simdrive $(OPT) -g -c $< -o $@
-
-$(BUILD)/strand-simdrive: $(SIMDRIVE_OBJ) $(SIMDRIVE_LINK)
+$(BUILD)/strand-simdrive: $(SIMDRIVE_OBJ) $(LIB_OBJ) $(BUILD)/libmotion.a
 	$(Q)$(CC) $^ $(FW_LIBS) -o $@
 
 all: $(BUILD)/strand-simdrive
@@ -43,10 +34,10 @@ unit: $(BUILD)/strand-simdrive
 # A prerequisite of `make bench`, so it runs before the others, never beside.
 .PHONY: bench-modbus
 MODBUS_BENCH_OBJ := $(BUILD)/bench/bench/modbus_bench.o $(BUILD)/bench/tests/mbpeer.o \
-                    $(BUILD)/hal/modbus_desc.o $(BUILD)/hal/modbus_map.o
+                    $(BUILD)/hal/modbus/modbus_desc.o $(BUILD)/hal/modbus/modbus_map.o
 
 $(BUILD)/bench/bench/modbus_bench.o $(BUILD)/bench/tests/mbpeer.o: \
-	MB_CFLAGS += -Ihal $(MODBUS_CFLAGS)
+	MB_CFLAGS += $(MODBUS_CFLAGS)
 $(BUILD)/bench/modbus_bench: $(MODBUS_BENCH_OBJ)
 	$(Q)$(CC) $^ $(FW_LIBS) -o $@
 

@@ -6,7 +6,7 @@
 #   make fuzz-short   the same for FUZZ_SHORT_SECONDS (default 45): a step of
 #                     `make test`
 #
-# The render test (tests/test_render.c) draws every example with
+# The render test (tests/cli/test_render.c) draws every example with
 # `strand plot` and renders the SVG in headless Chromium; it needs chromium
 # and libpng, installed here like every other package.
 
@@ -25,21 +25,21 @@ deps: $(BUILD)/.deps-fuzz $(BUILD)/.deps-render
 
 # ---- render test: chromium and libpng ------------------------------------------
 $(BUILD)/tests/test_render: TEST_LIBS += $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
-$(BUILD)/san/tests/test_render.o: | $(BUILD)/.deps-render
-# png.h includes <time.h>, which motion/time.h shadows under -Imotion: this
-# test finds the project's own headers through -iquote only.
-$(BUILD)/san/tests/test_render.o: TEST_CFLAGS := $(patsubst -I%,-iquote %,$(TEST_CFLAGS))
+$(BUILD)/san/tests/cli/test_render.o: | $(BUILD)/.deps-render
 
 # ---- libFuzzer ------------------------------------------------------------------
 FUZZ_SECONDS       ?= 300
 FUZZ_SHORT_SECONDS ?= 45
 FUZZ_DIR    := $(BUILD)/fuzz
+# One clang build of every library folder and the loader's fuzz target; it
+# sees the project from its roots, as the tests do (the layers are the main
+# build's to enforce).
 FUZZ_CFLAGS := -std=gnu11 -g -O1 -ffp-contract=off \
                -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-               -Imotion -Ifirmware -Ihal -Isim
-FUZZ_SRC    := tests/fuzz/fuzz_load.c $(FW_LIB_SRC) $(MOTION_SRC) $(wildcard hal/*.c sim/*.c)
+               -iquote . -iquote firmware
+FUZZ_SRC    := tests/fuzz/fuzz_load.c $(LIB_SRC) $(CLI_LIB_SRC) $(MOTION_SRC)
 
-$(FUZZ_DIR)/fuzz_load: $(FUZZ_SRC) $(MOTION_HDR) $(FW_HDR) $(wildcard hal/*.h sim/*.h) | $(BUILD)/.deps-fuzz
+$(FUZZ_DIR)/fuzz_load: $(FUZZ_SRC) $(ALL_HDR) | $(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
 	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags yaml-0.1) $(FUZZ_SRC) \
 		$(FW_LIBS) -o $@

@@ -5,7 +5,7 @@
 # its target in TEST_STEPS, or from another mk/*.mk in EXTRA_TEST_STEPS.
 
 
-TEST_STEPS = unit check-freestanding check-cross check-cortexm $(EXTRA_TEST_STEPS)
+TEST_STEPS = unit check-layers check-freestanding check-cross check-cortexm $(EXTRA_TEST_STEPS)
 
 test:
 	$(Q)sh mk/run-steps.sh '$(MAKE)' $(BUILD)/test-logs $(TEST_STEPS)

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* scene.c - validating and evaluating a scene (see scene.h). */
-#include "scene.h"
 #include "decomp.h"
+#include "scene.h"
 #include "trig.h"
 
 #define ONE MOT_Q32_ONE

@@ -28,9 +28,9 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "canopen/co_bus.h"
-#include "clock.h"
 #include "co_slave.h"
+#include "hal/canopen/co_bus.h"
+#include "hal/clock.h"
 
 struct co_simbus_rec {
 	int64_t t;          /* clock time */

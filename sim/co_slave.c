@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "canopen/co_emcy.h"
+#include "hal/canopen/co_emcy.h"
 
 #define NS_PER_S 1000000000LL
 

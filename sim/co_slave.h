@@ -36,9 +36,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "canopen/co_402.h"
-#include "canopen/co_frame.h"
-#include "canopen/co_master.h" /* co_send_fn */
+#include "hal/canopen/co_402.h"
+#include "hal/canopen/co_frame.h"
 #include "sim_drive.h"
 
 struct co_slave_cfg {

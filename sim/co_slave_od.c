@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "canopen/co_sdo.h"
+#include "hal/canopen/co_sdo.h"
 
 enum {
 	R = 1,      /* readable */

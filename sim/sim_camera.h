@@ -21,6 +21,11 @@
 
 #include "sim_gpio.h"
 
+/* A simulated camera's exposure and readout where the scene gives none, as
+ * fractions of a frame. */
+#define SIM_CAMERA_DEFAULT_EXPOSURE_FRAC 0.4
+#define SIM_CAMERA_DEFAULT_READOUT_FRAC 0.1
+
 struct sim_camera_params {
 	int64_t exposure_ns;
 	int64_t readout_ns;

@@ -31,7 +31,16 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "axis.h"
+#include "hal/axis.h"
+
+/* A simulated twin's plant where the scene gives none: a stiff, critically
+ * damped position loop with most of the velocity fed forward, and drive
+ * limits half as much again as the output's own (so that the loop's limits,
+ * not the drive's, are what a run meets). */
+#define SIM_DRIVE_DEFAULT_BANDWIDTH_HZ 40.0
+#define SIM_DRIVE_DEFAULT_DAMPING 1.0
+#define SIM_DRIVE_DEFAULT_FEEDFORWARD 0.9
+#define SIM_DRIVE_DEFAULT_LIMIT_FACTOR 1.5
 
 struct sim_drive_channel {
 	double bandwidth_hz; /* > 0 */

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ring.h"
+#include "hal/ring.h"
 
 #define INJECT_CAP 64
 

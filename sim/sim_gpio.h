@@ -19,9 +19,9 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "clock.h"
-#include "din.h"
-#include "dout.h"
+#include "hal/clock.h"
+#include "hal/din.h"
+#include "hal/dout.h"
 
 /* An edge on an output line. */
 struct sim_gpio_edge {

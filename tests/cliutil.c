@@ -9,7 +9,7 @@
 #include <setjmp.h>
 #include <cmocka.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 
 const char *const cli_examples[NEXAMPLES] = {
 	"examples/robot_arm.yaml",  "examples/propeller.yaml", "examples/camera_move.yaml",

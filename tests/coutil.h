@@ -10,10 +10,10 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "axis.h"
-#include "canopen/co_axis.h"
-#include "clock.h"
-#include "co_simbus.h"
+#include "hal/axis.h"
+#include "hal/canopen/co_axis.h"
+#include "hal/clock.h"
+#include "sim/co_simbus.h"
 
 #define CU_MAX 8
 

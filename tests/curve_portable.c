@@ -16,10 +16,10 @@
 #define mot_curve_eval cvp_curve_eval_
 #define mot_curve_integral cvp_curve_integral_
 #define mot_curve_newton_iterations cvp_curve_newton_iterations_
-#include "../motion/fix.c"
-#include "../motion/ease.c"
-#include "../motion/curve.c"
 #include "curve_portable.h"
+#include "motion/curve.c"
+#include "motion/ease.c"
+#include "motion/fix.c"
 
 #define CVP_MAXSEG 64
 

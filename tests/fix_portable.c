@@ -8,8 +8,8 @@
 #define mot_div fixp_div_
 #define mot_recip_init fixp_recip_init_
 #define mot_sum_prod_wide fixp_sum_prod_wide_
-#include "../motion/fix.c"
 #include "fix_portable.h"
+#include "motion/fix.c"
 
 void fixp_mul(int64_t a, int64_t b, uint64_t *hi, uint64_t *lo)
 {

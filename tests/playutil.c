@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* playutil.c - shared pieces of the play tests (see playutil.h). */
+#include "cli/cli.h"
+#include "cli/exitcode.h"
 #include "playutil.h"
-#include "sim_camera.h"
-#include "sim_drive.h"
+#include "sim/sim_camera.h"
+#include "sim/sim_drive.h"
 
 #include <setjmp.h>
 #include <stdarg.h>
@@ -304,13 +306,20 @@ int pu_run(struct play *p, struct pu_rig *r, struct pu_source *ps, struct play_o
 	return pu_finish(p, true);
 }
 
+int pu_play(struct play *p)
+{
+	int rc = play_run(p);
+
+	return rc ? STRAND_EXIT_INTERNAL : cli_play_exit(&p->L.rep);
+}
+
 int pu_finish(struct play *p, bool check_missed)
 {
 	const double hz = p->L.tm->tick_hz;
 	uint64_t before = pu_loop_allocations();
 	char err[512];
 	uint32_t i;
-	int code = play_run(p);
+	int code = pu_play(p);
 
 	if (code) {
 		play_describe(p, err, sizeof(err));

@@ -11,9 +11,9 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "play.h"
-#include "rig_desc.h"
-#include "source.h"
+#include "play/play.h"
+#include "rig/rig_desc.h"
+#include "scene/source.h"
 
 #define PU_MAX_CH 8
 
@@ -88,6 +88,8 @@ void pu_arm_source(struct pu_source *ps, uint32_t num, uint32_t den, uint32_t hz
 int pu_run(struct play *p, struct pu_rig *r, struct pu_source *ps, struct play_opts *o);
 /* The same for a run already prepared (play_prepare); the camera check only
  * when check_missed. */
+/* play_run, its outcome as the strand program's exit code. */
+int pu_play(struct play *p);
 int pu_finish(struct play *p, bool check_missed);
 
 /* A journal file as rows of CSV fields (journal_csv's output): rows[0] is

@@ -14,7 +14,7 @@
 #ifndef REF_CURVE_H
 #define REF_CURVE_H
 
-#include "curve.h"
+#include "motion/curve.h"
 
 typedef long double ref_t;
 

@@ -9,9 +9,9 @@
 #ifndef REF_MAT_H
 #define REF_MAT_H
 
-#include "decomp.h"
-#include "mat.h"
-#include "quat.h"
+#include "motion/decomp.h"
+#include "motion/mat.h"
+#include "motion/quat.h"
 #include "testutil.h"
 
 struct ref_mat {

@@ -11,7 +11,7 @@
 #define REF_SCENE_H
 
 #include "ref_mat.h"
-#include "scene_desc.h"
+#include "scene/scene_desc.h"
 
 struct ref_scene; /* opaque: the quantised inputs */
 

@@ -7,7 +7,7 @@
 #ifndef SYNTH_H
 #define SYNTH_H
 
-#include "scene_desc.h"
+#include "scene/scene_desc.h"
 
 struct synth {
 	struct scene_desc d;

@@ -14,7 +14,7 @@
 #include <setjmp.h>
 #include <cmocka.h>
 
-#include "fix.h"
+#include "motion/fix.h"
 
 #define TU_Q32 4294967296.0
 

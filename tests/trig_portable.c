@@ -11,7 +11,7 @@
 #define mot_rsqrt trigp_rsqrt
 #define mot_isqrt_acc trigp_isqrt_acc_
 #define mot_norm3 trigp_norm3
-#include "../motion/trig.c"
+#include "motion/trig.c"
 #include "trig_portable.h"
 
 uint64_t trigp_isqrt(uint64_t hi, uint64_t lo, uint32_t *sat)

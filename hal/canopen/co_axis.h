@@ -25,10 +25,10 @@
 
 #include <stdint.h>
 
-#include "axis.h"
-#include "clock.h"
 #include "co_bus.h"
 #include "co_master.h"
+#include "hal/axis.h"
+#include "hal/clock.h"
 
 /* Frames taken per recv() call, and the most input() takes in one tick: a
  * tick brings a TPDO per drive and now and then a heartbeat, so this leaves

@@ -18,7 +18,6 @@
 #include <stdint.h>
 
 #include "co_frame.h"
-#include "co_master.h" /* enum co_bus_state */
 
 struct co_bus;
 

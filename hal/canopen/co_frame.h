@@ -127,4 +127,17 @@ static inline void co_frame_init(struct co_frame *f, uint16_t id, uint8_t len)
 	f->len = len;
 }
 
+/* The controller's state, as the transport reports it. */
+enum co_bus_state {
+	CO_BUS_ACTIVE,
+	CO_BUS_WARNING, /* an error counter reached 96: noted, not a fault */
+	CO_BUS_PASSIVE,
+	CO_BUS_OFF,
+};
+
+/* Frames out, in order, without blocking: 0 when all n were taken, else a
+ * negative errno (a master latches a fault and sends nothing after; a slave
+ * loses them, as a real drive would). */
+typedef int (*co_send_fn)(void *ctx, const struct co_frame *f, uint32_t n);
+
 #endif /* CO_FRAME_H */

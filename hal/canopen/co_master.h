@@ -58,10 +58,6 @@ struct co_drive_cfg {
 				  * counts/s^2); 0 leaves the drive's own */
 };
 
-/* Frames out, in order, without blocking: 0 when all n were taken, else a
- * negative errno (the master latches a fault and sends nothing after). */
-typedef int (*co_send_fn)(void *ctx, const struct co_frame *f, uint32_t n);
-
 struct co_master_cfg {
 	uint32_t tick_hz;           /* the SYNC rate, also 0x60C2 */
 	uint16_t sync_id;           /* COB-ID of the SYNC (0x80) */
@@ -123,14 +119,6 @@ struct co_fault {
 	uint16_t index;    /* SDO: the object */
 	uint16_t reg;      /* EMCY: error register */
 	uint32_t detail;   /* EMCY code, SDO abort code, statusword, ms */
-};
-
-/* The controller's state, as the transport reports it. */
-enum co_bus_state {
-	CO_BUS_ACTIVE,
-	CO_BUS_WARNING, /* an error counter reached 96: noted, not a fault */
-	CO_BUS_PASSIVE,
-	CO_BUS_OFF,
 };
 
 /* Targets kept per node: a TPDO later than this many SYNCs is not matched

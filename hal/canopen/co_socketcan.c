@@ -16,6 +16,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "hal/clock.h"
+
 struct co_socketcan {
 	struct co_bus bus; /* first: the transport */
 	int fd;
@@ -113,11 +115,8 @@ static void sc_wait(struct co_bus *b, int64_t until)
 {
 	struct co_socketcan *s = sc_of(b);
 	struct pollfd p = { .fd = s->fd, .events = POLLIN };
-	struct timespec ts;
-	int64_t now, ms;
+	int64_t now = hal_mono_ns(), ms;
 
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	now = (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 	if (until <= now)
 		return;
 	ms = (until - now + 999999) / 1000000;

@@ -36,15 +36,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fix.h"
-#include "scene_desc.h"
-#include "synth.h"
-#include "trig.h"
-#include "ease.h"
-#include "mat.h"
-#include "quat.h"
-#include "decomp.h"
-#include "curve.h"
+#include "motion/curve.h"
+#include "motion/decomp.h"
+#include "motion/ease.h"
+#include "motion/fix.h"
+#include "motion/mat.h"
+#include "motion/quat.h"
+#include "motion/trig.h"
+#include "scene/scene_desc.h"
+#include "tests/synth.h"
 
 #define ARRAY_SIZE(a) (sizeof(a) / sizeof((a)[0]))
 

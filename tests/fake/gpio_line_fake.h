@@ -6,7 +6,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "gpio_line.h"
+#include "hal/gpio/gpio_line.h"
 
 #define FAKE_LINES 16
 

@@ -1,0 +1,481 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * cmd_play.c - `strand play SCENE`: the scene on its rig (or on simulated
+ * twins with --sim) in real time, one trigger per frame; the options, the
+ * signals, the refusal of a scene `strand check` rejects, the messages at
+ * the edge and the exit codes (play.h does the run).
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <limits.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "check/limit_check.h"
+#include "cli.h"
+#include "exitcode.h"
+#include "play/frames.h"
+#include "play/play.h"
+#include "rig/rig_auto.h"
+#include "scene/source_scene.h"
+
+enum {
+	OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_FRAMES, OPT_LOOP, OPT_PING_PONG,
+	OPT_PASSES, OPT_DURATION, OPT_SETTLE, OPT_EXPOSURE, OPT_TIMEOUT, OPT_JOURNAL,
+	OPT_NO_JOURNAL, OPT_TELEMETRY, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK,
+	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET,
+};
+
+static const struct option play_options[] = {
+	{ "sim", no_argument, NULL, OPT_SIM },
+	{ "mode", required_argument, NULL, OPT_MODE },
+	{ "from", required_argument, NULL, OPT_FROM },
+	{ "to", required_argument, NULL, OPT_TO },
+	{ "frames", required_argument, NULL, OPT_FRAMES },
+	{ "loop", no_argument, NULL, OPT_LOOP },
+	{ "ping-pong", no_argument, NULL, OPT_PING_PONG },
+	{ "passes", required_argument, NULL, OPT_PASSES },
+	{ "duration", required_argument, NULL, OPT_DURATION },
+	{ "settle", required_argument, NULL, OPT_SETTLE },
+	{ "exposure", required_argument, NULL, OPT_EXPOSURE },
+	{ "timeout", required_argument, NULL, OPT_TIMEOUT },
+	{ "journal", required_argument, NULL, OPT_JOURNAL },
+	{ "no-journal", no_argument, NULL, OPT_NO_JOURNAL },
+	{ "telemetry", required_argument, NULL, OPT_TELEMETRY },
+	{ "clock", required_argument, NULL, OPT_CLOCK },
+	{ "priority", required_argument, NULL, OPT_PRIORITY },
+	{ "cpu", required_argument, NULL, OPT_CPU },
+	{ "no-mlock", no_argument, NULL, OPT_NO_MLOCK },
+	{ "force", no_argument, NULL, OPT_FORCE },
+	{ "camera-log", required_argument, NULL, OPT_CAMERA_LOG },
+	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
+	{ "quiet", no_argument, NULL, OPT_QUIET },
+	{ "help", no_argument, NULL, 'h' },
+	{ NULL, 0, NULL, 0 },
+};
+
+struct cli {
+	const struct cli_cmd *cmd;
+	FILE *err;
+	struct play_opts o;
+	const char *frames, *lat_hist;
+	bool have_from, have_to, no_journal, quiet, step;
+	long long from, to;
+	double duration_s, settle_ms, exposure_ms, timeout_s;
+	char journal[PATH_MAX];
+};
+
+static bool parse_seconds(const char *s, double *out)
+{
+	char *end;
+	double v;
+
+	errno = 0;
+	v = strtod(s, &end);
+	if (errno || end == s || *end || !isfinite(v) || v < 0)
+		return false;
+	*out = v;
+	return true;
+}
+
+static int on_opt(void *ctx, int opt, const char *arg)
+{
+	struct cli *c = ctx;
+	const char *name = NULL;
+	long long v;
+
+	switch (opt) {
+	case OPT_SIM:
+		c->o.rig.sim = true;
+		return -1;
+	case OPT_MODE:
+		if (strcmp(arg, "continuous") && strcmp(arg, "step"))
+			return cli_usage(c->cmd, c->err, "--mode %s: continuous or step", arg);
+		c->step = !strcmp(arg, "step");
+		return -1;
+	case OPT_FROM:
+	case OPT_TO:
+		if (!cli_parse_long(arg, 0, INT32_MAX, &v))
+			return cli_usage(c->cmd, c->err, "%s %s: a frame number",
+					 opt == OPT_FROM ? "--from" : "--to", arg);
+		if (opt == OPT_FROM) {
+			c->from = v;
+			c->have_from = true;
+		} else {
+			c->to = v;
+			c->have_to = true;
+		}
+		return -1;
+	case OPT_FRAMES:
+		c->frames = arg;
+		return -1;
+	case OPT_LOOP:
+		c->o.loop.loop = true;
+		return -1;
+	case OPT_PING_PONG:
+		c->o.loop.ping_pong = true;
+		return -1;
+	case OPT_PASSES:
+		if (!cli_parse_long(arg, 1, INT32_MAX, &v))
+			return cli_usage(c->cmd, c->err, "--passes %s: a count of 1 or more", arg);
+		c->o.loop.passes = v;
+		return -1;
+	case OPT_DURATION:
+		if (!parse_seconds(arg, &c->duration_s) || c->duration_s == 0)
+			name = "--duration";
+		break;
+	case OPT_SETTLE:
+		if (!parse_seconds(arg, &c->settle_ms))
+			name = "--settle";
+		break;
+	case OPT_EXPOSURE:
+		if (!parse_seconds(arg, &c->exposure_ms))
+			name = "--exposure";
+		break;
+	case OPT_TIMEOUT:
+		if (!parse_seconds(arg, &c->timeout_s) || c->timeout_s == 0)
+			name = "--timeout";
+		break;
+	case OPT_JOURNAL:
+		snprintf(c->journal, sizeof(c->journal), "%s", arg);
+		return -1;
+	case OPT_NO_JOURNAL:
+		c->no_journal = true;
+		return -1;
+	case OPT_TELEMETRY:
+		c->o.telemetry_path = arg;
+		return -1;
+	case OPT_CLOCK:
+		if (strcmp(arg, "real") && strcmp(arg, "virtual"))
+			return cli_usage(c->cmd, c->err, "--clock %s: real or virtual", arg);
+		c->o.virtual_clock = !strcmp(arg, "virtual");
+		return -1;
+	case OPT_PRIORITY:
+		if (!cli_parse_long(arg, 0, 99, &v))
+			return cli_usage(c->cmd, c->err, "--priority %s: 0 to 99", arg);
+		c->o.rt.priority = (int)v;
+		return -1;
+	case OPT_CPU:
+		if (!cli_parse_long(arg, 0, 1023, &v))
+			return cli_usage(c->cmd, c->err, "--cpu %s: a CPU number", arg);
+		c->o.rt.cpu = (int)v;
+		return -1;
+	case OPT_NO_MLOCK:
+		c->o.rt.lock_memory = false;
+		return -1;
+	case OPT_FORCE:
+		c->o.loop.force = true;
+		return -1;
+	case OPT_CAMERA_LOG:
+		c->o.rig.camera_log = arg;
+		return -1;
+	case OPT_LAT_HIST:
+		c->lat_hist = arg;
+		return -1;
+	case OPT_QUIET:
+		c->quiet = true;
+		return -1;
+	default:
+		return cli_usage(c->cmd, c->err, "unknown option");
+	}
+	if (name)
+		return cli_usage(c->cmd, c->err, "%s %s: a non-negative number", name, arg);
+	return -1;
+}
+
+static struct play *g_play;
+static volatile sig_atomic_t g_sigints;
+
+static void on_signal(int sig)
+{
+	if (sig == SIGINT)
+		g_sigints++;
+	if (g_play)
+		play_signal(g_play, sig, sig == SIGINT ? g_sigints : 1);
+}
+
+static void default_journal(char *buf, size_t size, const char *scene)
+{
+	time_t now = time(NULL);
+	struct tm tm;
+	char when[32];
+
+	localtime_r(&now, &tm);
+	strftime(when, sizeof(when), "%Y%m%d-%H%M%S", &tm);
+	snprintf(buf, size, "%s-%s.journal", scene, when);
+}
+
+/* The histogram as cyclictest -h writes its own: "us count" lines. */
+static int write_hist(const char *path, const struct lat_stats *s)
+{
+	FILE *f = fopen(path, "w");
+	uint32_t i;
+
+	if (!f)
+		return -errno;
+	fprintf(f, "# strand wake-up latency, 1 us buckets\n");
+	for (i = 0; i < LAT_HIST_US; i++)
+		if (s->hist[i])
+			fprintf(f, "%06u %06u\n", i, s->hist[i]);
+	fprintf(f, "# Total: %lld\n# Overflow: %lld\n# Max Latencies: %.3f\n", (long long)s->n,
+		(long long)s->overflow, s->n ? s->max_ns / 1000.0 : 0.0);
+	return fclose(f) ? -errno : 0;
+}
+
+struct first_violation {
+	const struct scene_desc *d;
+	struct lim_violation v;
+	bool any;
+};
+
+static void keep_first(void *ctx, const struct lim_violation *v)
+{
+	struct first_violation *f = ctx;
+
+	if (!f->any)
+		f->v = *v;
+	f->any = true;
+}
+
+/* `strand check` over what will play: 0 clean, else the exit code. */
+static int check_first(struct cli *c, const char *path, const struct scene_file *sf,
+		       const struct scene_built *b, int64_t from, int64_t to)
+{
+	struct first_violation fv = { .d = &sf->desc };
+	struct lim_result res;
+	const struct sd_node *n;
+
+	if (lim_check(&sf->desc, &b->sc, from, to, keep_first, &fv, &res)) {
+		fprintf(c->err, "strand play: out of memory\n");
+		return STRAND_EXIT_INTERNAL;
+	}
+	if (!res.violations || c->o.loop.force)
+		return 0;
+	n = &sf->desc.nodes[fv.v.node];
+	fprintf(c->err,
+		"%s: strand check finds %u limit violation%s, the first: %s.%s %s %.7g beyond "
+		"%.7g at frames %.10g to %.10g.\n"
+		"strand play refuses it ('strand check %s' lists them all); --force plays it,\n"
+		"clamping every setpoint to its limits.\n",
+		path, res.violations, res.violations == 1 ? "" : "s", n->name,
+		n->kind == MOT_NODE_REVOLUTE ? "angle" : "position", lim_kind_name(fv.v.kind),
+		fv.v.worst, fv.v.limit, fv.v.frame_first, fv.v.frame_last, path);
+	return STRAND_EXIT_VIOLATION;
+}
+
+int cli_play_exit(const struct loop_report *r)
+{
+	switch (r->end) {
+	case LOOP_END_DONE:
+		return STRAND_EXIT_OK;
+	case LOOP_END_STOPPED:
+		return STRAND_EXIT_STOPPED;
+	case LOOP_END_ESTOP:
+		return STRAND_EXIT_ESTOP;
+	case LOOP_END_FAULT:
+		return r->cause == LOOP_CAUSE_JOURNAL ? STRAND_EXIT_IO : STRAND_EXIT_FAULT;
+	default:
+		return STRAND_EXIT_INTERNAL;
+	}
+}
+
+/* The exit code of a run that could not start: by the stage it failed at. */
+static int prepare_exit(const struct play *p, int rc)
+{
+	if (rc == -ENOMEM)
+		return STRAND_EXIT_INTERNAL;
+	switch (p->failed_at) {
+	case PLAY_STAGE_START:
+		return STRAND_EXIT_FAULT;
+	case PLAY_STAGE_JOURNAL:
+		return STRAND_EXIT_IO;
+	case PLAY_STAGE_OPTIONS:
+		return STRAND_EXIT_USAGE;
+	default:
+		return STRAND_EXIT_SCENE;
+	}
+}
+
+static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
+{
+	struct cli c;
+	struct scene_file sf;
+	struct scene_built b;
+	struct source_scene src;
+	struct rig_auto ra;
+	struct frame_list fl = { 0 };
+	const struct rig_desc *rig;
+	struct sigaction sa;
+	struct play p;
+	const char *path;
+	char msg[512];
+	uint32_t hz;
+	int rc;
+
+	memset(&c, 0, sizeof(c));
+	c.cmd = cmd;
+	c.err = err;
+	c.o.rt.priority = 80;
+	c.o.rt.cpu = -1;
+	c.o.rt.lock_memory = true;
+	c.o.rt.pm_qos = true;
+	c.o.rt.name = "strand-rt";
+	c.settle_ms = 200;
+	c.exposure_ms = 100;
+	c.timeout_s = 10;
+	rc = cli_scene_args(cmd, argc, argv, out, err, play_options, on_opt, &c, &path, &sf, &b);
+	if (rc >= 0)
+		return rc;
+	memset(&src, 0, sizeof(src));
+	memset(&ra, 0, sizeof(ra));
+	memset(&p, 0, sizeof(p));
+	rc = STRAND_EXIT_USAGE;
+	if (c.frames && !c.step) {
+		cli_usage(cmd, err, "--frames is for --mode step");
+		goto out;
+	}
+	if (c.step && (c.o.loop.loop || c.o.loop.ping_pong)) {
+		cli_usage(cmd, err, "--loop and --ping-pong are for continuous mode");
+		goto out;
+	}
+	if (c.o.loop.loop && c.o.loop.ping_pong) {
+		cli_usage(cmd, err, "--loop or --ping-pong, not both");
+		goto out;
+	}
+	if (c.o.loop.passes && !c.o.loop.loop && !c.o.loop.ping_pong) {
+		cli_usage(cmd, err, "--passes goes with --loop or --ping-pong");
+		goto out;
+	}
+	rc = STRAND_EXIT_INTERNAL;
+	if (source_scene_init(&src, &sf.desc, &b.sc)) {
+		fprintf(err, "strand play: out of memory\n");
+		goto out;
+	}
+	c.o.loop.from = c.have_from ? c.from : src.s.frame_first;
+	c.o.loop.to = c.have_to ? c.to : src.s.frame_last;
+	rc = check_first(&c, path, &sf, &b, c.step ? src.s.frame_first : c.o.loop.from,
+			 c.step ? src.s.frame_last : c.o.loop.to);
+	if (rc)
+		goto out;
+	rig = &sf.rig;
+	if (!rig->noutputs && !rig->ntriggers) {
+		rc = STRAND_EXIT_SCENE;
+		if (!c.o.rig.sim) {
+			fprintf(err, "%s: the scene describes no rig (devices:, outputs:, triggers:); "
+				"play it on a simulated one with --sim\n", path);
+			goto out;
+		}
+		if (rig_auto_build(&ra, &sf.desc, &src.s)) {
+			fprintf(err, "strand play: out of memory\n");
+			goto out;
+		}
+		rig = &ra.d;
+	}
+	hz = src.s.timing.tick_hz;
+	c.o.loop.settle_ticks = llround(c.settle_ms * hz / 1000);
+	c.o.loop.exposure_ticks = llround(c.exposure_ms * hz / 1000);
+	c.o.loop.in_position_timeout_ticks = llround(c.timeout_s * hz);
+	c.o.loop.ready_timeout_ticks = llround(c.timeout_s * hz);
+	c.o.loop.max_ticks = llround(c.duration_s * hz);
+	c.o.loop.status_every = hz / 10 ? hz / 10 : 1;
+	if (c.step) {
+		c.o.loop.mode = LOOP_MODE_STEP;
+		rc = c.frames ? frames_parse(&fl, c.frames, msg, sizeof(msg)) :
+				frames_range(&fl, c.o.loop.from, c.o.loop.to);
+		if (rc) {
+			fprintf(err, "strand play: %s\n", c.frames ? msg : strerror(-rc));
+			rc = STRAND_EXIT_USAGE;
+			goto out;
+		}
+		c.o.loop.frames = &fl;
+	}
+	if (!c.no_journal) {
+		if (!c.journal[0])
+			default_journal(c.journal, sizeof(c.journal), src.s.name);
+		c.o.journal_path = c.journal;
+	}
+	c.o.status_tty = !c.quiet && isatty(fileno(err)) ? err : NULL;
+	rc = play_prepare(&p, rig, &src.s, &c.o, msg, sizeof(msg));
+	if (rc) {
+		fprintf(err, "%s: %s\n", path, msg);
+		rc = prepare_exit(&p, rc);
+		goto out;
+	}
+	memset(&sa, 0, sizeof(sa));
+	sa.sa_handler = on_signal;
+	sigemptyset(&sa.sa_mask);
+	g_play = &p;
+	g_sigints = 0;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+	rc = play_run(&p);
+	rc = rc ? STRAND_EXIT_INTERNAL : cli_play_exit(&p.L.rep);
+	signal(SIGINT, SIG_DFL);
+	signal(SIGTERM, SIG_DFL);
+	g_play = NULL;
+	if (rc != STRAND_EXIT_OK) {
+		play_describe(&p, msg, sizeof(msg));
+		fprintf(err, "strand play: %s\n", msg);
+	}
+	if (c.lat_hist && write_hist(c.lat_hist, &p.L.lat))
+		fprintf(err, "strand play: %s: %s\n", c.lat_hist, strerror(errno));
+	/* the reason is on err already when the run did not finish */
+	if (!c.quiet)
+		play_summary(&p, out, rc == STRAND_EXIT_OK);
+out:
+	play_free(&p);
+	frames_free(&fl);
+	rig_auto_free(&ra);
+	source_scene_free(&src);
+	scene_built_free(&b);
+	scene_file_free(&sf);
+	return rc;
+}
+
+const struct cli_cmd cmd_play = {
+	.name = "play",
+	.summary = "play a scene on its rig in real time, one camera trigger per frame",
+	.help = "usage: strand play SCENE.yaml [options]\n"
+		"\n"
+		"Plays the scene on its rig (devices:, outputs:, triggers:, inputs:) in real time\n"
+		"and fires one camera trigger per frame, at the tick FORMULAS section 5 gives.\n"
+		"A scene that strand check rejects is refused unless --force.\n"
+		"\n"
+		"  --sim                 every device by its simulated twin (a scene without a rig\n"
+		"                        gets a simulated drive per joint and a camera)\n"
+		"  --mode MODE           continuous (default) or step (shoot-move-shoot)\n"
+		"  --from F, --to F      the frames to fire (default: the scene's span)\n"
+		"  --frames SPEC         step mode: 0..240, 1,5,9, 12x5 (a reshoot), combined\n"
+		"  --loop                play the range again and again\n"
+		"  --ping-pong           forwards, then backwards, ... (F..T, T-1..F, F+1..T)\n"
+		"  --passes N            with --loop or --ping-pong: stop after N passes\n"
+		"  --duration S          a controlled stop after S seconds\n"
+		"  --settle MS           step mode: in position this long before a shot (200)\n"
+		"  --exposure MS         step mode: hold still this long after it (100), unless a\n"
+		"                        camera_ready input paces the shots\n"
+		"  --timeout S           step mode: for in position and camera ready (10)\n"
+		"  --journal FILE        the frame journal (default SCENE-YYYYmmdd-HHMMSS.journal)\n"
+		"  --no-journal          no journal\n"
+		"  --telemetry FILE      JSON lines of the loop's state, ten a second\n"
+		"  --clock real|virtual  the wall clock (default), or virtual time as fast as the\n"
+		"                        machine computes (bit-reproducible)\n"
+		"  --priority N          SCHED_FIFO priority of the loop thread (80; 0: none)\n"
+		"  --cpu N               pin the loop thread to CPU N\n"
+		"  --no-mlock            do not lock memory\n"
+		"  --force               play a scene strand check rejects, clamping setpoints\n"
+		"  --camera-log FILE     the first simulated camera logs its trigger edges there\n"
+		"  --latency-hist FILE   the wake-up latency histogram (us count lines)\n"
+		"  --quiet               no status line, no summary\n"
+		"\n"
+		"SIGINT or SIGTERM: every axis comes to rest within its limits (exit 5); a second\n"
+		"SIGINT disables the drives at once.\n"
+		"\n"
+		"exit codes: 0 done, 1 strand check rejects the scene, 2 invalid scene or rig,\n"
+		"3 usage, 4 journal or file, 5 stopped by SIGINT/SIGTERM or a stop input, 6 e-stop,\n"
+		"7 device fault, following error or limit, 8 internal.\n",
+	.run = run,
+};

@@ -1,0 +1,425 @@
+/* SPDX-License-Identifier: MIT */
+/* play.c - one run of strand play (see play.h). */
+#define _GNU_SOURCE
+#include "play.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hal/modbus/modbus_dev.h"
+#include "scene/timecode.h"
+
+/* Records the journal keeps mapped ahead of the loop: ten seconds of
+ * frames, at least 4096. A run without an end gets room for this many. */
+#define JOURNAL_AHEAD_S 10
+#define JOURNAL_UNBOUNDED (1LL << 24)
+
+_Thread_local bool play_in_loop;
+
+static uint32_t journal_unit(enum src_unit u)
+{
+	return u == SRC_UNIT_TURNS ? JOURNAL_UNIT_TURNS : JOURNAL_UNIT_PLAIN;
+}
+
+static int open_journal(struct play *p, struct play_source *src, char *err, size_t errsize)
+{
+	struct journal_info ji;
+	const char **names;
+	uint32_t *units, i, n = p->rig.nout;
+	double fps = (double)src->timing.num / src->timing.den;
+	int rc;
+
+	names = calloc(n ? n : 1, sizeof(*names));
+	units = calloc(n ? n : 1, sizeof(*units));
+	if (!names || !units) {
+		free(names);
+		free(units);
+		snprintf(err, errsize, "out of memory");
+		return -ENOMEM;
+	}
+	for (i = 0; i < n; i++) {
+		names[i] = p->rig.out[i].channel;
+		units[i] = journal_unit(p->rig.out[i].unit);
+	}
+	memset(&ji, 0, sizeof(ji));
+	ji.scene = src->name;
+	ji.rate_num = src->timing.num;
+	ji.rate_den = src->timing.den;
+	ji.tick_hz = src->timing.tick_hz;
+	ji.mode = p->o.loop.mode == LOOP_MODE_STEP;
+	ji.start_wall_ns = hal_clock_wall(&p->clk);
+	ji.nout = n;
+	ji.out_name = names;
+	ji.out_unit = units;
+	ji.capacity = p->L.total_frames >= 0 ? p->L.total_frames : JOURNAL_UNBOUNDED;
+	if (ji.capacity < 1)
+		ji.capacity = 1;
+	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (p->rig.ntrig ? p->rig.ntrig : 1));
+	rc = journal_open(&p->jr, p->o.journal_path, &ji);
+	free(names);
+	free(units);
+	if (rc) {
+		snprintf(err, errsize, "journal %s: %s", p->o.journal_path, strerror(-rc));
+		return rc;
+	}
+	p->has_journal = true;
+	return 0;
+}
+
+int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *src,
+		 const struct play_opts *o, char *err, size_t errsize)
+{
+	int rc;
+
+	memset(p, 0, sizeof(*p));
+	p->o = *o;
+	atomic_init(&p->done, false);
+	hal_clock_init(&p->clk, o->virtual_clock);
+	p->o.loop.wait_for_journal = o->virtual_clock;
+	if (o->virtual_clock) {
+		/* no deadline to meet: no need to starve others */
+		p->o.rt.priority = 0;
+		p->o.rt.pm_qos = false;
+	}
+	p->failed_at = PLAY_STAGE_RIG;
+	/* GPIO edges (an e-stop) must not wait behind ordinary work either */
+	p->o.rig.gpio_priority = p->o.rt.priority;
+	rc = rig_build(&p->rig, rd, src, &p->clk, &p->o.rig, err, errsize);
+	if (rc)
+		return rc;
+	p->rig_built = true;
+	p->status_buf = calloc(PLAY_STATUS_RING, sizeof(*p->status_buf));
+	if (!p->status_buf) {
+		snprintf(err, errsize, "out of memory");
+		return -ENOMEM;
+	}
+	hal_ring_init(&p->status, p->status_buf, PLAY_STATUS_RING, sizeof(*p->status_buf));
+	p->failed_at = PLAY_STAGE_START;
+	rc = rig_start(&p->rig, err, errsize);
+	if (rc)
+		return rc;
+	p->rig_started = true;
+	p->failed_at = PLAY_STAGE_LOOP;
+	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, NULL, &p->status, err, errsize);
+	if (rc == -EINVAL)
+		p->failed_at = PLAY_STAGE_OPTIONS; /* --from after --to, and the like */
+	if (rc)
+		return rc;
+	p->loop_ready = true;
+	p->failed_at = PLAY_STAGE_JOURNAL;
+	if (o->journal_path) {
+		rc = open_journal(p, src, err, errsize);
+		if (rc)
+			return rc;
+		p->L.jr = &p->jr;
+	}
+	if (o->telemetry_path) {
+		p->telemetry = fopen(o->telemetry_path, "w");
+		if (!p->telemetry) {
+			rc = -errno;
+			snprintf(err, errsize, "telemetry %s: %s", o->telemetry_path, strerror(errno));
+			return rc;
+		}
+	}
+	p->failed_at = PLAY_STAGE_NONE;
+	return 0;
+}
+
+static void *rt_main(void *arg)
+{
+	struct play *p = arg;
+	sigset_t all;
+	int64_t t0 = 0;
+
+	/* signals are the service thread's business */
+	sigfillset(&all);
+	pthread_sigmask(SIG_BLOCK, &all, NULL);
+	rt_thread_setup(&p->o.rt, &p->rt);
+	if (!p->clk.is_virtual) {
+		/* tick 0 a millisecond from now, on a whole millisecond */
+		t0 = (hal_clock_now(&p->clk) / 1000000 + 2) * 1000000;
+	} else {
+		/* where starting the devices left virtual time (a CANopen
+		 * start-up takes some), on a whole millisecond */
+		t0 = (hal_clock_now(&p->clk) + 999999) / 1000000 * 1000000;
+	}
+	play_in_loop = true;
+	loop_run(&p->L, t0);
+	play_in_loop = false;
+	atomic_store(&p->done, true);
+	return NULL;
+}
+
+static const char *out_name(const struct play *p, int32_t i)
+{
+	return i >= 0 && (uint32_t)i < p->rig.nout ? p->rig.out[i].channel : "";
+}
+
+static double out_file_units(const struct play *p, int32_t i, double v)
+{
+	return i >= 0 && (uint32_t)i < p->rig.nout ? rig_file_units(p->rig.out[i].unit, v) : v;
+}
+
+static const char *out_unit(const struct play *p, int32_t i)
+{
+	return i >= 0 && (uint32_t)i < p->rig.nout ? rig_unit_name(p->rig.out[i].unit) : "";
+}
+
+static void telemetry_line(struct play *p, const struct loop_status *s)
+{
+	fprintf(p->telemetry,
+		"{\"tick\":%lld,\"t\":%.6f,\"state\":\"%s\",\"frame\":%lld,\"fired\":%lld,"
+		"\"lat_max_us\":%.3f,\"overruns\":%lld,\"ferr\":%.6g,\"ferr_channel\":\"%s\"}\n",
+		(long long)s->tick, (double)s->tick / p->L.tm->tick_hz,
+		loop_state_name((enum loop_state)s->state), (long long)s->frame,
+		(long long)s->fired, s->lat_max_ns / 1000.0, (long long)s->overruns,
+		out_file_units(p, s->ferr_out, s->ferr), out_name(p, s->ferr_out));
+}
+
+static void status_line(struct play *p, const struct loop_status *s)
+{
+	double hz = p->L.tm->tick_hz, fps = (double)p->L.tm->num / p->L.tm->den;
+	double el = s->tick / hz;
+	char tc[24] = "--:--:--:--", rem[32] = "--";
+	struct timecode tcr;
+
+	timecode_init(&tcr, p->L.tm->num, p->L.tm->den);
+	if (s->frame >= 0)
+		timecode_format(&tcr, s->frame, tc, sizeof(tc));
+	if (s->total >= 0) {
+		double r = (double)(s->total - s->fired) / fps / (p->rig.ntrig ? p->rig.ntrig : 1);
+
+		snprintf(rem, sizeof(rem), "%.1f s", r > 0 ? r : 0);
+	}
+	fprintf(p->o.status_tty,
+		"\r\033[Kframe %lld %s  %lld/%lld fired  elapsed %.1f s  remaining %s  "
+		"worst latency %.0f us  worst ferror %.4g %s  %s",
+		(long long)s->frame, tc, (long long)s->fired, (long long)s->total, el, rem,
+		s->lat_max_ns / 1000.0, out_file_units(p, s->ferr_out, s->ferr),
+		out_unit(p, s->ferr_out), loop_state_name((enum loop_state)s->state));
+	fflush(p->o.status_tty);
+}
+
+/* The service thread's round: journal chunks, telemetry, status line. */
+static void serve(struct play *p, bool last)
+{
+	struct loop_status s;
+	bool any = false;
+	int64_t now = hal_mono_ns();
+
+	if (p->has_journal) {
+		int rc = journal_service(&p->jr, now);
+
+		if (rc && !p->service_err)
+			p->service_err = rc;
+	}
+	while (hal_ring_pop(&p->status, &s)) {
+		any = true;
+		p->last = s;
+		if (p->telemetry)
+			telemetry_line(p, &s);
+	}
+	if (p->o.status_tty && any && (last || now - p->status_shown_ns >= 100000000)) {
+		p->status_shown_ns = now;
+		status_line(p, &p->last);
+	}
+}
+
+int play_run(struct play *p)
+{
+	pthread_attr_t attr;
+	struct timespec nap;
+	int64_t start;
+	int rc;
+
+	rt_lock_memory(&p->o.rt, &p->rt);
+	pthread_attr_init(&attr);
+	pthread_attr_setstacksize(&attr, RT_STACK_BYTES);
+	start = hal_mono_ns();
+	rc = pthread_create(&p->thread, &attr, rt_main, p);
+	pthread_attr_destroy(&attr);
+	if (rc) {
+		rt_release(&p->rt);
+		fprintf(stderr, "strand: cannot start the loop thread: %s\n", strerror(rc));
+		return -rc;
+	}
+	/* The virtual clock may wait for the journal: serve it briskly. On the
+	 * wall clock, 20 rounds a second keep the status line at 10 Hz and the
+	 * journal's chunks ahead; waking more often measurably disturbed the
+	 * loop's wake-ups on the test machine (make bench-play). */
+	nap.tv_sec = 0;
+	nap.tv_nsec = p->clk.is_virtual ? 1000000 : 50000000;
+	while (!atomic_load(&p->done)) {
+		serve(p, false);
+		nanosleep(&nap, NULL);
+	}
+	pthread_join(p->thread, NULL);
+	p->wall_ns = hal_mono_ns() - start;
+	rt_release(&p->rt);
+	serve(p, true);
+	if (p->o.status_tty)
+		fputc('\n', p->o.status_tty);
+	rt_report(&p->o.rt, &p->rt, stderr);
+	/* drives disabled and lines deasserted before the journal is closed */
+	rig_stop(&p->rig);
+	p->rig_started = false;
+	if (p->has_journal) {
+		rc = journal_close(&p->jr);
+		p->has_journal = false;
+		if (rc && !p->service_err)
+			p->service_err = rc;
+	}
+	if (p->telemetry) {
+		fclose(p->telemetry);
+		p->telemetry = NULL;
+	}
+	return 0;
+}
+
+void play_free(struct play *p)
+{
+	if (p->has_journal)
+		journal_close(&p->jr);
+	if (p->telemetry)
+		fclose(p->telemetry);
+	if (p->loop_ready)
+		loop_free(&p->L);
+	if (p->rig_built)
+		rig_free(&p->rig);
+	free(p->status_buf);
+	memset(p, 0, sizeof(*p));
+}
+
+void play_signal(struct play *p, int sig, int count)
+{
+	if (sig == SIGINT && count >= 2)
+		loop_request_stop(&p->L, 2, LOOP_CAUSE_IMMEDIATE);
+	else
+		loop_request_stop(&p->L, 1, LOOP_CAUSE_SIGNAL);
+}
+
+void play_describe(const struct play *p, char *buf, size_t size)
+{
+	const struct loop_report *r = &p->L.rep;
+	int32_t o = r->out;
+	char when[96];
+
+	snprintf(when, sizeof(when), "at tick %lld (%.3f s), last frame %lld", (long long)r->tick,
+		 (double)r->tick / p->L.tm->tick_hz, (long long)r->frame);
+	switch (r->cause) {
+	case LOOP_CAUSE_FINISHED:
+		snprintf(buf, size, "finished: %lld frames fired", (long long)p->L.frames_fired);
+		break;
+	case LOOP_CAUSE_DURATION:
+	case LOOP_CAUSE_SIGNAL:
+	case LOOP_CAUSE_STOP_INPUT:
+		snprintf(buf, size, "%s %s; every axis brought to rest within its limits",
+			 loop_cause_name(r->cause), when);
+		break;
+	case LOOP_CAUSE_IMMEDIATE:
+		snprintf(buf, size, "%s %s; drives disabled at once", loop_cause_name(r->cause),
+			 when);
+		break;
+	case LOOP_CAUSE_ESTOP:
+		if (r->has_edge)
+			snprintf(buf, size, "e-stop: input '%s' (line %d) %s, acted on %.1f us after "
+				 "the edge; drives disabled, latched", r->device ? r->device : "?",
+				 r->channel, when, (r->acted_ns - r->edge_ns) / 1000.0);
+		else
+			snprintf(buf, size, "e-stop: input '%s' (line %d) %s; drives disabled, "
+				 "latched", r->device ? r->device : "?", r->channel, when);
+		break;
+	case LOOP_CAUSE_DEVICE:
+		if (r->channel < 0) { /* the device as a whole: a bus, a unit */
+			snprintf(buf, size, "device fault: device '%s': %s (%s) %s",
+				 r->device ? r->device : "?", r->what ? r->what : "fault",
+				 strerror(r->code < 0 ? -r->code : r->code), when);
+			break;
+		}
+		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s) %s",
+			 r->device ? r->device : "?", r->channel, o >= 0 ? " (" : "",
+			 out_name(p, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
+			 strerror(r->code < 0 ? -r->code : r->code), when);
+		break;
+	case LOOP_CAUSE_FERROR:
+	case LOOP_CAUSE_IN_POSITION:
+		snprintf(buf, size, "%s: device '%s' channel %d (%s): %.6g %s beyond the bound %.6g %s %s",
+			 loop_cause_name(r->cause), r->device ? r->device : "?", r->channel,
+			 out_name(p, o), out_file_units(p, o, fabs(r->value)), out_unit(p, o),
+			 out_file_units(p, o, r->bound), out_unit(p, o), when);
+		break;
+	case LOOP_CAUSE_LIMIT_POS:
+	case LOOP_CAUSE_LIMIT_VEL:
+	case LOOP_CAUSE_LIMIT_ACC:
+		snprintf(buf, size, "%s: %s (device '%s' channel %d): %.6g beyond %.6g %s%s %s",
+			 loop_cause_name(r->cause), out_name(p, o), r->device ? r->device : "?",
+			 r->channel, out_file_units(p, o, r->value), out_file_units(p, o, r->bound),
+			 out_unit(p, o),
+			 r->cause == LOOP_CAUSE_LIMIT_VEL ? "/s" :
+			 r->cause == LOOP_CAUSE_LIMIT_ACC ? "/s^2" : "", when);
+		break;
+	case LOOP_CAUSE_READY:
+		snprintf(buf, size, "camera not ready: no camera-ready edge in time %s", when);
+		break;
+	case LOOP_CAUSE_JOURNAL:
+		snprintf(buf, size, "journal cannot record the next frame (%s) %s; stopped before "
+			 "firing it", r->code ? strerror(-r->code) : "not ready or full", when);
+		break;
+	case LOOP_CAUSE_SATURATION:
+		snprintf(buf, size, "internal: fixed-point arithmetic saturated %s", when);
+		break;
+	default:
+		snprintf(buf, size, "ended (%d)", (int)r->end);
+		break;
+	}
+}
+
+void play_summary(const struct play *p, FILE *f, bool reason)
+{
+	const struct loop *L = &p->L;
+	const struct lat_stats *s = &L->lat;
+	char why[512];
+	uint32_t i;
+
+	play_describe(p, why, sizeof(why));
+	if (reason)
+		fprintf(f, "strand play: %s\n", why);
+	fprintf(f, "  frames fired %lld, ticks %lld (%.3f s of motion) in %.3f s, %s clock\n",
+		(long long)L->frames_fired, (long long)L->ticks_run,
+		(double)L->ticks_run / L->tm->tick_hz, p->wall_ns / 1e9,
+		p->clk.is_virtual ? "virtual" : "wall");
+	if (!p->clk.is_virtual && s->n)
+		fprintf(f,
+			"  wake-up latency us: min %.1f avg %.1f max %.1f (tick %lld) p50 %.0f "
+			"p99 %.0f p99.9 %.0f; %s\n"
+			"  overruns %lld, catch-up ticks %lld, latest tick start %.1f us, "
+			"longest tick %.1f us\n",
+			s->min_ns / 1e3, (double)s->sum_ns / s->n / 1e3, s->max_ns / 1e3,
+			(long long)s->max_at_tick, lat_percentile_us(s, 0.5),
+			lat_percentile_us(s, 0.99), lat_percentile_us(s, 0.999),
+			p->rt.fifo ? "SCHED_FIFO" : "SCHED_OTHER", (long long)s->overruns,
+			(long long)s->catchup, s->late_max_ns / 1e3, s->work_max_ns / 1e3);
+	fprintf(f, "  cpu %.0f ns per tick\n",
+		L->ticks_run ? (double)L->cpu_ns / L->ticks_run : 0.0);
+	if (L->ferr_worst_out >= 0)
+		fprintf(f, "  worst following error %.6g %s on %s\n",
+			out_file_units(p, L->ferr_worst_out, L->ferr_worst),
+			out_unit(p, L->ferr_worst_out), out_name(p, L->ferr_worst_out));
+	for (i = 0; i < L->n; i++)
+		if (L->limited[i])
+			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
+				p->rig.out[i].channel, (long long)L->limited[i]);
+	for (i = 0; i < p->rig.naxes; i++)
+		hal_modbus_report(p->rig.axes[i], f);
+	if (L->status_dropped)
+		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",
+			(long long)L->status_dropped);
+	if (p->service_err)
+		fprintf(f, "  journal: %s\n", strerror(-p->service_err));
+	if (p->o.journal_path)
+		fprintf(f, "  journal %s\n", p->o.journal_path);
+}

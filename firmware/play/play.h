@@ -1,0 +1,105 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * play.h - one run of `strand play`, put together: the clock, the rig, the
+ * journal, the loop on its strand-rt thread, and the ordinary thread that
+ * serves them (journal chunks, telemetry lines, the status line) while the
+ * loop runs.
+ *
+ *     play_prepare()   builds and starts everything (may allocate, block)
+ *     play_run()       runs the loop to its end; returns the exit code
+ *     play_free()      stops the rig, closes the journal, frees
+ *
+ * The loop thread is the only one that touches the rig while it runs; the
+ * service thread reads the status ring and maps journal chunks. Signal
+ * handlers reach the loop through play_signal() only (an atomic store).
+ */
+#ifndef STRAND_PLAY_H
+#define STRAND_PLAY_H
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "hal/clock.h"
+#include "hal/ring.h"
+#include "journal/journal.h"
+#include "loop.h"
+#include "rig/rig.h"
+#include "rt.h"
+#include "scene/source.h"
+
+#define PLAY_STATUS_RING 1024
+
+struct play_opts {
+	struct loop_cfg loop;
+	bool virtual_clock;
+	struct rt_opts rt;
+	const char *journal_path; /* NULL: no journal */
+	const char *telemetry_path; /* JSON lines, NULL: none */
+	FILE *status_tty;         /* a live status line there, or NULL */
+	struct rig_opts rig;
+};
+
+/* Where play_prepare failed, for the exit code. */
+enum play_stage {
+	PLAY_STAGE_NONE,
+	PLAY_STAGE_RIG,     /* the rig description does not fit the scene */
+	PLAY_STAGE_START,   /* a device would not start */
+	PLAY_STAGE_OPTIONS, /* the run's options contradict each other or the scene */
+	PLAY_STAGE_LOOP,    /* the run cannot be planned (a run-up outside the limits) */
+	PLAY_STAGE_JOURNAL, /* the journal or telemetry file */
+};
+
+struct play {
+	struct play_opts o;
+	enum play_stage failed_at;
+	struct hal_clock clk;
+	struct rig rig;
+	bool rig_built, rig_started;
+	struct journal jr;
+	bool has_journal;
+	struct loop L;
+	bool loop_ready;
+	struct hal_ring status;
+	struct loop_status *status_buf;
+	FILE *telemetry;
+	pthread_t thread;
+	struct rt_result rt;
+	_Atomic bool done;
+	struct loop_status last; /* the newest status sample */
+	int64_t start_wall_ns;
+	int64_t status_shown_ns;
+	int service_err;
+	int64_t wall_ns;          /* the run's duration on the monotonic clock */
+};
+
+/* [init] Build the rig for src (simulated where asked), open the journal,
+ * prepare the loop. 0 or a negative errno with a message in err. */
+int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *src,
+		 const struct play_opts *o, char *err, size_t errsize);
+
+/* [init] Run to the end (the calling thread serves the loop meanwhile):
+ * 0, the outcome in the loop's report (p->L.rep), or a negative errno when
+ * the loop's thread could not start. */
+int play_run(struct play *p);
+
+void play_free(struct play *p);
+
+/* Async-signal-safe: the first SIGINT/SIGTERM a controlled stop, a second
+ * SIGINT an immediate one. */
+void play_signal(struct play *p, int sig, int count);
+
+/* The one-line description of why the run ended ("e-stop: input 'estop'
+ * (line 0) at tick 5000, frame 119"), into buf. */
+void play_describe(const struct play *p, char *buf, size_t size);
+
+/* A summary of the run (frames, time, latency, following error), with
+ * play_describe's line first when `reason`. */
+void play_summary(const struct play *p, FILE *f, bool reason);
+
+/* Set by the loop thread while loop_run runs: what the tests' allocation
+ * counter keys on. */
+extern _Thread_local bool play_in_loop;
+
+#endif /* STRAND_PLAY_H */

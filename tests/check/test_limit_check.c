@@ -1,0 +1,156 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_limit_check.c - `strand check`'s limit verification (firmware/limit_check.c):
+ * a scene that breaks each kind of limit (and where a controlled stop would
+ * overrun one), caught at the right ticks, with
+ * the worst values and the report lines of the command.
+ *
+ * The joint climbs linearly 0 -> 120 degrees over frames 0..24 (1 s at 24
+ * fps, 120 deg/s), holds to frame 48 and comes back by frame 72. With 1000
+ * ticks per second a tick is 0.024 frame and the value at tick k of the
+ * climb is 0.12 k degrees, so everything below is exact arithmetic.
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check/limit_check.h"
+#include "cli/cli.h"
+#include "cli/exitcode.h"
+#include "testutil.h"
+
+static const char scene[] =
+	"timing: {tick_hz: 1000, frame_rate: 24, frames: [0, 96]}\n"
+	"nodes:\n"
+	"  - name: arm\n"
+	"    joint: {type: revolute, axis: z}\n"
+	"    limits: {min: -10, max: 100, velocity: 100, acceleration: 50000}\n"
+	"  - name: slide\n"
+	"    joint: {type: prismatic, axis: x}\n"
+	"    limits: {min: -0.2, max: 1}\n"
+	"strands:\n"
+	"  - node: arm\n"
+	"    interpolation: linear\n"
+	"    keys: [{frame: 0, angle: 0}, {frame: 24, angle: 120}, {frame: 48, angle: 120},\n"
+	"           {frame: 72, angle: 0}]\n"
+	"  - node: slide\n"
+	"    interpolation: linear\n"
+	"    keys: [{frame: 0, position: 0}, {frame: 96, position: -0.5}]\n";
+
+#define MAXV 16
+
+struct found {
+	struct lim_violation v[MAXV];
+	unsigned n;
+};
+
+static void collect(void *ctx, const struct lim_violation *v)
+{
+	struct found *f = ctx;
+
+	assert_true(f->n < MAXV);
+	f->v[f->n++] = *v;
+}
+
+static const struct lim_violation *find(const struct found *f, uint32_t node, enum lim_kind k,
+					unsigned nth)
+{
+	unsigned i;
+
+	for (i = 0; i < f->n; i++)
+		if (f->v[i].node == node && f->v[i].kind == k && nth-- == 0)
+			return &f->v[i];
+	fail_msg("no violation %u of %s on node %u", nth, lim_kind_name(k), node);
+	return NULL;
+}
+
+static void expect(const struct lim_violation *v, int64_t first, int64_t last, double worst,
+		   double limit)
+{
+	if (v->tick_first != first || v->tick_last != last || fabs(v->worst - worst) > 1e-5 * fabs(worst) ||
+	    v->limit != limit)
+		fail_msg("%s: ticks %lld..%lld worst %.10g limit %g; want %lld..%lld %.10g %g",
+			 lim_kind_name(v->kind), (long long)v->tick_first, (long long)v->tick_last,
+			 v->worst, v->limit, (long long)first, (long long)last, worst, limit);
+}
+
+static void test_each_kind(void **state)
+{
+	struct scene_file sf;
+	struct scene_built b;
+	struct load_err e;
+	struct lim_result res;
+	struct found f = { .n = 0 };
+	const struct lim_violation *v;
+
+	assert_int_equal(scene_file_parse(&sf, "limits.yaml", scene, strlen(scene), &e), 0);
+	assert_int_equal(scene_file_build(&sf, &b, &e), 0);
+	assert_int_equal(lim_check(&sf.desc, &b.sc, 0, 96, collect, &f, &res), 0);
+	assert_int_equal(res.ticks, 4001);
+	assert_int_equal(res.sat, 0);
+
+	/* max 100: above from tick 834 (100.08 deg) to the descent's tick 2166 */
+	v = find(&f, 0, LIM_MAX, 0);
+	expect(v, 834, 2166, 120, 100);
+	assert_true(fabs(v->frame_first - 20.016) < 1e-9 && fabs(v->frame_last - 51.984) < 1e-9);
+	/* velocity 100 deg/s: 120 deg/s on the way up (ticks 1..1000) and down */
+	expect(find(&f, 0, LIM_VEL, 0), 1, 1000, 120, 100);
+	expect(find(&f, 0, LIM_VEL, 1), 2001, 3000, -120, -100);
+	/* acceleration: one tick at each corner of the linear path,
+	 * 0.12 deg / (1 ms)^2 = 120000 deg/s^2 */
+	expect(find(&f, 0, LIM_ACC, 0), 1000, 1000, -120000, -50000);
+	expect(find(&f, 0, LIM_ACC, 1), 2000, 2000, -120000, -50000);
+	expect(find(&f, 0, LIM_ACC, 2), 3000, 3000, 120000, 50000);
+	/* prismatic min -0.2: -0.5 f / 96 < -0.2 after frame 38.4 = tick 1600 */
+	v = find(&f, 1, LIM_MIN, 0);
+	expect(v, 1601, 4000, -0.5, -0.2);
+	/* a controlled stop at 50000 deg/s^2 from 120 deg/s needs 0.144 deg plus
+	 * the tick it starts in (0.12 deg): stopping at 0.12 k + 0.264 deg, past
+	 * 100 from tick 832 up, through the hold (at rest: the value itself), and
+	 * on the way down until 120 - 0.12 (k - 2000) - 0.264 <= 100 */
+	expect(find(&f, 0, LIM_STOP, 0), 832, 2164, 120.264, 100);
+	assert_int_equal(res.violations, 8);
+	assert_int_equal(f.n, 8);
+	scene_built_free(&b);
+	scene_file_free(&sf);
+}
+
+/* The same through `strand check`: the report lines and exit code 1. */
+static void test_command(void **state)
+{
+	char path[] = "/tmp/strand-limits-XXXXXX.yaml", *out = NULL, *err = NULL;
+	char *argv[] = { "strand", "check", path, NULL };
+	size_t out_len, err_len;
+	FILE *fo, *fe;
+	int fd = mkstemps(path, 5), rc;
+
+	assert_true(fd >= 0);
+	assert_int_equal(write(fd, scene, strlen(scene)), (ssize_t)strlen(scene));
+	close(fd);
+	fo = open_memstream(&out, &out_len);
+	fe = open_memstream(&err, &err_len);
+	rc = cli_main(3, argv, fo, fe);
+	fclose(fo);
+	fclose(fe);
+	assert_int_equal(rc, STRAND_EXIT_VIOLATION);
+	assert_int_equal(err_len, 0);
+	assert_non_null(strstr(out, "arm.angle: max 120 deg beyond limit 100 deg, frames 20.016 to 51.984\n"));
+	assert_non_null(strstr(out, "arm.angle: velocity -120 deg/s beyond limit -100 deg/s, frames 48.024 to 72\n"));
+	assert_non_null(strstr(out, "arm.angle: acceleration 120000 deg/s^2 beyond limit 50000 deg/s^2, frames 72 to 72\n"));
+	assert_non_null(strstr(out, "slide.position: min -0.5 units beyond limit -0.2 units, frames 38.424 to 96\n"));
+	assert_non_null(strstr(out, "arm.angle: a controlled stop would end at 120.264 deg, beyond limit 100 deg, frames 19.968 to 51.936\n"));
+	assert_non_null(strstr(out, ": 8 violations; 2 joints with limits, frames 0 to 96, 4001 ticks\n"));
+	free(out);
+	free(err);
+	unlink(path);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_each_kind),
+		cmocka_unit_test(test_command),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,793 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_load_errors.c - every kind of scene file error, with its exact
+ * one-line message and position (golden strings). The same cases seed the
+ * loader's fuzz corpus: `test_load_errors --write-corpus DIR` writes them out.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "load/load.h"
+#include "testutil.h"
+
+struct err_case {
+	const char *name;
+	const char *yaml;
+	const char *expect; /* file:line:col: message */
+};
+
+static const struct err_case cases[] = {
+	{ "unknown key suggested",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - name: a\n"
+	  "    pivto: [0, 0, 0]\n",
+	  "t.yaml:4:5: unknown key 'pivto' in node (did you mean 'pivot'?)" },
+	{ "unknown key listed",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "lights: []\n",
+	  "t.yaml:2:1: unknown key 'lights' in the scene (valid keys: scene, timing, nodes, strands, camera, cycles, attributes, devices, outputs, triggers, inputs)" },
+	{ "unknown key in a key",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    keys: [{fram: 0, angle: 1}]\n",
+	  "t.yaml:5:13: unknown key 'fram' in key (did you mean 'frame'?)" },
+	{ "unknown interpolation",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - {node: a, interpolation: hermit, keys: [{frame: 0, angle: 1}]}\n",
+	  "t.yaml:4:30: unknown interpolation 'hermit' (did you mean 'hermite'?)" },
+	{ "unknown joint type",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: ball, axis: z}}]\n",
+	  "t.yaml:2:33: unknown joint type 'ball' (one of: revolute, prismatic)" },
+	{ "wrong type vector",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, pivot: 5}]\n",
+	  "t.yaml:2:26: expected a sequence of 3 numbers, found '5'" },
+	{ "wrong type vector length",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, pivot: [1, 2]}]\n",
+	  "t.yaml:2:26: expected 3 numbers, found 2" },
+	{ "wrong type number",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a, keys: [{frame: 0, angle: abc}]}]\n",
+	  "t.yaml:3:46: expected a number, found 'abc'" },
+	{ "wrong type quoted number",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a, keys: [{frame: 0, angle: \"10\"}]}]\n",
+	  "t.yaml:3:46: expected a number, found '10'" },
+	{ "wrong type sequence",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: {a: 1}\n",
+	  "t.yaml:2:8: expected a sequence for nodes, found a mapping" },
+	{ "wrong type mapping",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [a]\n",
+	  "t.yaml:2:9: expected a mapping for node, found 'a'" },
+	{ "wrong type frames",
+	  "timing: {frame_rate: 24, frames: [0, 1.5]}\n",
+	  "t.yaml:1:38: expected a whole number, found '1.5'" },
+	{ "wrong type name",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: [a]}]\n",
+	  "t.yaml:2:16: expected a name, found a sequence" },
+	{ "bad name",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: arm.1}]\n",
+	  "t.yaml:2:16: name 'arm.1': use letters, digits, '_' and '-', starting with a letter or '_'" },
+	{ "missing timing",
+	  "nodes: []\n",
+	  "t.yaml:1:1: missing field 'timing' in the scene" },
+	{ "missing frames",
+	  "timing: {frame_rate: 24}\n",
+	  "t.yaml:1:9: missing field 'frames' in timing" },
+	{ "missing name",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - pivot: [0, 0, 0]\n",
+	  "t.yaml:3:5: missing field 'name' in node" },
+	{ "missing frame",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a, keys: [{angle: 3}]}]\n",
+	  "t.yaml:3:28: missing field 'frame' in key" },
+	{ "missing keys",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a}]\n",
+	  "t.yaml:3:11: missing field 'keys' in strand" },
+	{ "missing angle",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a, keys: [{frame: 0}]}]\n",
+	  "t.yaml:3:28: missing field 'angle' (or 'rpm') in key" },
+	{ "missing axis",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute}}]\n",
+	  "t.yaml:2:26: missing field 'axis' in joint" },
+	{ "keys equal",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    keys:\n"
+	  "      - {frame: 0, angle: 0}\n"
+	  "      - {frame: 10, angle: 5}\n"
+	  "      - {frame: 10, angle: 6}\n",
+	  "t.yaml:8:17: key frame 10 is not after the previous key's frame 10 (keys must be strictly increasing)" },
+	{ "keys decreasing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    keys:\n"
+	  "      - {frame: 5, translate: [0, 0, 0]}\n"
+	  "      - {frame: 2.5, translate: [1, 0, 0]}\n",
+	  "t.yaml:7:17: key frame 2.5 is not after the previous key's frame 5 (keys must be strictly increasing)" },
+	{ "unknown parent suggested",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: arm1}\n"
+	  "  - {name: arm2, parent: arm}\n",
+	  "t.yaml:4:26: unknown parent 'arm' (did you mean 'arm1'?)" },
+	{ "unknown parent",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: arm1}\n"
+	  "  - {name: arm2, parent: wheel}\n",
+	  "t.yaml:4:26: unknown parent 'wheel' (no node has that name)" },
+	{ "later parent",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: claw, parent: arm}\n"
+	  "  - {name: arm}\n",
+	  "t.yaml:3:26: parent 'arm' is defined after 'claw' (list parents before their children)" },
+	{ "cycle",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, parent: c}\n"
+	  "  - {name: b, parent: a}\n"
+	  "  - {name: c, parent: b}\n",
+	  "t.yaml:3:23: cycle in the hierarchy: a -> c -> b -> a" },
+	{ "own parent",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, parent: a}\n",
+	  "t.yaml:3:23: node 'a' is its own parent" },
+	{ "duplicate node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a}\n"
+	  "  - {name: a}\n",
+	  "t.yaml:4:12: duplicate node name 'a' (first at line 3)" },
+	{ "duplicate key",
+	  "timing: {frame_rate: 24, frames: [0, 10], frame_rate: 25}\n",
+	  "t.yaml:1:43: duplicate key 'frame_rate' in timing (first at line 1)" },
+	{ "joint keyed as free node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: base, joint: {type: revolute, axis: y}}]\n"
+	  "strands: [{node: base, keys: [{frame: 0, translate: [0, 1, 0]}]}]\n",
+	  "t.yaml:3:53: 'translate' keys a free node, but 'base' is a revolute joint (key 'angle' or 'rpm')" },
+	{ "prismatic keyed as free node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: slide, joint: {type: prismatic, axis: x}}]\n"
+	  "strands: [{node: slide, keys: [{frame: 0, matrix: [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]}]\n",
+	  "t.yaml:3:51: 'matrix' keys a free node, but 'slide' is a prismatic joint (key 'position')" },
+	{ "free node keyed as joint",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands: [{node: tool, keys: [{frame: 0, angle: 30}]}]\n",
+	  "t.yaml:3:49: 'angle' keys a joint, but 'tool' is a free node (key translate, rotate, quat, scale, shear or matrix)" },
+	{ "prismatic keyed by angle",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: slide, joint: {type: prismatic, axis: x}}]\n"
+	  "strands: [{node: slide, keys: [{frame: 0, angle: 30}]}]\n",
+	  "t.yaml:3:50: 'angle' keys a revolute joint, but 'slide' is a prismatic joint (key 'position')" },
+	{ "revolute keyed by position",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: a, keys: [{frame: 0, position: 30}]}]\n",
+	  "t.yaml:3:49: 'position' keys a prismatic joint, but 'a' is a revolute joint (key 'angle' or 'rpm')" },
+	{ "rotation on a joint",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: a, rotation: squad, keys: [{frame: 0, angle: 30}]}]\n",
+	  "t.yaml:3:31: 'rotation' interpolates a free node's rotation keys, but 'a' is a revolute joint" },
+	{ "singular matrix",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands:\n"
+	  "  - node: tool\n"
+	  "    keys:\n"
+	  "      - {frame: 0, matrix: [[1,0,0,0],[0,1,0,0],[1,1,0,0],[0,0,0,1]]}\n",
+	  "t.yaml:6:28: singular matrix key: its z scale is below 1e-9 of its largest row" },
+	{ "non-affine matrix",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands:\n"
+	  "  - node: tool\n"
+	  "    keys:\n"
+	  "      - {frame: 0, matrix: [[1,0,0,0],[0,1,0,0],[0,0,1,0.5],[0,0,0,1]]}\n",
+	  "t.yaml:6:28: a matrix key must be affine: its last column must be (0, 0, 0, 1)" },
+	{ "matrix shape",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands:\n"
+	  "  - node: tool\n"
+	  "    keys:\n"
+	  "      - {frame: 0, matrix: [[1,0,0,0],[0,1,0,0],[0,0,1,0]]}\n",
+	  "t.yaml:6:28: a matrix key has 4 rows of 4 numbers, found 3 rows" },
+	{ "matrix with translate",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands:\n"
+	  "  - node: tool\n"
+	  "    keys:\n"
+	  "      - {frame: 0, translate: [1, 0, 0], matrix: [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}\n",
+	  "t.yaml:6:31: 'matrix' sets the whole transform; a key with it cannot also set 'translate'" },
+	{ "rotate and quat",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands:\n"
+	  "  - node: tool\n"
+	  "    keys:\n"
+	  "      - {frame: 0, rotate: [0, 0, 90], quat: [1, 0, 0, 0]}\n",
+	  "t.yaml:6:46: 'rotate' and 'quat' both set the rotation; keep one" },
+	{ "zero quaternion",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands:\n"
+	  "  - node: tool\n"
+	  "    keys:\n"
+	  "      - {frame: 0, quat: [0, 0, 0, 0]}\n",
+	  "t.yaml:6:26: a rotation quaternion must not be zero" },
+	{ "key sets nothing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool}]\n"
+	  "strands:\n"
+	  "  - node: tool\n"
+	  "    keys:\n"
+	  "      - {frame: 0, ease_in: 0.5}\n",
+	  "t.yaml:6:9: key sets nothing: give translate, rotate, quat, scale, shear or matrix" },
+	{ "zero frame rate",
+	  "timing: {frame_rate: 0, frames: [0, 10]}\n",
+	  "t.yaml:1:22: frame rate '0' must be above zero" },
+	{ "zero frame rate ratio",
+	  "timing: {frame_rate: \"30000/0\", frames: [0, 10]}\n",
+	  "t.yaml:1:22: frame rate '30000/0' must be above zero" },
+	{ "bad frame rate",
+	  "timing: {frame_rate: 29.97, frames: [0, 10]}\n",
+	  "t.yaml:1:22: frame_rate must be a whole number or a ratio like \"30000/1001\", found '29.97'" },
+	{ "frame rate above tick rate",
+	  "timing: {tick_hz: 100, frame_rate: 120, frames: [0, 10]}\n",
+	  "t.yaml:1:36: frame rate 120/1 is faster than tick_hz 100 (at most one frame per tick)" },
+	{ "frame rate out of range",
+	  "timing: {tick_hz: 1000, frame_rate: \"1/99999999\", frames: [0, 10]}\n",
+	  "t.yaml:1:37: frame rate '1/99999999' is outside the core's range (numerator and denominator up to 16777216)" },
+	{ "tick_hz zero",
+	  "timing: {tick_hz: 0, frame_rate: 24, frames: [0, 10]}\n",
+	  "t.yaml:1:19: '0' is out of range (1 to 1048576)" },
+	{ "frames reversed",
+	  "timing: {frame_rate: 24, frames: [10, 0]}\n",
+	  "t.yaml:1:39: the last frame 0 is before the first frame 10" },
+	{ "pivot out of range",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, pivot: [0, 2e9, 0]}]\n",
+	  "t.yaml:2:30: 2000000000 is outside the core's range (|value| < 1073741824 scene units)" },
+	{ "angle out of range",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a, keys: [{frame: 0, angle: 1e12}]}]\n",
+	  "t.yaml:3:46: 1e+12 is outside the core's range (|value| < 3.865470566e+11 degrees)" },
+	{ "frame out of range",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a, keys: [{frame: 1073741824, angle: 0}]}]\n",
+	  "t.yaml:3:36: 1073741824 is outside the core's range (|value| < 1073741824 frames)" },
+	{ "infinite number",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, pivot: [0, 1e999, 0]}]\n",
+	  "t.yaml:2:30: '1e999' is outside the core's range" },
+	{ "nan is not a number",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, pivot: [0, .nan, 0]}]\n",
+	  "t.yaml:2:30: expected a number, found '.nan'" },
+	{ "huge frame span",
+	  "timing: {frame_rate: 24, frames: [0, 99999999999]}\n",
+	  "t.yaml:1:38: '99999999999' is out of range (-1073741823 to 1073741823)" },
+	{ "not yaml",
+	  "timing: {frame_rate: 24, frames: [0, 10]\n"
+	  "nodes: []\n",
+	  "t.yaml:2:1: not valid YAML: did not find expected ',' or '}' while parsing a flow mapping" },
+	{ "not yaml tab",
+	  "timing:\n"
+	  "\tframe_rate: 24\n",
+	  "t.yaml:2:1: not valid YAML: found character that cannot start any token while scanning for the next token" },
+	{ "truncated",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - name: a\n"
+	  "    joint: {type: revolute, axis: \"z\n",
+	  "t.yaml:5:1: not valid YAML: found unexpected end of stream while scanning a quoted scalar" },
+	{ "truncated flow",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, pivot: [0, 0,\n",
+	  "t.yaml:3:1: not valid YAML: did not find expected node content while parsing a flow node" },
+	{ "not a scene",
+	  "just a sentence\n",
+	  "t.yaml:1:1: expected a mapping for the scene, found 'just a sentence'" },
+	{ "top level sequence",
+	  "- timing\n",
+	  "t.yaml:1:1: expected a mapping for the scene, found a sequence" },
+	{ "empty",
+	  "",
+	  "t.yaml:1:1: empty scene file (expected a mapping with timing, nodes, strands)" },
+	{ "two documents",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "---\n"
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n",
+	  "t.yaml:3:1: a scene file holds one YAML document" },
+	{ "strand unknown node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: base}]\n"
+	  "strands: [{node: bsae, keys: [{frame: 0, translate: [0, 0, 0]}]}]\n",
+	  "t.yaml:3:18: strand for unknown node 'bsae' (did you mean 'base'?)" },
+	{ "second strand",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: base}]\n"
+	  "strands:\n"
+	  "  - {node: base, keys: [{frame: 0, translate: [0, 0, 0]}]}\n"
+	  "  - {node: base, keys: [{frame: 0, translate: [0, 0, 0]}]}\n",
+	  "t.yaml:5:12: node 'base' already has a strand (at line 4)" },
+	{ "empty keys",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: base}]\n"
+	  "strands: [{node: base, keys: []}]\n",
+	  "t.yaml:3:30: a strand needs at least one key" },
+	{ "rpm bezier",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: prop, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: prop, interpolation: bezier, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 100}]}]\n",
+	  "t.yaml:3:39: an rpm strand is integrated in closed form: use step, linear or hermite" },
+	{ "rpm ease",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: prop, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: prop, interpolation: linear, ease: {in: 2, out: 2}, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 100}]}]\n",
+	  "t.yaml:3:53: an rpm strand takes no ease (slow-in/slow-out is in its rpm keys)" },
+	{ "rpm key ease",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: prop, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: prop, interpolation: linear, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 100, ease_in: 0.5}]}]\n",
+	  "t.yaml:3:74: an rpm strand takes no ease_in or ease_out (shape the speed with keys)" },
+	{ "rpm and angle mixed",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: prop, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: prop, keys: [{frame: 0, rpm: 0}, {frame: 10, angle: 100}]}]\n",
+	  "t.yaml:3:70: this strand keys 'rpm' from its first key; a key cannot switch to 'angle'" },
+	{ "ease fraction",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands: [{node: a, keys: [{frame: 0, angle: 0, ease_out: 1.5}, {frame: 10, angle: 100}]}]\n",
+	  "t.yaml:3:59: ease_out is a fraction of the interval: 0 to 1, found 1.5" },
+	{ "ease fractions sum",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    keys:\n"
+	  "      - {frame: 0, angle: 0, ease_out: 0.6}\n"
+	  "      - {frame: 10, angle: 100, ease_in: 0.5}\n",
+	  "t.yaml:7:9: ease_out 0.6 leaving frame 0 and ease_in 0.5 arriving at frame 10 add up to more than the interval" },
+	{ "strand ease too long",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    ease: {in: 6, out: 6}\n"
+	  "    keys: [{frame: 0, angle: 0}, {frame: 10, angle: 100}]\n",
+	  "t.yaml:5:11: ease in 6 + out 6 frames is longer than the keys' span of 10 frames" },
+	{ "negative ease",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    ease: {in: -1}\n"
+	  "    keys: [{frame: 0, angle: 0}, {frame: 10, angle: 100}]\n",
+	  "t.yaml:5:11: ease in and out are frames, not below 0" },
+	{ "beta on hermite",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    beta: {bias: 1, tension: 2}\n"
+	  "    keys: [{frame: 0, angle: 0}, {frame: 10, angle: 100}]\n",
+	  "t.yaml:5:11: 'beta' shapes a Beta-spline, but the interpolation is 'hermite'" },
+	{ "beta bias zero",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    interpolation: beta\n"
+	  "    beta: {bias: 0, tension: 2}\n"
+	  "    keys: [{frame: 0, angle: 0}, {frame: 10, angle: 100}]\n",
+	  "t.yaml:6:18: beta bias must be above 0" },
+	{ "camera without eye",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "camera:\n"
+	  "  keys: [{frame: 0, look_at: [0, 0, 0]}]\n",
+	  "t.yaml:3:10: missing field 'eye' in camera key" },
+	{ "camera looking at itself",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "camera:\n"
+	  "  keys:\n"
+	  "    - {frame: 0, eye: [0, 1, 5], look_at: [0, 0, 0]}\n"
+	  "    - {frame: 5, eye: [1, 1, 1], look_at: [1, 1, 1]}\n",
+	  "t.yaml:5:43: look_at is the eye itself: the camera has no direction" },
+	{ "cycle reversed",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "cycles: [{name: slices, first: 10, last: 1}]\n",
+	  "t.yaml:2:42: cycle last 1 is before first 10" },
+	{ "cycle skip zero",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "cycles: [{name: slices, first: 1, last: 10, skip: 0}]\n",
+	  "t.yaml:2:51: '0' is out of range (1 to 1073741823)" },
+	{ "cycle mode",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "cycles: [{name: slices, first: 1, last: 10, mode: bouncing}]\n",
+	  "t.yaml:2:51: unknown cycle mode 'bouncing' (did you mean 'bounce'?)" },
+	{ "attribute named like a node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: dye}]\n"
+	  "attributes: [{name: dye, keys: [{frame: 0, value: 1}]}]\n",
+	  "t.yaml:3:14: attribute name 'dye' is already the name of a node" },
+	{ "node named camera",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: camera}]\n",
+	  "t.yaml:2:9: 'camera' names the camera's channels; call the node something else" },
+	{ "limits on a free node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: tool, limits: {max: 10}}]\n",
+	  "t.yaml:2:30: limits apply to joints, but 'tool' is a free node (it has no joint)" },
+	{ "limits reversed",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {min: 10, max: -10}}]\n",
+	  "t.yaml:2:76: limit max -10 is below min 10" },
+	{ "zero velocity limit",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 0}}]\n",
+	  "t.yaml:2:72: velocity limit must be above zero" },
+	{ "zero axis",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: [0, 0, 0]}}]\n",
+	  "t.yaml:2:49: the joint axis must not be zero" },
+	{ "rest on a free node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, rest: 10}]\n",
+	  "t.yaml:2:25: 'rest' is a joint's value, but 'a' is a free node (it has no joint)" },
+	{ "rig: unknown device",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: amr, counts_per_unit: 100}]\n",
+	  "t.yaml:5:38: unknown device 'amr'; did you mean 'arm'?" },
+	{ "rig: unknown channel",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angel, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:5:21: unknown channel 'a.angel'; did you mean 'a.angle'?" },
+	{ "rig: output without limits",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: b.position, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:5:11: output 'b.position' needs velocity and acceleration limits (here or on its node): the pre-roll, the moves and every stop are planned with them" },
+	{ "rig: axis twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100},\n"
+	  "          {channel: b.position, device: arm, axis: 0, counts_per_unit: 1,\n"
+	  "           limits: {velocity: 1, acceleration: 1}}]\n",
+	  "t.yaml:6:52: axis 0 of device 'arm' already drives 'a.angle' (line 5)" },
+	{ "rig: zero counts per unit",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 0}]\n",
+	  "t.yaml:5:60: counts_per_unit must be non-zero and below 2^31 counts per turn" },
+	{ "rig: min_ferror above ferror",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 10, ferror: 1, min_ferror: 2}]\n",
+	  "t.yaml:5:87: min_ferror 2 is above ferror 1" },
+	{ "rig: unknown driver",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "devices: [{name: arm, driver: serial}]\n",
+	  "t.yaml:2:31: unknown driver 'serial' (one of: sim, modbus, gpio, canopen)" },
+	{ "rig: device twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "devices: [{name: arm, driver: sim},\n"
+	  "          {name: arm, driver: gpio}]\n",
+	  "t.yaml:3:18: device 'arm' is already listed (line 2)" },
+	{ "rig: no devices",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "triggers: [{name: cam, device: io, line: 0}]\n",
+	  "t.yaml:2:11: a rig needs its devices: section first" },
+	{ "rig: pulse too long",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "triggers: [{name: cam, device: io, line: 0, pulse_ms: 45}]\n",
+	  "t.yaml:5:55: a 45 ms pulse does not end before the next frame's (frames are 41.6667 ms apart, ticks 1 ms)" },
+	{ "rig: offset of a frame",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "triggers: [{name: cam, device: io, line: 0, offset_ms: -50}]\n",
+	  "t.yaml:5:56: offset -50 ms is a frame (41.6667 ms) or more" },
+	{ "rig: line twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "triggers: [{name: cam, device: io, line: 3}]\n"
+	  "inputs: [{name: estop, device: io, line: 3, role: estop}]\n",
+	  "t.yaml:6:42: line 3 of 'io' is trigger 'cam' already" },
+	{ "rig: unknown role",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "inputs: [{name: estop, device: io, line: 1, role: e-stop}]\n",
+	  "t.yaml:5:51: unknown input role 'e-stop' (did you mean 'estop'?)" },
+	{ "rig: polarity not a bool",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "inputs: [{name: estop, device: io, line: 1, role: estop, active_low: yes}]\n",
+	  "t.yaml:5:70: expected true or false, found 'yes'" },
+	{ "canopen: settings missing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen}]\n",
+	  "t.yaml:5:11: a device of driver canopen needs its canopen: section" },
+	{ "canopen: settings on another driver",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: sim, canopen: {interface: can0, bitrate: 500000}}]\n",
+	  "t.yaml:5:45: a canopen: section belongs to a device of driver canopen" },
+	{ "canopen: bitrate missing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0}}]\n",
+	  "t.yaml:5:49: missing field 'bitrate' in canopen" },
+	{ "canopen: bitrate too high",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 2000000}}]\n",
+	  "t.yaml:5:76: '2000000' is out of range (10000 to 1000000)" },
+	{ "canopen: SYNC COB-ID",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000, sync_id: 0x900}}]\n",
+	  "t.yaml:5:93: '0x900' is not an 11-bit COB-ID (1 to 0x7ff)" },
+	{ "canopen: interface name",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: a-very-long-interface-name, bitrate: 500000}}]\n",
+	  "t.yaml:5:61: interface 'a-very-long-interface-name': a network interface name (1 to 15 characters: can0, vcan0) or sim" },
+	{ "canopen: axis on a bus",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, axis: 1, counts_per_unit: 100}]\n",
+	  "t.yaml:6:49: an output on canopen device 'bus' is placed by node:, not axis:" },
+	{ "canopen: node missing",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, counts_per_unit: 100}]\n",
+	  "t.yaml:6:11: missing field 'node' in output on a canopen device" },
+	{ "canopen: node range",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 128, counts_per_unit: 100}]\n",
+	  "t.yaml:6:49: '128' is out of range (1 to 127)" },
+	{ "canopen: node twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100},\n"
+	  "          {channel: s.angle, device: bus, node: 3, counts_per_unit: 100,\n"
+	  "           limits: {velocity: 10, acceleration: 10}}]\n",
+	  "t.yaml:7:49: node 3 of device 'bus' already drives 'a.angle' (line 6)" },
+	{ "canopen: mode of a position",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, mode: csv, counts_per_unit: 100}]\n",
+	  "t.yaml:6:58: mode csv: 'a.angle' is not a spin speed; it needs mode csp" },
+	{ "canopen: mode of a speed",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 500000}}]\n"
+	  "outputs: [{channel: s.rpm, device: bus, node: 4, mode: csp, counts_per_unit: 100,\n"
+	  "           limits: {velocity: 10, acceleration: 10}}]\n",
+	  "t.yaml:6:56: mode csp: 's.rpm' is a spin speed; it needs mode csv" },
+	{ "canopen: node on another driver",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, node: 3, counts_per_unit: 100}]\n",
+	  "t.yaml:6:49: node: and mode: place an output on a canopen device; 'arm' is not one" },
+	{ "canopen: bus too slow",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 250000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100}]\n",
+	  "t.yaml:5:49: canopen bus 'bus': the worst case of a tick is 350 bits (1 drive, bit stuffing) of the 250 a tick holds at 250000 bit/s and 1000 ticks/s: 140%, above 70%; lower tick_hz, drive fewer outputs on this bus or raise the bitrate" },
+	{ "canopen: SYNC on a node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: s, joint: {type: revolute, axis: x}}]\n"
+	  "strands: [{node: s, keys: [{frame: 0, rpm: 0}, {frame: 10, rpm: 5}]}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 1000000, sync_id: 0x83}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100}]\n",
+	  "t.yaml:5:49: canopen bus 'bus': sync_id 0x83 is an identifier of node 3" },
+	{ "rig: chip on a simulated device",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "devices: [{name: io, driver: sim, chip: gpiochip0}]\n",
+	  "t.yaml:2:41: chip: is for a device with driver gpio" },
+	{ "rig: a named line twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: io, driver: gpio}]\n"
+	  "triggers: [{name: cam, device: io, line: SHUTTER}]\n"
+	  "inputs: [{name: estop, device: io, line: SHUTTER, role: estop}]\n",
+	  "t.yaml:5:42: line 'SHUTTER' of 'io' is trigger 'cam' already" },
+};
+
+#define NCASES (sizeof(cases) / sizeof(cases[0]))
+
+static void format_err(char *buf, size_t size, const char *path, const struct load_err *e)
+{
+	snprintf(buf, size, "%s:%u:%u: %s", path, e->line, e->col, e->msg);
+}
+
+static void test_golden(void **state)
+{
+	size_t i, failed = 0;
+
+	for (i = 0; i < NCASES; i++) {
+		struct scene_file sf;
+		struct load_err e;
+		char got[400];
+		int rc = scene_file_parse(&sf, "t.yaml", cases[i].yaml, strlen(cases[i].yaml), &e);
+
+		format_err(got, sizeof(got), "t.yaml", &e);
+		if (rc == 0 || strcmp(got, cases[i].expect) ||
+		    (rc != -EINVAL && rc != -ERANGE && rc != -EBADMSG) || e.line == 0) {
+			print_error("case '%s':\n  expected %s\n  got      %s (rc %d)\n",
+				    cases[i].name, cases[i].expect, rc ? got : "success", rc);
+			failed++;
+		}
+		scene_file_free(&sf);
+	}
+	assert_int_equal(failed, 0);
+}
+
+/* A Bezier strand is one curve through all its keys: at most 32. */
+static void test_bezier_keys(void **state)
+{
+	char yaml[8192];
+	size_t o = 0;
+	struct scene_file sf;
+	struct load_err e;
+	int i;
+
+	o += (size_t)snprintf(yaml + o, sizeof(yaml) - o,
+			      "timing: {frame_rate: 24, frames: [0, 10]}\n"
+			      "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+			      "strands:\n  - node: a\n    interpolation: bezier\n    keys:\n");
+	for (i = 0; i < 33; i++)
+		o += (size_t)snprintf(yaml + o, sizeof(yaml) - o,
+				      "      - {frame: %d, angle: %d}\n", i, i % 7);
+	assert_int_equal(scene_file_parse(&sf, "t.yaml", yaml, o, &e), -EINVAL);
+	assert_int_equal(e.line, 6 + 33);
+	assert_int_equal(e.col, 9);
+	assert_string_equal(e.msg, "a bezier strand takes at most 32 keys (it is one curve through all of them)");
+}
+
+/* The first error wins, and its code says what kind of failure it is. */
+static void test_io(void **state)
+{
+	struct scene_file sf;
+	struct load_err e;
+
+	assert_int_equal(scene_file_load(&sf, "/nonexistent/scene.yaml", &e), -ENOENT);
+	assert_int_equal(e.line, 0);
+	assert_string_equal(e.msg, "cannot open: No such file or directory");
+	scene_file_free(&sf);
+	assert_int_equal(scene_file_load(&sf, "/", &e) < 0, 1);
+	scene_file_free(&sf);
+}
+
+static int write_corpus(const char *dir)
+{
+	size_t i;
+
+	mkdir(dir, 0777);
+	for (i = 0; i < NCASES; i++) {
+		char path[512];
+		FILE *f;
+
+		snprintf(path, sizeof(path), "%s/error-%02zu.yaml", dir, i);
+		f = fopen(path, "w");
+		if (!f || fputs(cases[i].yaml, f) < 0 || fclose(f)) {
+			perror(path);
+			return 1;
+		}
+	}
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_golden),
+		cmocka_unit_test(test_bezier_keys),
+		cmocka_unit_test(test_io),
+	};
+
+	if (argc == 3 && !strcmp(argv[1], "--write-corpus"))
+		return write_corpus(argv[2]);
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,533 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_scene.c - whole scenes end to end against the floating-point
+ * reference (ref_scene.c): the paper's 5-joint robot arm at 1.5 m and at
+ * 90 m, random hierarchies with every node, key and curve kind, a spin after
+ * 24 hours, a camera panning through +-180 degrees, sequential against
+ * random access, and the API's answers to bad input.
+ */
+#include "testutil.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "motion/arena.h"
+#include "ref_scene.h"
+#include "scene/scene_desc.h"
+#include "synth.h"
+
+struct run {
+	struct scene_built b;
+	struct mot_eval ev;
+	struct mot_pose pose;
+	struct ref_scene *ref;
+	struct ref_pose rp;
+};
+
+static void run_open(struct run *r, const struct scene_desc *d)
+{
+	struct scene_build_err e;
+	int err = scene_build(&r->b, d, &e);
+
+	if (err)
+		fail_msg("scene_build: %d at node %d %s key %u", err, e.node, e.what ? e.what : "",
+			 e.key);
+	assert_int_equal(scene_eval_new(&r->ev, &r->b.sc), 0);
+	assert_int_equal(scene_pose_new(&r->pose, &r->b.sc), 0);
+	r->ref = ref_scene_new(d);
+	assert_non_null(r->ref);
+	assert_int_equal(ref_pose_new(&r->rp, d), 0);
+}
+
+static void run_close(struct run *r)
+{
+	ref_pose_free(&r->rp);
+	ref_scene_free(r->ref);
+	scene_pose_free(&r->pose);
+	scene_eval_free(&r->ev);
+	scene_built_free(&r->b);
+}
+
+static void mat_from_fixed(struct ref_mat *out, const struct mot_mat *m)
+{
+	ref_from_mat(out, m);
+}
+
+/*
+ * Every tick (or every `step` ticks) of the scene's span: world pivot
+ * positions (m), world rotations (rad, joint-only scenes) or linear-part
+ * entries (scenes with scale and shear), joint values (turns).
+ */
+static void compare(struct run *r, const struct scene_desc *d, int64_t step, bool rigid,
+		    struct tu_worst *wpos, struct tu_worst *wrot, struct tu_worst *wval)
+{
+	const struct mot_timing *t = &r->b.sc.timing;
+	int64_t k0 = mot_timing_trigger_tick(t, (int64_t)d->frame_first);
+	int64_t k1 = mot_timing_trigger_tick(t, (int64_t)d->frame_last);
+	int64_t k;
+	uint32_t i, j;
+
+	for (k = k0; k <= k1; k += step) {
+		mot_q32 f = mot_timing_tick_frame(t, k);
+
+		mot_scene_eval(&r->b.sc, &r->ev, f, &r->pose);
+		ref_scene_eval(r->ref, f, &r->rp);
+		for (i = 0; i < d->nnodes; i++) {
+			struct ref_mat w;
+
+			mat_from_fixed(&w, &r->pose.world[i]);
+			for (j = 0; j < 3; j++)
+				tu_worst_add(wpos, q2d(r->pose.pos[i][j]) - r->rp.pos[i][j],
+					     (double)k);
+			if (rigid)
+				tu_worst_add(wrot, ref_rot_angle_diff(&w, &r->rp.world[i]), (double)k);
+			else
+				tu_worst_add(wrot, ref_lin_diff(&w, &r->rp.world[i]), (double)k);
+			if (d->nodes[i].kind != MOT_NODE_FREE) {
+				double v = q2d(r->pose.value[i]), rv = r->rp.value[i];
+
+				/* revolute values in turns: compare as angles (rad) */
+				if (d->nodes[i].kind == MOT_NODE_REVOLUTE)
+					tu_worst_add(wval, (v - rv) * 2 * M_PI, (double)k);
+				else
+					tu_worst_add(wval, v - rv, (double)k);
+			}
+		}
+	}
+	assert_int_equal(r->ev.sat, 0);
+}
+
+/* The issue's precision goal: a 5-joint chain within 1e-6 rad and 1 um of a
+ * double reference over a +-100 m workspace. */
+static void test_robot_arm(void **state)
+{
+	static const double scales[] = { 1.0, 60.0 };
+	size_t s;
+
+	for (s = 0; s < 2; s++) {
+		struct synth sy;
+		struct run r;
+		struct tu_worst wp = { 0, 0 }, wr = { 0, 0 }, wv = { 0, 0 };
+		char name[64];
+
+		synth_robot_arm(&sy, scales[s], 240);
+		run_open(&r, &sy.d);
+		compare(&r, &sy.d, 1, true, &wp, &wr, &wv);
+		snprintf(name, sizeof(name), "scene.robot_arm_x%g.position", scales[s]);
+		tu_bound(name, &wp, 1e-6, "m");
+		snprintf(name, sizeof(name), "scene.robot_arm_x%g.rotation", scales[s]);
+		tu_bound(name, &wr, 1e-6, "rad");
+		snprintf(name, sizeof(name), "scene.robot_arm_x%g.joint", scales[s]);
+		tu_bound(name, &wv, 1e-8, "rad");
+		run_close(&r);
+		synth_free(&sy);
+	}
+}
+
+/* Random hierarchies: every node kind, every key and curve kind, slerp and
+ * squad, ease. Scale and shear make rotation angles meaningless for free
+ * nodes, so the linear part is compared entry by entry. */
+static void test_random(void **state)
+{
+	struct tu_worst wp = { 0, 0 }, wl = { 0, 0 }, wv = { 0, 0 };
+	uint64_t seed;
+
+	for (seed = 1; seed <= 6; seed++) {
+		struct synth sy;
+		struct run r;
+
+		synth_random(&sy, seed, 120, 96);
+		run_open(&r, &sy.d);
+		compare(&r, &sy.d, 7, false, &wp, &wl, &wv);
+		run_close(&r);
+		synth_free(&sy);
+	}
+	tu_bound("scene.random.position", &wp, 1e-6, "units");
+	tu_bound("scene.random.linear", &wl, 1e-7, "entry");
+	tu_bound("scene.random.joint", &wv, 1e-8, "rad or units");
+}
+
+/* Playback with cursors and random access give the same bits. */
+static void test_random_access(void **state)
+{
+	struct synth sy;
+	struct scene_built b;
+	struct mot_eval seq, rnd;
+	struct mot_pose p1, p2;
+	struct tu_rng rng;
+	struct scene_build_err e;
+	const struct mot_timing *t;
+	int64_t k, n;
+	uint32_t i, j;
+
+	synth_random(&sy, 42, 200, 120);
+	assert_int_equal(scene_build(&b, &sy.d, &e), 0);
+	t = &b.sc.timing;
+	assert_int_equal(scene_eval_new(&seq, &b.sc), 0);
+	assert_int_equal(scene_eval_new(&rnd, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&p1, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&p2, &b.sc), 0);
+	tu_seed(&rng, 7);
+	n = mot_timing_trigger_tick(t, 130);
+	for (k = -200; k < n; k++) {
+		mot_q32 f = mot_timing_tick_frame(t, k);
+		mot_q32 g = mot_timing_tick_frame(t, (int64_t)(tu_u64(&rng) % (uint64_t)n));
+
+		mot_scene_eval(&b.sc, &seq, f, &p1);
+		/* the random evaluator jumps somewhere else first */
+		mot_scene_eval(&b.sc, &rnd, g, &p2);
+		mot_scene_eval(&b.sc, &rnd, f, &p2);
+		for (i = 0; i < b.sc.nnodes; i++) {
+			for (j = 0; j < 3; j++)
+				assert_int_equal(p1.pos[i][j], p2.pos[i][j]);
+			assert_memory_equal(&p1.world[i], &p2.world[i], sizeof(p1.world[i]));
+			assert_int_equal(p1.value[i], p2.value[i]);
+		}
+	}
+	scene_pose_free(&p1);
+	scene_pose_free(&p2);
+	scene_eval_free(&seq);
+	scene_eval_free(&rnd);
+	scene_built_free(&b);
+	synth_free(&sy);
+}
+
+/* A propeller spun up to 1200 rpm over 48 frames and held for a day: the
+ * angle is the exact value for the tick's Q32.32 frame time, rounded once,
+ * to the last bit; nothing accumulates. */
+static void test_spin_day(void **state)
+{
+	static const struct sd_key rpm[] = { { 0, 0, 0, 0 }, { 48, 1200, 0, 0 } };
+	struct sd_node n;
+	struct scene_desc d;
+	struct scene_built b;
+	struct mot_eval ev;
+	struct mot_pose p;
+	struct scene_build_err e;
+	const int64_t day = 86400LL * 1000;
+	int64_t k;
+
+	memset(&n, 0, sizeof(n));
+	n.name = "propeller";
+	n.parent = -1;
+	n.kind = MOT_NODE_REVOLUTE;
+	n.axis_id = MOT_AXIS_Z;
+	n.axis[2] = 1;
+	n.spin.interp = MOT_INTERP_LINEAR;
+	n.spin.nkeys = 2;
+	n.spin.keys = rpm;
+	memset(&d, 0, sizeof(d));
+	d.rate_num = 24;
+	d.rate_den = 1;
+	d.tick_hz = 1000;
+	d.frame_last = 48;
+	d.nnodes = 1;
+	d.nodes = &n;
+	assert_int_equal(scene_build(&b, &d, &e), 0);
+	assert_int_equal(scene_eval_new(&ev, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&p, &b.sc), 0);
+	/* after the ramp: turns = (1200*48/2 + 1200 (f - 48)) / (60 * 24) */
+	for (k = day - 5; k <= day + 5; k++) {
+		mot_q32 f = mot_timing_tick_frame(&b.sc.timing, k);
+		/* turns(f) = (28800 + 1200 (f - 48)) / 1440 = 5 f / 6 - 20, from the
+		 * frame time the core sees (f in Q32.32), rounded half up */
+		mot_q32 want = (mot_q32)(((__int128)5 * f + 3) / 6) - ((mot_q32)20 << 32);
+
+		mot_scene_eval(&b.sc, &ev, f, &p);
+		assert_int_equal(p.value[0], want);
+		assert_int_equal(p.rpm[0], MOT_Q32_INT(1200));
+	}
+	/* at exactly 24 h the propeller has made 1727980 turns */
+	mot_scene_eval(&b.sc, &ev, mot_timing_tick_frame(&b.sc.timing, day), &p);
+	assert_int_equal(p.value[0], (mot_q32)1727980 << 32);
+	assert_int_equal(ev.sat, 0);
+	scene_pose_free(&p);
+	scene_eval_free(&ev);
+	scene_built_free(&b);
+}
+
+/* A camera circling a model twice: pan runs continuously through +-180
+ * degrees (no jump back through a full turn), equals the principal value
+ * modulo a turn, and tilt and the eye match the reference. */
+static void test_camera_pan(void **state)
+{
+	enum { NK = 17 };
+	static struct sd_key keys[MOT_CAM_NCHANNELS][NK];
+	struct scene_desc d;
+	struct scene_built b;
+	struct mot_eval ev;
+	struct mot_pose p;
+	struct ref_scene *ref;
+	struct ref_pose rp;
+	struct scene_build_err e;
+	struct tu_worst wpan = { 0, 0 }, wtilt = { 0, 0 }, weye = { 0, 0 };
+	double prev = 0, total;
+	int i, c;
+	int64_t k, k1;
+
+	memset(&d, 0, sizeof(d));
+	for (i = 0; i < NK; i++) {
+		double a = 2 * M_PI * i / 8.0; /* 8 keys per turn, two turns */
+
+		for (c = 0; c < MOT_CAM_NCHANNELS; c++)
+			keys[c][i].frame = i * 12;
+		keys[MOT_CAM_EYE_X][i].value = 6 * sin(a);
+		keys[MOT_CAM_EYE_Y][i].value = 1.6 + 0.3 * sin(3 * a);
+		keys[MOT_CAM_EYE_Z][i].value = 6 * cos(a);
+		keys[MOT_CAM_LOOK_Y][i].value = 1;
+		keys[MOT_CAM_TWIST][i].value = 5 * sin(a);
+	}
+	for (c = 0; c < MOT_CAM_NCHANNELS; c++) {
+		d.camera.ch[c].interp = MOT_INTERP_HERMITE;
+		d.camera.ch[c].nkeys = NK;
+		d.camera.ch[c].keys = keys[c];
+	}
+	d.camera.ease_in = d.camera.ease_out = 24;
+	d.has_camera = true;
+	d.rate_num = 24;
+	d.rate_den = 1;
+	d.tick_hz = 1000;
+	d.frame_last = 12 * (NK - 1);
+	assert_int_equal(scene_build(&b, &d, &e), 0);
+	assert_int_equal(scene_eval_new(&ev, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&p, &b.sc), 0);
+	ref = ref_scene_new(&d);
+	assert_non_null(ref);
+	assert_int_equal(ref_pose_new(&rp, &d), 0);
+	k1 = mot_timing_trigger_tick(&b.sc.timing, 12 * (NK - 1));
+	for (k = 0; k <= k1; k++) {
+		mot_q32 f = mot_timing_tick_frame(&b.sc.timing, k);
+		double pan, diff;
+
+		mot_scene_eval(&b.sc, &ev, f, &p);
+		ref_scene_eval(ref, f, &rp);
+		pan = q2d(p.cam.pan);
+		/* continuous: no tick moves the head by more than a degree */
+		if (k > 0 && fabs(pan - prev) > 1.0 / 360)
+			fail_msg("pan jumps %.6f turn at tick %lld", pan - prev, (long long)k);
+		prev = pan;
+		diff = pan - rp.pan;
+		diff -= nearbyint(diff);
+		tu_worst_add(&wpan, diff * 2 * M_PI, (double)k);
+		tu_worst_add(&wtilt, (q2d(p.cam.tilt) - rp.tilt) * 2 * M_PI, (double)k);
+		for (c = 0; c < 3; c++)
+			tu_worst_add(&weye, q2d(p.cam.eye[c]) - rp.eye[c], (double)k);
+	}
+	/* the eye goes round twice counter-clockwise seen from above: pan has
+	 * turned through two full turns, and crossed +-180 degrees on the way */
+	total = q2d(p.cam.pan) - q2d(b.sc.camera->pan_ref[0]);
+	assert_true(fabs(fabs(total) - 2.0) < 1e-9);
+	tu_bound("scene.camera.pan", &wpan, 1e-8, "rad");
+	tu_bound("scene.camera.tilt", &wtilt, 1e-8, "rad");
+	tu_bound("scene.camera.eye", &weye, 1e-9, "m");
+	assert_int_equal(ev.sat, 0);
+	ref_pose_free(&rp);
+	ref_scene_free(ref);
+	scene_pose_free(&p);
+	scene_eval_free(&ev);
+	scene_built_free(&b);
+}
+
+/* Bad input to the API gets an error code, never a trap. */
+static void test_bad_input(void **state)
+{
+	static const struct sd_key rev[] = { { 0, 0, 0, 0 }, { 10, 5, 0, 0 }, { 10, 6, 0, 0 } };
+	static const struct sd_key ok[] = { { 0, 0, 0, 0 }, { 10, 5, 0, 0 } };
+	struct synth sy;
+	struct sd_node *n;
+	struct scene_built b;
+	struct scene_build_err e;
+	struct mot_eval ev;
+	struct mot_cursor cur[2];
+	struct mot_arena a;
+	unsigned char small[64] __attribute__((aligned(64)));
+
+	synth_robot_arm(&sy, 1, 96);
+	n = (struct sd_node *)sy.d.nodes;
+
+	/* keys out of order */
+	n[2].value.keys = rev;
+	n[2].value.nkeys = 3;
+	assert_int_equal(scene_build(&b, &sy.d, &e), MOT_E_ORDER);
+	assert_int_equal(e.node, 2);
+	n[2].value.keys = ok;
+	n[2].value.nkeys = 2;
+	assert_int_equal(scene_build(&b, &sy.d, &e), 0);
+
+	/* a parent after its child, and a parent that is the node itself */
+	{
+		struct mot_node *nodes = (struct mot_node *)b.sc.nodes;
+
+		nodes[1].parent = 3;
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_PARENT);
+		nodes[1].parent = 1;
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_PARENT);
+		nodes[1].parent = 0;
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
+		/* the claw's tilted axis with derived fields that do not match it
+		 * (an axis edited without mot_node_prepare), then prepared again */
+		nodes[4].axis[0] = nodes[4].axis[2];
+		nodes[4].axis[2] = -nodes[4].axis[0];
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_INVAL);
+		mot_node_prepare(&nodes[4]);
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
+		/* derived fields on a node that has none */
+		nodes[1].rot_pr[0] = 1;
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_E_INVAL);
+		mot_node_prepare(&nodes[1]);
+		assert_int_equal(mot_scene_validate(&b.sc), MOT_OK);
+	}
+	/* too few cursors for the scene */
+	ev.cursors = cur;
+	ev.ncursors = 2;
+	assert_int_equal(mot_eval_reset(&ev, &b.sc), MOT_E_CAPACITY);
+	scene_built_free(&b);
+
+	/* a value outside the core's range */
+	{
+		static const struct sd_key huge[] = { { 0, 0, 0, 0 }, { 10, 1e12, 0, 0 } }; /* deg */
+
+		n[0].value.keys = huge;
+		n[0].value.nkeys = 2;
+		assert_int_equal(scene_build(&b, &sy.d, &e), MOT_E_RANGE);
+		assert_int_equal(e.node, 0);
+		n[0].value.keys = ok;
+	}
+	/* a frame rate above the tick rate */
+	sy.d.rate_num = 2000;
+	assert_int_equal(scene_build(&b, &sy.d, &e), MOT_E_INVAL);
+	sy.d.rate_num = 24;
+
+	/* a full arena refuses, and a sealed one too */
+	mot_arena_init(&a, small, sizeof(small));
+	assert_non_null(mot_arena_alloc(&a, 32, 8));
+	assert_null(mot_arena_alloc(&a, 64, 8));
+	assert_true(a.failed);
+	mot_arena_init(&a, small, sizeof(small));
+	mot_arena_seal(&a);
+	assert_null(mot_arena_alloc(&a, 8, 8));
+	assert_true(a.failed);
+	synth_free(&sy);
+}
+
+/* A strand without keys is refused by every prepare function. */
+/* Build a small scene and evaluate it once at frame 0; the nodes may be
+ * patched in between (values the loader would refuse). */
+static void eval_once(struct scene_built *b, struct mot_eval *ev, struct mot_pose *p,
+		      const struct sd_node *nodes, uint32_t n,
+		      void (*patch)(struct mot_node *nodes))
+{
+	struct scene_desc d;
+	struct scene_build_err e;
+
+	memset(&d, 0, sizeof(d));
+	d.rate_num = 24;
+	d.rate_den = 1;
+	d.tick_hz = 1000;
+	d.frame_last = 1;
+	d.nnodes = n;
+	d.nodes = nodes;
+	assert_int_equal(scene_build(b, &d, &e), 0);
+	patch((struct mot_node *)b->sc.nodes);
+	assert_int_equal(scene_eval_new(ev, &b->sc), 0);
+	assert_int_equal(scene_pose_new(p, &b->sc), 0);
+	mot_scene_eval(&b->sc, ev, 0, p);
+}
+
+static void patch_prismatic(struct mot_node *nodes)
+{
+	nodes[1].pivot[0] = INT64_MAX - ((int64_t)1 << 60);
+}
+
+static void patch_revolute(struct mot_node *nodes)
+{
+	nodes[0].pivot[0] = (int64_t)1 << 62;
+}
+
+/*
+ * The hot path sums products in 128 bits and checks the results once per
+ * node; what does not fit is redone with the saturating sums. A pivot plus
+ * an offset beyond int64 whose image does fit (under a parent scaled by
+ * 1/2) comes out exact and unflagged; a translation that cannot fit
+ * saturates with its sign and is flagged, next to exact entries.
+ */
+static void test_wide_sums(void **state)
+{
+	static const struct sd_key half[] = { { 0, 0.5, 0, 0 } };
+	static const struct sd_key far[] = { { 0, 536870912, 0, 0 } }; /* 2^29 units */
+	struct sd_node n[2];
+	struct scene_built b;
+	struct mot_eval ev;
+	struct mot_pose p;
+	__int128 want;
+	int k;
+
+	memset(n, 0, sizeof(n));
+	n[0].name = "half";
+	n[0].parent = -1;
+	n[0].kind = MOT_NODE_FREE;
+	n[0].has_free = true;
+	for (k = MOT_FREE_SX; k <= MOT_FREE_SZ; k++)
+		n[0].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 1, half, 1, 0, 0, 0 };
+	n[1].name = "slide";
+	n[1].parent = 0;
+	n[1].kind = MOT_NODE_PRISMATIC;
+	n[1].axis_id = MOT_AXIS_X;
+	n[1].axis[0] = 1;
+	n[1].value = (struct sd_curve){ MOT_INTERP_LINEAR, 1, far, 1, 0, 0, 0 };
+	eval_once(&b, &ev, &p, n, 2, patch_prismatic);
+	/* pos = (p + t) / 2, rounded half up; W_t = t / 2 */
+	want = ((__int128)b.sc.nodes[1].pivot[0] + ((int64_t)1 << 61) + 1) >> 1;
+	assert_true(p.pos[1][0] == (int64_t)want);
+	assert_int_equal(p.world[1].m[3][0], (int64_t)1 << 60);
+	assert_int_equal(p.world[1].m[0][0], MOT_Q32_HALF);
+	assert_int_equal(ev.sat, 0);
+	scene_pose_free(&p);
+	scene_eval_free(&ev);
+	scene_built_free(&b);
+
+	/* half a turn about z at (2^30 units, 0, 0): W_t = 2 p does not fit */
+	memset(n, 0, sizeof(n));
+	n[0].name = "turn";
+	n[0].parent = -1;
+	n[0].kind = MOT_NODE_REVOLUTE;
+	n[0].axis_id = MOT_AXIS_Z;
+	n[0].axis[2] = 1;
+	n[0].rest = 180;
+	eval_once(&b, &ev, &p, n, 1, patch_revolute);
+	assert_true(ev.sat & MOT_SAT_OVERFLOW);
+	assert_int_equal(p.world[0].m[3][0], MOT_Q32_MAX);
+	assert_int_equal(p.world[0].m[3][1], 0);
+	assert_int_equal(p.pos[0][0], (int64_t)1 << 62);
+	assert_int_equal(p.world[0].m[0][0], -MOT_Q32_ONE);
+	assert_int_equal(p.world[0].m[1][1], -MOT_Q32_ONE);
+	scene_pose_free(&p);
+	scene_eval_free(&ev);
+	scene_built_free(&b);
+}
+
+static void test_no_keys(void **state)
+{
+	struct mot_rot_track rt;
+	struct mot_rot_seg seg[1];
+	struct mot_curve c;
+	struct mot_curve_seg cs[4];
+	struct mot_key k[1] = { { 0, 0, 0, 0 } };
+
+	assert_int_equal(mot_rot_track_init(&rt, NULL, 0, false, seg, 1, NULL), MOT_E_NOKEYS);
+	assert_int_equal(mot_curve_init(&c, MOT_INTERP_LINEAR, k, 0, NULL, cs, 4, NULL),
+			 MOT_E_NOKEYS);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_robot_arm),   cmocka_unit_test(test_random),
+		cmocka_unit_test(test_random_access), cmocka_unit_test(test_spin_day),
+		cmocka_unit_test(test_camera_pan),  cmocka_unit_test(test_bad_input),
+		cmocka_unit_test(test_no_keys),     cmocka_unit_test(test_wide_sums),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
