@@ -21,7 +21,9 @@ $(BUILD)/fuzz/fuzz_load: FUZZ_CFLAGS += $(MODBUS_CFLAGS)
 SIMDRIVE_SRC := $(wildcard firmware/simdrive/*.c)
 SIMDRIVE_OBJ := $(SIMDRIVE_SRC:%.c=$(BUILD)/%.o)
 
-$(BUILD)/strand-simdrive: $(SIMDRIVE_OBJ) $(LIB_OBJ) $(BUILD)/libmotion.a
+# (and of cli/ the helpers: scene errors, option numbers)
+SIMDRIVE_CLI := $(BUILD)/firmware/cli/cli.o $(BUILD)/firmware/cli/opt.o
+$(BUILD)/strand-simdrive: $(SIMDRIVE_OBJ) $(SIMDRIVE_CLI) $(LIB_OBJ) $(BUILD)/libmotion.a
 	$(Q)$(CC) $^ $(FW_LIBS) -o $@
 
 all: $(BUILD)/strand-simdrive

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* cli.c - the `strand` dispatcher and the helpers its subcommands share. */
+/* cli.c - what the subcommands share: usage errors, scene errors, option
+ * parsing (the dispatcher is commands.c). */
 #include "cli.h"
 
 #include <errno.h>
@@ -9,51 +10,6 @@
 #include <string.h>
 
 #include "exitcode.h"
-
-/* Every subcommand, in the order `strand --help` lists them. */
-static const struct cli_cmd *const commands[] = {
-	&cmd_check, &cmd_export, &cmd_plot, &cmd_info, &cmd_play, &cmd_journal, NULL,
-};
-
-static void main_help(FILE *out)
-{
-	size_t i;
-
-	fprintf(out, "usage: strand <command> [options] SCENE.yaml\n"
-		     "       strand --version | --help\n\n"
-		     "Keyframed motion for servo rigs: check, export, plot and describe scene files,\n"
-		     "and play them in real time, one camera trigger per frame.\n\n"
-		     "commands:\n");
-	for (i = 0; commands[i]; i++)
-		fprintf(out, "  %-8s %s\n", commands[i]->name, commands[i]->summary);
-	fprintf(out, "\n'strand <command> --help' describes a command.\n"
-		     "exit codes: 0 ok, 1 limits violated, 2 invalid scene, 3 usage, 4 I/O,\n"
-		     "            5 play stopped by a signal, 6 e-stop, 7 device fault,\n"
-		     "            8 internal error (see the README)\n");
-}
-
-int cli_main(int argc, char **argv, FILE *out, FILE *err)
-{
-	size_t i;
-
-	if (argc < 2) {
-		main_help(err);
-		return STRAND_EXIT_USAGE;
-	}
-	if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
-		main_help(out);
-		return STRAND_EXIT_OK;
-	}
-	if (!strcmp(argv[1], "--version")) {
-		fprintf(out, "strand %s\n", STRAND_VERSION);
-		return STRAND_EXIT_OK;
-	}
-	for (i = 0; commands[i]; i++)
-		if (!strcmp(argv[1], commands[i]->name))
-			return commands[i]->run(commands[i], argc - 1, argv + 1, out, err);
-	fprintf(err, "strand: unknown command '%s' (try 'strand --help')\n", argv[1]);
-	return STRAND_EXIT_USAGE;
-}
 
 int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
 {
@@ -151,13 +107,4 @@ int cli_scene_args(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, 
 	*path = argv[first];
 	rc = cli_open_scene(*path, sf, b, err);
 	return rc ? rc : -1;
-}
-
-bool cli_parse_long(const char *s, long long min, long long max, long long *out)
-{
-	char *end;
-
-	errno = 0;
-	*out = strtoll(s, &end, 10);
-	return *s && !*end && !errno && *out >= min && *out <= max;
 }

@@ -3,7 +3,7 @@
  * cli.h - the `strand` command: a table of subcommands and what they share.
  *
  * A subcommand is a struct cli_cmd in its own file (cmd_<name>.c), listed
- * once in cli.c's table; `strand --help` and the dispatcher read the table,
+ * once in commands.c's table; `strand --help` and the dispatcher read the table,
  * so adding one (play, journal, ...) is a new file and a line there. Every
  * subcommand writes through the streams it is given, never stdout/stderr
  * directly, so the tests run them in-process. Exit codes: exitcode.h.
@@ -15,6 +15,7 @@
 #include <stdio.h>
 
 #include "load/load.h"
+#include "opt.h"
 
 #define STRAND_VERSION "0.1.0"
 
@@ -66,9 +67,6 @@ int cli_scene_args(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, 
  * chosen by how it ended, never by its message. */
 struct loop_report;
 int cli_play_exit(const struct loop_report *r);
-
-/* A whole number option value in [min, max]; false if it is not one. */
-bool cli_parse_long(const char *s, long long min, long long max, long long *out);
 
 extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info, cmd_play, cmd_journal;
 

@@ -40,16 +40,16 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		return -1;
 	case 'f':
 		o->has_from = true;
-		if (!cli_parse_long(arg, -FRAME_LIMIT, FRAME_LIMIT, &o->from))
+		if (!opt_long(arg, -FRAME_LIMIT, FRAME_LIMIT, &o->from))
 			return cli_usage(o->cmd, o->err, "--from takes a whole frame number, not '%s'", arg);
 		return -1;
 	case 't':
 		o->has_to = true;
-		if (!cli_parse_long(arg, -FRAME_LIMIT, FRAME_LIMIT, &o->to))
+		if (!opt_long(arg, -FRAME_LIMIT, FRAME_LIMIT, &o->to))
 			return cli_usage(o->cmd, o->err, "--to takes a whole frame number, not '%s'", arg);
 		return -1;
 	case 'e':
-		if (!cli_parse_long(arg, 1, FRAME_LIMIT, &o->every))
+		if (!opt_long(arg, 1, FRAME_LIMIT, &o->every))
 			return cli_usage(o->cmd, o->err, "--every takes a whole number from 1, not '%s'", arg);
 		return -1;
 	case 'F':

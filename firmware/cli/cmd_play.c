@@ -6,6 +6,7 @@
  * the edge and the exit codes (play.h does the run).
  */
 #include <errno.h>
+#include <float.h>
 #include <getopt.h>
 #include <limits.h>
 #include <math.h>
@@ -69,19 +70,6 @@ struct cli {
 	char journal[PATH_MAX];
 };
 
-static bool parse_seconds(const char *s, double *out)
-{
-	char *end;
-	double v;
-
-	errno = 0;
-	v = strtod(s, &end);
-	if (errno || end == s || *end || !isfinite(v) || v < 0)
-		return false;
-	*out = v;
-	return true;
-}
-
 static int on_opt(void *ctx, int opt, const char *arg)
 {
 	struct cli *c = ctx;
@@ -99,7 +87,7 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		return -1;
 	case OPT_FROM:
 	case OPT_TO:
-		if (!cli_parse_long(arg, 0, INT32_MAX, &v))
+		if (!opt_long(arg, 0, INT32_MAX, &v))
 			return cli_usage(c->cmd, c->err, "%s %s: a frame number",
 					 opt == OPT_FROM ? "--from" : "--to", arg);
 		if (opt == OPT_FROM) {
@@ -120,24 +108,24 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		c->o.loop.ping_pong = true;
 		return -1;
 	case OPT_PASSES:
-		if (!cli_parse_long(arg, 1, INT32_MAX, &v))
+		if (!opt_long(arg, 1, INT32_MAX, &v))
 			return cli_usage(c->cmd, c->err, "--passes %s: a count of 1 or more", arg);
 		c->o.loop.passes = v;
 		return -1;
 	case OPT_DURATION:
-		if (!parse_seconds(arg, &c->duration_s) || c->duration_s == 0)
+		if (!opt_double(arg, 0, DBL_MAX, &c->duration_s) || c->duration_s == 0)
 			name = "--duration";
 		break;
 	case OPT_SETTLE:
-		if (!parse_seconds(arg, &c->settle_ms))
+		if (!opt_double(arg, 0, DBL_MAX, &c->settle_ms))
 			name = "--settle";
 		break;
 	case OPT_EXPOSURE:
-		if (!parse_seconds(arg, &c->exposure_ms))
+		if (!opt_double(arg, 0, DBL_MAX, &c->exposure_ms))
 			name = "--exposure";
 		break;
 	case OPT_TIMEOUT:
-		if (!parse_seconds(arg, &c->timeout_s) || c->timeout_s == 0)
+		if (!opt_double(arg, 0, DBL_MAX, &c->timeout_s) || c->timeout_s == 0)
 			name = "--timeout";
 		break;
 	case OPT_JOURNAL:
@@ -155,12 +143,12 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		c->o.virtual_clock = !strcmp(arg, "virtual");
 		return -1;
 	case OPT_PRIORITY:
-		if (!cli_parse_long(arg, 0, 99, &v))
+		if (!opt_long(arg, 0, 99, &v))
 			return cli_usage(c->cmd, c->err, "--priority %s: 0 to 99", arg);
 		c->o.rt.priority = (int)v;
 		return -1;
 	case OPT_CPU:
-		if (!cli_parse_long(arg, 0, 1023, &v))
+		if (!opt_long(arg, 0, 1023, &v))
 			return cli_usage(c->cmd, c->err, "--cpu %s: a CPU number", arg);
 		c->o.rt.cpu = (int)v;
 		return -1;

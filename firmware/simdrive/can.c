@@ -20,6 +20,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli/exitcode.h"
+#include "cli/opt.h"
 #include "hal/canopen/co_socketcan.h"
 #include "hal/clock.h"
 #include "sim/co_slave.h"
@@ -75,15 +77,6 @@ static void on_signal(int sig)
 		stop_sig = sig;
 }
 
-static bool number(const char *s, double min, double max, double *out)
-{
-	char *end;
-
-	errno = 0;
-	*out = strtod(s, &end);
-	return !errno && end != s && !*end && *out >= min && *out <= max;
-}
-
 /* The drive's frames go straight out; one the interface refuses is lost,
  * as a real drive's would be. */
 static int send_frames(void *ctx, const struct co_frame *f, uint32_t n)
@@ -116,26 +109,26 @@ static int parse(struct can_opts *o, int argc, char **argv)
 			o->iface = optarg;
 			break;
 		case OPT_NODE:
-			ok = number(optarg, 1, CO_NODE_MAX, &v) && v == (long)v;
+			ok = opt_double(optarg, 1, CO_NODE_MAX, &v) && v == (long)v;
 			o->node = (long)v;
 			break;
 		case OPT_NAME:
 			o->name = optarg;
 			break;
 		case OPT_INITIAL:
-			ok = number(optarg, INT32_MIN, INT32_MAX, &o->initial);
+			ok = opt_double(optarg, INT32_MIN, INT32_MAX, &o->initial);
 			break;
 		case OPT_BW:
-			ok = number(optarg, 0.01, 10000, &o->bandwidth);
+			ok = opt_double(optarg, 0.01, 10000, &o->bandwidth);
 			break;
 		case OPT_DAMP:
-			ok = number(optarg, 0.01, 100, &o->damping);
+			ok = opt_double(optarg, 0.01, 100, &o->damping);
 			break;
 		case OPT_FF:
-			ok = number(optarg, 0, 1, &o->feedforward);
+			ok = opt_double(optarg, 0, 1, &o->feedforward);
 			break;
 		case OPT_FAULT:
-			ok = number(optarg, 1, 0xffff, &o->fault) && o->fault == (long)o->fault;
+			ok = opt_double(optarg, 1, 0xffff, &o->fault) && o->fault == (long)o->fault;
 			break;
 		case OPT_SYNC_LOG:
 			o->sync_log = optarg;
@@ -148,17 +141,17 @@ static int parse(struct can_opts *o, int argc, char **argv)
 			return 0;
 		default:
 			fputs(usage, stderr);
-			return 3;
+			return STRAND_EXIT_USAGE;
 		}
 		if (!ok) {
 			fprintf(stderr, "strand-simdrive: --%s %s: out of range\n",
 				options[opt - OPT_CAN].name, optarg);
-			return 3;
+			return STRAND_EXIT_USAGE;
 		}
 	}
 	if (optind != argc || !o->iface || !o->node) {
 		fputs(usage, stderr);
-		return 3;
+		return STRAND_EXIT_USAGE;
 	}
 	return -1;
 }
@@ -221,7 +214,7 @@ static int serve(struct co_bus *bus, struct co_slave *s, uint16_t fault, FILE *s
 		} while (n == CO_SOCKETCAN_BATCH);
 		if (n < 0) {
 			fprintf(stderr, "strand-simdrive: %s: %s\n", bus->name, strerror(-n));
-			return 4;
+			return STRAND_EXIT_IO;
 		}
 		next = co_slave_poll(s, hal_mono_ns());
 		if (co_slave_sync_id(s) != sync_id) {
@@ -248,17 +241,17 @@ int simdrive_can_main(int argc, char **argv)
 	bus = co_socketcan_open(o.iface, NULL, 0, err, sizeof(err));
 	if (!bus) {
 		fprintf(stderr, "strand-simdrive: %s\n", err);
-		return 4;
+		return STRAND_EXIT_IO;
 	}
 	rc = listen_to(bus, (uint8_t)o.node, CO_ID_SYNC);
 	if (rc) {
 		fprintf(stderr, "strand-simdrive: %s: receive filter: %s\n", o.iface, strerror(-rc));
-		rc = 4;
+		rc = STRAND_EXIT_IO;
 		goto close_bus;
 	}
 	if (o.sync_log && !(sync_log = fopen(o.sync_log, "w"))) {
 		fprintf(stderr, "strand-simdrive: %s: %s\n", o.sync_log, strerror(errno));
-		rc = 4;
+		rc = STRAND_EXIT_IO;
 		goto close_bus;
 	}
 	c.node = (uint8_t)o.node;
@@ -272,7 +265,7 @@ int simdrive_can_main(int argc, char **argv)
 	s = co_slave_new(&c);
 	if (!s) {
 		fprintf(stderr, "strand-simdrive: %s\n", strerror(errno));
-		rc = 8;
+		rc = STRAND_EXIT_INTERNAL;
 		goto close_log;
 	}
 	memset(&sa, 0, sizeof(sa));

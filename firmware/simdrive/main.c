@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/cli.h"
+#include "cli/exitcode.h"
 #include "simdrive.h"
 
 static const char usage[] =
@@ -61,15 +63,6 @@ static const struct option options[] = {
 	{ NULL, 0, NULL, 0 },
 };
 
-static bool count_arg(const char *s, long long min, long long max, long long *out)
-{
-	char *end;
-
-	errno = 0;
-	*out = strtoll(s, &end, 10);
-	return !errno && end != s && !*end && *out >= min && *out <= max;
-}
-
 static volatile sig_atomic_t stop_sig;
 
 static void on_signal(int sig)
@@ -102,7 +95,7 @@ static int parse(struct simdrive *sd, int argc, char **argv)
 			sd->mb.log = fopen(optarg, "w");
 			if (!sd->mb.log) {
 				fprintf(stderr, "strand-simdrive: %s: %s\n", optarg, strerror(errno));
-				return 4;
+				return STRAND_EXIT_IO;
 			}
 			break;
 		case OPT_WIRE:
@@ -112,12 +105,12 @@ static int parse(struct simdrive *sd, int argc, char **argv)
 			sd->mb.quiet = true;
 			break;
 		case OPT_LATE_MS:
-			if (!count_arg(optarg, 1, 60000, &v))
+			if (!opt_long(optarg, 1, 60000, &v))
 				name = "--late-ms";
 			f->late_ms = (double)v;
 			break;
 		case OPT_EXC_CODE:
-			if (!count_arg(optarg, 1, 255, &v))
+			if (!opt_long(optarg, 1, 255, &v))
 				name = "--exception";
 			f->exception = (int)v;
 			break;
@@ -127,7 +120,7 @@ static int parse(struct simdrive *sd, int argc, char **argv)
 		case OPT_DIE:
 		case OPT_DROP:
 		case OPT_TRIP:
-			if (!count_arg(optarg, 1, INT64_MAX, &v)) {
+			if (!opt_long(optarg, 1, INT64_MAX, &v)) {
 				name = "a fault's count";
 				break;
 			}
@@ -140,16 +133,16 @@ static int parse(struct simdrive *sd, int argc, char **argv)
 			return 0;
 		default:
 			fputs(usage, stderr);
-			return 3;
+			return STRAND_EXIT_USAGE;
 		}
 		if (name) {
 			fprintf(stderr, "strand-simdrive: %s %s: out of range\n", name, optarg);
-			return 3;
+			return STRAND_EXIT_USAGE;
 		}
 	}
 	if (optind != argc - 1) {
 		fputs(usage, stderr);
-		return 3;
+		return STRAND_EXIT_USAGE;
 	}
 	sd->scene_path = argv[optind];
 	return -1;
@@ -164,13 +157,8 @@ static int setup(struct simdrive *sd)
 	uint32_t i, k;
 
 	if (scene_file_load(&sd->sf, sd->scene_path, &le) ||
-	    (sd->have_sf = true, scene_file_build(&sd->sf, &sd->b, &le))) {
-		if (le.line)
-			fprintf(stderr, "%s:%u:%u: %s\n", sd->scene_path, le.line, le.col, le.msg);
-		else
-			fprintf(stderr, "%s: %s\n", sd->scene_path, le.msg);
-		return 2;
-	}
+	    (sd->have_sf = true, scene_file_build(&sd->sf, &sd->b, &le)))
+		return cli_scene_error(stderr, sd->scene_path, &le);
 	sd->have_b = true;
 	for (k = 0; k < sd->sf.rig.ndevices; k++) {
 		const struct rig_device_desc *dd = &sd->sf.rig.devices[k];
@@ -183,17 +171,17 @@ static int setup(struct simdrive *sd)
 	if (!sd->dd) {
 		fprintf(stderr, "%s: no Modbus device%s%s in devices:\n", sd->scene_path,
 			sd->device ? " named " : "", sd->device ? sd->device : "");
-		return 2;
+		return STRAND_EXIT_SCENE;
 	}
 	if (source_scene_init(&sd->src, &sd->sf.desc, &sd->b.sc)) {
 		fprintf(stderr, "strand-simdrive: out of memory\n");
-		return 8;
+		return STRAND_EXIT_INTERNAL;
 	}
 	sd->have_src = true;
 	hal_clock_init(&sd->clk, true);
 	if (rig_build(&sd->rig, &sd->sf.rig, &sd->src.s, &sd->clk, &ro, msg, sizeof(msg))) {
 		fprintf(stderr, "%s: %s\n", sd->scene_path, msg);
-		return 2;
+		return STRAND_EXIT_SCENE;
 	}
 	sd->have_rig = true;
 	for (i = 0; i < sd->rig.naxes; i++)
@@ -201,7 +189,7 @@ static int setup(struct simdrive *sd)
 			break;
 	if (i == sd->rig.naxes) {
 		fprintf(stderr, "%s: device '%s' drives no output\n", sd->scene_path, sd->dd->name);
-		return 2;
+		return STRAND_EXIT_SCENE;
 	}
 	sd->mb.name = sd->dd->name;
 	sd->mb.d = sd->dd->modbus;
@@ -211,7 +199,7 @@ static int setup(struct simdrive *sd)
 	sd->velocity = calloc(sd->mb.nch ? sd->mb.nch : 1, sizeof(*sd->velocity));
 	if (!sd->velocity) {
 		fprintf(stderr, "strand-simdrive: out of memory\n");
-		return 8;
+		return STRAND_EXIT_INTERNAL;
 	}
 	for (k = 0; k < sd->rig.nout; k++)
 		if (sd->rig.out[k].dev == i)
@@ -246,7 +234,7 @@ int main(int argc, char **argv)
 		rc = mb_server_run(&sd.mb, err, sizeof(err));
 		if (rc)
 			fprintf(stderr, "strand-simdrive: %s\n", err);
-		rc = rc == 0 ? 0 : rc == -ENOMEM ? 8 : 4;
+		rc = rc == 0 ? STRAND_EXIT_OK : rc == -ENOMEM ? STRAND_EXIT_INTERNAL : STRAND_EXIT_IO;
 	}
 	if (sd.mb.log)
 		fclose(sd.mb.log);
