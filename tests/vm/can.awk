@@ -132,7 +132,7 @@ END {
 	# 1. the start-up sequence of each node
 	for (k = 1; k <= nn; k++) {
 		id = node[k]
-		reset = boot = start = 0
+		reset = boot = start = enabled_at = 0
 		sdo = 0
 		ncw = nst = 0
 		for (i = 1; i <= n; i++) {
@@ -153,6 +153,8 @@ END {
 				st = and(le16(i, 1), 111)   # 0x6f: the state bits
 				if (!nst || st != sts[nst])
 					sts[++nst] = st
+				if (st == 39 && !enabled_at)
+					enabled_at = i
 			}
 		}
 		if (!reset || !boot || !start || sdo < 29)
@@ -164,13 +166,19 @@ END {
 		if (nst != 3 || sts[1] != 33 || sts[2] != 35 || sts[3] != 39)
 			fail(sprintf("node %d: statuswords 0x%02x 0x%02x 0x%02x, want ready 0x21, " \
 				     "switched on 0x23, enabled 0x27", id, sts[1], sts[2], sts[3]))
+		# the master leaves its start-up once every drive says so
+		if (enabled_at > last_enabled)
+			last_enabled = enabled_at
 		printf "can: node %d start-up: reset communication, boot-up, %d SDO requests, NMT " \
 		       "start, controlwords 0x06 0x07 0x0f, ready, switched on, operation enabled\n", \
 		       id, sdo
 	}
 
 	# 2. the loop's SYNCs: after the start-up's last cycle (an RPDO for
-	# every node, each 0x0f), before the stop's first (one that is not)
+	# every node, each 0x0f, and the last drive's TPDO saying it is
+	# enabled: a drive that answers late, as one on a loaded machine does,
+	# keeps the master in its start-up for more cycles of 0x0f), before the
+	# stop's first (one that is not)
 	k1 = k2 = 0
 	for (k = 1; k <= ns; k++) {
 		all = 1
@@ -183,7 +191,7 @@ END {
 			}
 		if (c < nn && !k1)
 			continue
-		if (all && !k1)
+		if (all && !k1 && S[k] > last_enabled)
 			k1 = k
 		if (!all && k1) {
 			k2 = k
