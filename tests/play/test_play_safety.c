@@ -3,7 +3,8 @@
  * test_play_safety.c - the ways a run ends early, on the virtual clock: the
  * e-stop within one tick, a stop input, SIGINT (once: to rest within the
  * limits; twice: at once), a drive that trips, an axis that jams (following
- * error), a scene beyond its limits (refused, or clamped with --force).
+ * error), a scene beyond its limits (refused, or clamped with --force),
+ * and which reason the report keeps when there are two.
  */
 #include <math.h>
 #include <signal.h>
@@ -238,6 +239,50 @@ static void test_drive_trip(void **state)
 	play_free(&p);
 }
 
+/* Two reasons to end: the first stands, but an e-stop outranks it. arm2
+ * trips at tick 3000 and the run stops for it; a stop input at tick 3005
+ * changes nothing, an e-stop at 3005 takes over (every drive off at once,
+ * exit 6, the input named). */
+static void test_first_reason_stands(void **state)
+{
+	int k;
+
+	for (k = 0; k < 2; k++) {
+		struct pu_source ps;
+		struct pu_rig r;
+		struct play_opts o;
+		struct play p;
+		const struct loop_report *rep;
+		uint32_t line = k == 0 ? 1 : 0; /* the stop input, the e-stop */
+
+		prepare(&p, &r, &ps, &o, PU_ESTOP | PU_STOP);
+		sim_drive_inject(p.rig.sim_drive[1], 0, 3000, SIM_DRIVE_TRIP);
+		assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], line, loop_due(p.L, 3005),
+						   true), 0);
+		if (k == 0) {
+			assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
+			rep = &loop_result(p.L)->rep;
+			assert_int_equal(rep->cause, LOOP_CAUSE_DEVICE);
+			assert_string_equal(rep->device, "arm2");
+			assert_int_equal(rep->out, 1);
+			assert_int_equal(rep->tick, 3000);
+			assert_true(loop_result(p.L)->ticks_run > 3005);
+		} else {
+			assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
+			rep = &loop_result(p.L)->rep;
+			assert_int_equal(rep->cause, LOOP_CAUSE_ESTOP);
+			assert_string_equal(rep->device, "estop");
+			assert_int_equal(rep->channel, 0);
+			assert_int_equal(rep->out, -1);
+			assert_null(rep->what);
+			assert_int_equal(rep->tick, 3005);
+			assert_int_equal(watch(&p, 0)->disabled_tick, 3005);
+		}
+		assert_int_equal(watch(&p, 1)->disabled_tick, 3000);
+		play_free(&p);
+	}
+}
+
 /* a's axis jams while moving: the following error outgrows its bound
  * within a few ticks and the run stops, naming it. */
 static void test_following_error(void **state)
@@ -340,6 +385,7 @@ int main(void)
 		cmocka_unit_test(test_stop_input),
 		cmocka_unit_test(test_sigint),
 		cmocka_unit_test(test_drive_trip),
+		cmocka_unit_test(test_first_reason_stands),
 		cmocka_unit_test(test_following_error),
 		cmocka_unit_test(test_runtime_limits),
 	};
