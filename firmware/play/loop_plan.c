@@ -73,7 +73,7 @@ int loop_entry_plan(struct loop *L, int32_t *bad)
 		const struct rig_out *o = &L->rig->out[i];
 		struct loop_out *lo = &L->out[i];
 		double v = (move_q2d(s->target[i]) - move_q2d(s->ru_end[i])) * hz;
-		double back;
+		double back, start;
 		int64_t n = (int64_t)ceil(fabs(v) * hz / o->amax * (1 + 1e-9));
 
 		lo->ru_v = v;
@@ -83,7 +83,8 @@ int loop_entry_plan(struct loop *L, int32_t *bad)
 		/* speeds v k / n for k = 1..n cover v dt (n + 1) / 2 */
 		back = v * dt * (double)(n + 1) / 2;
 		s->target[i] = n ? s->ru_end[i] - move_d2q(back) : s->ru_end[i];
-		if (move_q2d(s->target[i]) < o->min - 1e-9 || move_q2d(s->target[i]) > o->max + 1e-9) {
+		start = move_q2d(s->target[i]);
+		if (start < o->min - 1e-9 || start > o->max + 1e-9) {
 			*bad = (int32_t)i;
 			return -1;
 		}

@@ -115,7 +115,8 @@ static void input_edges(struct loop *L, uint32_t d, const struct hal_edge *ev, u
 				L->step.ready = ev[e].asserted;
 				if (L->step.ready)
 					L->step.ready_since_fire = true;
-			} else if (in->role == RIG_INPUT_ESTOP && ev[e].asserted && ev[e].ts_ns >= 0) {
+			} else if (in->role == RIG_INPUT_ESTOP && ev[e].asserted &&
+				   ev[e].ts_ns >= 0) {
 				/* (a simulated edge "before the run" is dated
 				 * INT64_MIN: not one) */
 				L->safety.estop_edge_ns = ev[e].ts_ns;

@@ -155,7 +155,8 @@ static void read_rig(struct loop *L)
 		L->prev[i] = o->vel_mode ? 0 : o->home;
 		if (!o->vel_mode && hal_axis_input(rig->axes[o->dev], -1) == 0 &&
 		    hal_axis_actual(rig->axes[o->dev], o->ch, &act))
-			L->prev[i] = move_d2q((double)(act - o->scale.offset) / o->scale.per_unit_d);
+			L->prev[i] = move_d2q((double)(act - o->scale.offset) /
+					      o->scale.per_unit_d);
 		L->val[i] = L->prev[i];
 		L->out[i].sent = o->vel_mode ? 0 : hal_scale_counts(&o->scale, L->prev[i], NULL);
 	}
