@@ -3,7 +3,8 @@
  * loop_safety.c - what the loop checks every tick (loop.h, "Safety"): the
  * inputs (e-stop, stop, camera-ready), the drives' feedback and faults, the
  * runtime limits; and why the run ends, with its one rule of precedence.
- * Every function here is [rt].
+ * Every function here is [rt], but for the stop requests at the end, which
+ * any thread (and a signal handler) may make.
  */
 #include "loop_priv.h"
 
