@@ -310,12 +310,12 @@ int pu_play(struct play *p)
 {
 	int rc = play_run(p);
 
-	return rc ? STRAND_EXIT_INTERNAL : cli_play_exit(&p->L.rep);
+	return rc ? STRAND_EXIT_INTERNAL : cli_play_exit(&loop_result(p->L)->rep);
 }
 
 int pu_finish(struct play *p, bool check_missed)
 {
-	const double hz = p->L.tm->tick_hz;
+	const double hz = p->tm->tick_hz;
 	uint64_t before = pu_loop_allocations();
 	char err[512];
 	uint32_t i;

@@ -401,7 +401,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	sigaction(SIGINT, &sa, NULL);
 	sigaction(SIGTERM, &sa, NULL);
 	rc = play_run(&p);
-	rc = rc ? STRAND_EXIT_INTERNAL : cli_play_exit(&p.L.rep);
+	rc = rc ? STRAND_EXIT_INTERNAL : cli_play_exit(&loop_result(p.L)->rep);
 	signal(SIGINT, SIG_DFL);
 	signal(SIGTERM, SIG_DFL);
 	g_play = NULL;
@@ -409,7 +409,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		play_describe(&p, msg, sizeof(msg));
 		fprintf(err, "strand play: %s\n", msg);
 	}
-	if (c.lat_hist && write_hist(c.lat_hist, &p.L.lat))
+	if (c.lat_hist && write_hist(c.lat_hist, &loop_result(p.L)->lat))
 		fprintf(err, "strand play: %s: %s\n", c.lat_hist, strerror(errno));
 	/* the reason is on err already when the run did not finish */
 	if (!c.quiet)

@@ -35,6 +35,9 @@
  * size of a day's journal. A record whose chunk is not mapped yet is refused
  * (journal_next returns NULL) and the loop stops the run rather than fire a
  * frame it cannot record; on the virtual clock it waits for the service.
+ *
+ * The loop's side is journal_rt.c, the service thread's journal_svc.c, the
+ * reader (`strand journal`) journal_read.c.
  */
 #ifndef STRAND_JOURNAL_H
 #define STRAND_JOURNAL_H
@@ -46,6 +49,7 @@
 
 #define JOURNAL_MAGIC "STRANDJ1"
 #define JOURNAL_NAME_MAX 48
+#define JOURNAL_OUT_MAX 4096 /* outputs a journal holds at most */
 
 enum journal_state {
 	JOURNAL_EMPTY = 0,
@@ -109,7 +113,7 @@ struct journal {
 	int64_t next;            /* loop: records armed so far */
 	_Atomic int64_t written; /* loop -> service: records armed */
 	int64_t ahead;           /* records the service keeps mapped ahead */
-	int err;                 /* service: first error (negative errno) */
+	_Atomic int err;         /* service -> loop: first error (negative errno) */
 	int64_t synced_at_ns;
 };
 

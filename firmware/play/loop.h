@@ -66,15 +66,22 @@
  *     triggers, every output to rest within its limits, a pulse under way
  *     ends normally; a second request of the immediate kind (second SIGINT)
  *     disables everything at once, as the e-stop does.
+ * When more than one of these happens, the report keeps the first, except
+ * that an e-stop outranks every other reason (loop_fail, loop_safety.c).
  *
  * Real-time rules: loop_tick and loop_run allocate nothing, make no file or
  * terminal I/O and take no lock; telemetry leaves through an SPSC ring, the
  * journal is a mapping written in place (journal.h).
+ *
+ * Memory. A loop is one block: loop_init measures what the run needs (the
+ * rig's outputs, devices and triggers), allocates exactly that once, carves
+ * it with the core's arena (motion/arena.h) and seals it. struct loop is
+ * private to the loop's files (loop_priv.h); what a run leaves behind is
+ * read through loop_result().
  */
 #ifndef STRAND_LOOP_H
 #define STRAND_LOOP_H
 
-#include <stdatomic.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -84,7 +91,6 @@
 #include "hal/ring.h"
 #include "journal/journal.h"
 #include "latency.h"
-#include "move.h"
 #include "rig/rig.h"
 #include "scene/source.h"
 
@@ -184,93 +190,39 @@ struct loop_status {
 	uint8_t end;        /* enum loop_end */
 };
 
-struct trig_state {
-	int64_t next_frame; /* the next frame to fire in this pass */
-	int64_t edge_k;     /* PLAY: the scene tick its edge rises at */
-	int64_t fall_tick;  /* run tick the pulse ends at */
-	bool pending;       /* a frame left in this pass */
-	bool active;
-};
-
-#define LOOP_EDGES_MAX 32
-
-struct loop {
-	struct loop_cfg cfg;
-	struct rig *rig;
-	struct play_source *src;
-	struct hal_clock *clk;
-	struct journal *jr;     /* NULL: no journal */
-	struct hal_ring *status; /* NULL: no status samples */
-	const struct mot_timing *tm;
-	uint32_t n;             /* outputs */
-	int64_t t0;             /* monotonic ns of tick 0 */
-	int64_t ns_whole, ns_frac; /* one tick: ns_whole + ns_frac / tick_hz ns */
-
-	/* per output */
-	mot_q32 *val, *prev;    /* setpoints: this tick, the last one */
-	double *vel;            /* speed of the last setpoints, units/s */
-	int64_t *sent;          /* counts sent last tick */
-	struct hal_setpoint *sp; /* this tick's, in counts */
-	mot_q32 *target;        /* a pose (the next pass's first, a frame's) */
-	double *vmax, *amax;
-	int64_t *limited;       /* ticks clamped under --force */
-	struct move mv;
-	struct move_ch *mv_ch;
-	int64_t mv_j;
-	mot_q32 *ru_end;        /* run-up: the pass's first pose */
-	double *ru_v;           /* the scene's speed there, units/s */
-	int64_t *ru_n;          /* ramp ticks per channel */
-	int64_t ru_ticks, ru_j;
-	bool *dev_off;          /* axis devices disabled */
-	bool *dout_dirty;
-	struct journal_rec **armed; /* ntrig */
-
-	/* sequence */
-	enum loop_state state;
-	int64_t tick;           /* the tick being run */
-	int64_t seg_j;          /* ticks into the present segment */
-	int64_t pass;
-	int dir;
-	int64_t scene_k, scene_begin, scene_end;
-	int64_t pass_first, pass_last; /* frames in firing order */
-	int64_t lead, tail;     /* scene ticks before the first edge, after the last */
-	struct trig_state *ts;
-	struct frame_iter fit;
-	int64_t step_frame, settled, fired_at;
-	bool ready;             /* camera-ready asserted */
-	bool ready_since_fire;
-	bool has_ready_input;
-	int64_t total_frames;   /* -1: no end */
-
-	/* the current frame's journal record and worst following error */
-	struct journal_rec *cur_rec;
-
-	_Atomic int stop_req;   /* 0, 1 controlled, 2 immediate */
-	enum loop_cause stop_cause;
-	struct hal_edge edges[LOOP_EDGES_MAX];
-	int64_t estop_edge_ns;  /* the last e-stop edge that asserted... */
-	bool estop_edge;        /* ...if there was one during the run */
-
-	/* results */
-	struct loop_report rep;
-	struct lat_stats lat;
+/*
+ * What a run leaves behind. The loop thread writes it while the run lasts
+ * (code running on that thread, a simulated device's callback, may read it
+ * then); anyone may read it once loop_run has returned.
+ */
+struct loop_result {
+	struct loop_report rep; /* why the run ended; end NONE while it runs */
+	int64_t total_frames;   /* triggers the run will fire, -1: no end */
 	int64_t frames_fired;
-	int64_t last_frame;
-	double ferr_worst;
-	int32_t ferr_worst_out;
-	uint32_t sat;
+	int64_t last_frame;     /* the last frame fired, -1 before the first */
 	int64_t ticks_run;
-	int64_t status_dropped;
-	int64_t journal_waits;
+	double ferr_worst;      /* worst |following error|, core units */
+	int32_t ferr_worst_out; /* its output, -1 while no output has feedback */
+	int64_t status_dropped; /* status samples the ring had no room for */
 	int64_t cpu_ns;         /* the loop thread's CPU time over the run */
+	const int64_t *limited; /* per output: ticks clamped under --force */
+	struct lat_stats lat;   /* last: 40 KB of histogram */
 };
 
-/* [init] Prepare a run: everything the loop touches is allocated here, and
- * the rig (started) is read for where it stands. 0, or a negative errno
- * with a message. */
-int loop_init(struct loop *L, const struct loop_cfg *cfg, struct rig *rig,
-	      struct play_source *src, struct hal_clock *clk, struct journal *jr,
-	      struct hal_ring *status, char *err, size_t errsize);
+struct loop;
+
+/* [init] Prepare a run in *out: everything the loop touches is allocated
+ * here, in one block, and the rig (started) is read for where it stands.
+ * 0, or a negative errno with a message (*out is NULL then). */
+int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
+	      struct play_source *src, struct hal_clock *clk, struct hal_ring *status,
+	      char *err, size_t errsize);
+
+/* [init] Record every frame fired in jr from now on (before loop_run; the
+ * journal is sized from loop_result()->total_frames). */
+void loop_set_journal(struct loop *L, struct journal *jr);
+
+/* [init] NULL: nothing to free. */
 void loop_free(struct loop *L);
 
 /* [rt] Run ticks until the run ends. t0: when tick 0 is due. */
@@ -284,8 +236,14 @@ bool loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_ns);
  * immediate (level 2) stop. Async-signal-safe. */
 void loop_request_stop(struct loop *L, int level, enum loop_cause cause);
 
+/* [any thread] The level of stop asked for so far: 0, 1 or 2. */
+int loop_stop_requested(const struct loop *L);
+
 /* The nanosecond tick k is due at. */
 int64_t loop_due(const struct loop *L, int64_t k);
+
+/* The run's results (see struct loop_result for when they may be read). */
+const struct loop_result *loop_result(const struct loop *L);
 
 const char *loop_state_name(enum loop_state s);
 const char *loop_cause_name(enum loop_cause c);

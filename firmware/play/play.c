@@ -31,6 +31,7 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	const char **names;
 	uint32_t *units, i, n = p->rig.nout;
 	double fps = (double)src->timing.num / src->timing.den;
+	int64_t total = loop_result(p->L)->total_frames;
 	int rc;
 
 	names = calloc(n ? n : 1, sizeof(*names));
@@ -55,7 +56,7 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.nout = n;
 	ji.out_name = names;
 	ji.out_unit = units;
-	ji.capacity = p->L.total_frames >= 0 ? p->L.total_frames : JOURNAL_UNBOUNDED;
+	ji.capacity = total >= 0 ? total : JOURNAL_UNBOUNDED;
 	if (ji.capacity < 1)
 		ji.capacity = 1;
 	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (p->rig.ntrig ? p->rig.ntrig : 1));
@@ -104,18 +105,18 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 		return rc;
 	p->rig_started = true;
 	p->failed_at = PLAY_STAGE_LOOP;
-	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, NULL, &p->status, err, errsize);
+	p->tm = &src->timing;
+	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, &p->status, err, errsize);
 	if (rc == -EINVAL)
 		p->failed_at = PLAY_STAGE_OPTIONS; /* --from after --to, and the like */
 	if (rc)
 		return rc;
-	p->loop_ready = true;
 	p->failed_at = PLAY_STAGE_JOURNAL;
 	if (o->journal_path) {
 		rc = open_journal(p, src, err, errsize);
 		if (rc)
 			return rc;
-		p->L.jr = &p->jr;
+		loop_set_journal(p->L, &p->jr);
 	}
 	if (o->telemetry_path) {
 		p->telemetry = fopen(o->telemetry_path, "w");
@@ -148,7 +149,7 @@ static void *rt_main(void *arg)
 		t0 = (hal_clock_now(&p->clk) + 999999) / 1000000 * 1000000;
 	}
 	play_in_loop = true;
-	loop_run(&p->L, t0);
+	loop_run(p->L, t0);
 	play_in_loop = false;
 	atomic_store(&p->done, true);
 	return NULL;
@@ -174,7 +175,7 @@ static void telemetry_line(struct play *p, const struct loop_status *s)
 	fprintf(p->telemetry,
 		"{\"tick\":%lld,\"t\":%.6f,\"state\":\"%s\",\"frame\":%lld,\"fired\":%lld,"
 		"\"lat_max_us\":%.3f,\"overruns\":%lld,\"ferr\":%.6g,\"ferr_channel\":\"%s\"}\n",
-		(long long)s->tick, (double)s->tick / p->L.tm->tick_hz,
+		(long long)s->tick, (double)s->tick / p->tm->tick_hz,
 		loop_state_name((enum loop_state)s->state), (long long)s->frame,
 		(long long)s->fired, s->lat_max_ns / 1000.0, (long long)s->overruns,
 		out_file_units(p, s->ferr_out, s->ferr), out_name(p, s->ferr_out));
@@ -182,12 +183,12 @@ static void telemetry_line(struct play *p, const struct loop_status *s)
 
 static void status_line(struct play *p, const struct loop_status *s)
 {
-	double hz = p->L.tm->tick_hz, fps = (double)p->L.tm->num / p->L.tm->den;
+	double hz = p->tm->tick_hz, fps = (double)p->tm->num / p->tm->den;
 	double el = s->tick / hz;
 	char tc[24] = "--:--:--:--", rem[32] = "--";
 	struct timecode tcr;
 
-	timecode_init(&tcr, p->L.tm->num, p->L.tm->den);
+	timecode_init(&tcr, p->tm->num, p->tm->den);
 	if (s->frame >= 0)
 		timecode_format(&tcr, s->frame, tc, sizeof(tc));
 	if (s->total >= 0) {
@@ -286,8 +287,7 @@ void play_free(struct play *p)
 		journal_close(&p->jr);
 	if (p->telemetry)
 		fclose(p->telemetry);
-	if (p->loop_ready)
-		loop_free(&p->L);
+	loop_free(p->L);
 	if (p->rig_built)
 		rig_free(&p->rig);
 	free(p->status_buf);
@@ -296,23 +296,26 @@ void play_free(struct play *p)
 
 void play_signal(struct play *p, int sig, int count)
 {
+	if (!p->L)
+		return;
 	if (sig == SIGINT && count >= 2)
-		loop_request_stop(&p->L, 2, LOOP_CAUSE_IMMEDIATE);
+		loop_request_stop(p->L, 2, LOOP_CAUSE_IMMEDIATE);
 	else
-		loop_request_stop(&p->L, 1, LOOP_CAUSE_SIGNAL);
+		loop_request_stop(p->L, 1, LOOP_CAUSE_SIGNAL);
 }
 
 void play_describe(const struct play *p, char *buf, size_t size)
 {
-	const struct loop_report *r = &p->L.rep;
+	const struct loop_result *res = loop_result(p->L);
+	const struct loop_report *r = &res->rep;
 	int32_t o = r->out;
 	char when[96];
 
 	snprintf(when, sizeof(when), "at tick %lld (%.3f s), last frame %lld", (long long)r->tick,
-		 (double)r->tick / p->L.tm->tick_hz, (long long)r->frame);
+		 (double)r->tick / p->tm->tick_hz, (long long)r->frame);
 	switch (r->cause) {
 	case LOOP_CAUSE_FINISHED:
-		snprintf(buf, size, "finished: %lld frames fired", (long long)p->L.frames_fired);
+		snprintf(buf, size, "finished: %lld frames fired", (long long)res->frames_fired);
 		break;
 	case LOOP_CAUSE_DURATION:
 	case LOOP_CAUSE_SIGNAL:
@@ -380,8 +383,8 @@ void play_describe(const struct play *p, char *buf, size_t size)
 
 void play_summary(const struct play *p, FILE *f, bool reason)
 {
-	const struct loop *L = &p->L;
-	const struct lat_stats *s = &L->lat;
+	const struct loop_result *res = loop_result(p->L);
+	const struct lat_stats *s = &res->lat;
 	char why[512];
 	uint32_t i;
 
@@ -389,8 +392,8 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 	if (reason)
 		fprintf(f, "strand play: %s\n", why);
 	fprintf(f, "  frames fired %lld, ticks %lld (%.3f s of motion) in %.3f s, %s clock\n",
-		(long long)L->frames_fired, (long long)L->ticks_run,
-		(double)L->ticks_run / L->tm->tick_hz, p->wall_ns / 1e9,
+		(long long)res->frames_fired, (long long)res->ticks_run,
+		(double)res->ticks_run / p->tm->tick_hz, p->wall_ns / 1e9,
 		p->clk.is_virtual ? "virtual" : "wall");
 	if (!p->clk.is_virtual && s->n)
 		fprintf(f,
@@ -404,20 +407,20 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 			p->rt.fifo ? "SCHED_FIFO" : "SCHED_OTHER", (long long)s->overruns,
 			(long long)s->catchup, s->late_max_ns / 1e3, s->work_max_ns / 1e3);
 	fprintf(f, "  cpu %.0f ns per tick\n",
-		L->ticks_run ? (double)L->cpu_ns / L->ticks_run : 0.0);
-	if (L->ferr_worst_out >= 0)
+		res->ticks_run ? (double)res->cpu_ns / res->ticks_run : 0.0);
+	if (res->ferr_worst_out >= 0)
 		fprintf(f, "  worst following error %.6g %s on %s\n",
-			out_file_units(p, L->ferr_worst_out, L->ferr_worst),
-			out_unit(p, L->ferr_worst_out), out_name(p, L->ferr_worst_out));
-	for (i = 0; i < L->n; i++)
-		if (L->limited[i])
+			out_file_units(p, res->ferr_worst_out, res->ferr_worst),
+			out_unit(p, res->ferr_worst_out), out_name(p, res->ferr_worst_out));
+	for (i = 0; i < p->rig.nout; i++)
+		if (res->limited[i])
 			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
-				p->rig.out[i].channel, (long long)L->limited[i]);
+				p->rig.out[i].channel, (long long)res->limited[i]);
 	for (i = 0; i < p->rig.naxes; i++)
 		hal_modbus_report(p->rig.axes[i], f);
-	if (L->status_dropped)
+	if (res->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",
-			(long long)L->status_dropped);
+			(long long)res->status_dropped);
 	if (p->service_err)
 		fprintf(f, "  journal: %s\n", strerror(-p->service_err));
 	if (p->o.journal_path)

@@ -59,8 +59,8 @@ struct play {
 	bool rig_built, rig_started;
 	struct journal jr;
 	bool has_journal;
-	struct loop L;
-	bool loop_ready;
+	struct loop *L;           /* NULL until the loop is prepared */
+	const struct mot_timing *tm; /* the source's timing */
 	struct hal_ring status;
 	struct loop_status *status_buf;
 	FILE *telemetry;
@@ -80,8 +80,8 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 		 const struct play_opts *o, char *err, size_t errsize);
 
 /* [init] Run to the end (the calling thread serves the loop meanwhile):
- * 0, the outcome in the loop's report (p->L.rep), or a negative errno when
- * the loop's thread could not start. */
+ * 0, the outcome in the loop's report (loop_result(p->L)->rep), or a
+ * negative errno when the loop's thread could not start. */
 int play_run(struct play *p);
 
 void play_free(struct play *p);

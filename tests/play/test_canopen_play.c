@@ -90,8 +90,8 @@ static void test_targets(void **state)
 	assert_int_equal(run(&pc), STRAND_EXIT_OK);
 	n = co_slave_traced(drive(&pc, 3));
 	assert_int_equal(co_slave_traced(drive(&pc, 7)), n);
-	assert_int_equal(n, pc.L.ticks_run);
-	fe_can = pc.L.ferr_worst;
+	assert_int_equal(n, loop_result(pc.L)->ticks_run);
+	fe_can = loop_result(pc.L)->ferr_worst;
 	/* the drives were switched off and left pre-operational */
 	assert_int_equal(co_slave_watch(drive(&pc, 3))->state, CO402_READY);
 	assert_int_equal(co_slave_watch(drive(&pc, 7))->nmt, CO_NMT_PREOPERATIONAL);
@@ -109,7 +109,7 @@ static void test_targets(void **state)
 	}
 	/* the same plant behind the bus, fed back one SYNC later: the same
 	 * following errors */
-	fe_twin = pt.L.ferr_worst;
+	fe_twin = loop_result(pt.L)->ferr_worst;
 	printf("worst following error: bus %.9g, twin %.9g\n", fe_can, fe_twin);
 	assert_true(fe_can == fe_twin);
 	assert_true(fe_can > 0);
@@ -118,7 +118,9 @@ static void test_targets(void **state)
 
 static const char *what(const struct play *p)
 {
-	return p->L.rep.what ? p->L.rep.what : "";
+	const char *w = loop_result(p->L)->rep.what;
+
+	return w ? w : "";
 }
 
 /* Node 7 loses power at tick 3000: heartbeat lost within 2.5 heartbeats
@@ -132,16 +134,18 @@ static void test_heartbeat_lost(void **state)
 	struct play p;
 	const struct co_slave_watch *w;
 	uint32_t k;
+	const struct loop_report *rep;
 
 	prepare(&p, &r, &ps, &o, true, 0);
 	co_slave_inject(drive(&p, 7), due(&p, 3000), 0);
 	assert_int_equal(run(&p), STRAND_EXIT_FAULT);
-	assert_int_equal(p.L.rep.cause, LOOP_CAUSE_DEVICE);
-	assert_string_equal(p.L.rep.device, "arm");
-	assert_int_equal(p.L.rep.channel, 7);
-	assert_int_equal(p.L.rep.out, 1);
+	rep = &loop_result(p.L)->rep;
+	assert_int_equal(rep->cause, LOOP_CAUSE_DEVICE);
+	assert_string_equal(rep->device, "arm");
+	assert_int_equal(rep->channel, 7);
+	assert_int_equal(rep->out, 1);
 	assert_string_equal(what(&p), "heartbeat lost");
-	assert_true(p.L.rep.tick >= 3030 && p.L.rep.tick <= 3051);
+	assert_true(rep->tick >= 3030 && rep->tick <= 3051);
 	w = co_slave_watch(drive(&p, 3));
 	for (k = 0; k < w->ntransitions; k++)
 		if (w->log[k].from == CO402_ENABLED)
@@ -162,13 +166,15 @@ static void test_emcy(void **state)
 	struct play_opts o;
 	struct play p;
 	char why[512];
+	const struct loop_report *rep;
 
 	prepare(&p, &r, &ps, &o, true, 0);
 	co_slave_inject(drive(&p, 3), due(&p, 2000), 0x2310);
 	assert_int_equal(run(&p), STRAND_EXIT_FAULT);
-	assert_int_equal(p.L.rep.tick, 2000);
-	assert_int_equal(p.L.rep.channel, 3);
-	assert_int_equal(p.L.rep.detail, 0x2310);
+	rep = &loop_result(p.L)->rep;
+	assert_int_equal(rep->tick, 2000);
+	assert_int_equal(rep->channel, 3);
+	assert_int_equal(rep->detail, 0x2310);
 	play_describe(&p, why, sizeof(why));
 	assert_non_null(strstr(why, "device fault: device 'arm' channel 3 (a.angle): emergency "
 				    "0x2310 (current, device output side) (Input/output error) "
@@ -192,7 +198,7 @@ static void test_estop(void **state)
 	co_slave_trace(drive(&p, 3), trace, TICKS);
 	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, due(&p, 3000), true), 0);
 	assert_int_equal(run(&p), STRAND_EXIT_ESTOP);
-	assert_int_equal(p.L.rep.tick, 3000);
+	assert_int_equal(loop_result(p.L)->rep.tick, 3000);
 	assert_int_equal(co_slave_traced(drive(&p, 3)), 3000);
 	w = co_slave_watch(drive(&p, 7));
 	assert_int_equal(w->state, CO402_DISABLED);

@@ -25,7 +25,7 @@
 static int64_t check_frames(const struct play *p, const struct sim_camera *cam, int64_t from,
 			    int64_t to, int64_t tick0)
 {
-	const struct mot_timing *t = p->L.tm;
+	const struct mot_timing *t = p->tm;
 	int64_t f, t_from = mot_timing_trigger_tick(t, from);
 
 	assert_int_equal(sim_camera_count(cam), to - from + 1);
@@ -39,7 +39,7 @@ static int64_t check_frames(const struct play *p, const struct sim_camera *cam, 
 			fail_msg("frame %lld: exposed at tick %lld, want %lld", (long long)f,
 				 (long long)e->tick, (long long)want);
 		/* virtual time: the edge's time is its tick's, exactly */
-		assert_int_equal(e->ts_ns, loop_due(&p->L, e->tick));
+		assert_int_equal(e->ts_ns, loop_due(p->L, e->tick));
 	}
 	return tick0;
 }
@@ -55,14 +55,14 @@ static void test_whole_run(void **state)
 	pu_rig_init(&r, &ps, 1, PU_ESTOP);
 	pu_opts(&o, &ps);
 	assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
-	assert_int_equal(p.L.rep.cause, LOOP_CAUSE_FINISHED);
+	assert_int_equal(loop_result(p.L)->rep.cause, LOOP_CAUSE_FINISHED);
 	/* the rig stood at the first pose, where b is just starting to move:
 	 * a one-tick move to the start of b's one-tick run-up, a tick at rest
 	 * there, then frame 0 */
 	assert_int_equal(check_frames(&p, p.rig.camera[0], 0, 240, -1), 2);
-	assert_int_equal(p.L.frames_fired, 241);
+	assert_int_equal(loop_result(p.L)->frames_fired, 241);
 	/* the drive followed: worst following error seen, and within bound */
-	assert_true(p.L.ferr_worst > 0);
+	assert_true(loop_result(p.L)->ferr_worst > 0);
 	play_free(&p);
 }
 
@@ -133,6 +133,7 @@ static void test_24h(void **state)
 	char err[256];
 	uint64_t n;
 	int64_t f;
+	const struct loop_result *res;
 
 	pu_source_init(&ps, "day", 30000, 1001, 1000, 0, last);
 	pu_rig_init(&r, &ps, 1, 0);
@@ -141,15 +142,16 @@ static void test_24h(void **state)
 	pu_alloc_hook_install();
 	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
 	assert_int_equal(pu_play(&p), STRAND_EXIT_OK);
+	res = loop_result(p.L);
 	n = sim_camera_count(p.rig.camera[0]);
 	assert_int_equal(n, (uint64_t)last + 1);
 	assert_int_equal(sim_camera_exposure(p.rig.camera[0], n - 1)->tick, 86399981);
 	for (f = 0; f <= last; f++)
 		if (sim_camera_exposure(p.rig.camera[0], (uint64_t)f)->tick !=
-		    mot_timing_trigger_tick(p.L.tm, f))
+		    mot_timing_trigger_tick(p.tm, f))
 			fail_msg("frame %lld at the wrong tick", (long long)f);
 	printf("24 h: %lld ticks in %.2f s wall, %.1f ns cpu per tick\n",
-	       (long long)p.L.ticks_run, p.wall_ns / 1e9, (double)p.L.cpu_ns / p.L.ticks_run);
+	       (long long)res->ticks_run, p.wall_ns / 1e9, (double)res->cpu_ns / res->ticks_run);
 	play_free(&p);
 }
 
@@ -188,8 +190,8 @@ static void test_journal_matches_camera(void **state)
 	for (i = 1; i < c.nrows; i++) {
 		const struct sim_exposure *e = sim_camera_exposure(p.rig.camera[0], i - 1);
 		int64_t tick = atoll(c.cell[i][ct]);
-		mot_q32 fr = mot_timing_tick_frame(p.L.tm, tick - e->tick +
-						   mot_timing_trigger_tick(p.L.tm, i - 1));
+		mot_q32 fr = mot_timing_tick_frame(p.tm, tick - e->tick +
+						   mot_timing_trigger_tick(p.tm, i - 1));
 
 		assert_int_equal(atoll(c.cell[i][cf]), i - 1);
 		assert_string_equal(c.cell[i][cs], "fired");
@@ -313,8 +315,8 @@ static void test_loop_and_ping_pong(void **state)
 			assert_int_equal(tick, sim_camera_exposure(p.rig.camera[0], i)->tick);
 			/* within a pass, the gap is the difference of trigger ticks */
 			if (i > 0 && i != pass_end[0] && i != pass_end[1]) {
-				int64_t gap = llabs(mot_timing_trigger_tick(p.L.tm, want[i]) -
-						    mot_timing_trigger_tick(p.L.tm, want[i - 1]));
+				int64_t gap = llabs(mot_timing_trigger_tick(p.tm, want[i]) -
+						    mot_timing_trigger_tick(p.tm, want[i - 1]));
 
 				assert_int_equal(tick - atoll(c.cell[i][ct]), gap);
 			} else if (i > 0) {
@@ -360,7 +362,7 @@ static void test_offset_and_width(void **state)
 	/* the camera on line 1 fires 13 ticks after the one on line 0 */
 	tick0 = sim_camera_exposure(p.rig.camera[0], 0)->tick + 8;
 	for (i = 0; i < 241; i++) {
-		int64_t t = tick0 + mot_timing_trigger_tick(p.L.tm, (int64_t)i);
+		int64_t t = tick0 + mot_timing_trigger_tick(p.tm, (int64_t)i);
 
 		assert_int_equal(sim_camera_exposure(p.rig.camera[0], i)->tick, t - 8);
 		assert_int_equal(sim_camera_exposure(p.rig.camera[1], i)->tick, t + 5);
@@ -386,7 +388,7 @@ static void stall_at_50(void *ctx, const struct sim_exposure *e)
 {
 	struct play *p = ctx;
 
-	if (p->L.last_frame == 50)
+	if (loop_result(p->L)->last_frame == 50)
 		p->clk.vnow += 100500000;
 }
 
@@ -405,6 +407,7 @@ static void test_stall_catch_up(void **state)
 	char err[256], path[256];
 	int64_t t0, f, k50;
 	int cl, ct;
+	const struct lat_stats *lat;
 
 	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
 	pu_rig_init(&r, &ps, 1, 0);
@@ -416,6 +419,7 @@ static void test_stall_catch_up(void **state)
 	sim_camera_on_exposure(p.rig.camera[0], stall_at_50, &p);
 	sim_gpio_record(p.rig.sim_gpio[0], edges, 1024);
 	assert_int_equal(pu_finish(&p, false), STRAND_EXIT_OK);
+	lat = &loop_result(p.L)->lat;
 	/* 51 and 52 went out back to back: the camera, busy with 51 for half
 	 * a frame, could not take 52 (a real camera would not either) */
 	assert_int_equal(sim_camera_missed(p.rig.camera[0]), 1);
@@ -425,16 +429,16 @@ static void test_stall_catch_up(void **state)
 	t0 = edges[0].tick;
 	for (f = 0; f <= 240; f++) {
 		assert_true(edges[2 * f].asserted);
-		assert_int_equal(edges[2 * f].tick, t0 + mot_timing_trigger_tick(p.L.tm, f));
+		assert_int_equal(edges[2 * f].tick, t0 + mot_timing_trigger_tick(p.tm, f));
 	}
-	k50 = t0 + mot_timing_trigger_tick(p.L.tm, 50);
+	k50 = t0 + mot_timing_trigger_tick(p.tm, 50);
 	/* the stalled tick and the 99 catch-up ticks after it that still
 	 * ended after their successor was due; the 100th was back on time */
-	assert_int_equal(p.L.lat.overruns, 100);
-	assert_int_equal(p.L.lat.catchup, 100);
-	assert_int_equal(p.L.lat.late_max_ns, 100500000 - 1000000);
+	assert_int_equal(lat->overruns, 100);
+	assert_int_equal(lat->catchup, 100);
+	assert_int_equal(lat->late_max_ns, 100500000 - 1000000);
 	/* one wake-up sample per sleep: the catch-up ticks have none */
-	assert_int_equal(p.L.lat.n + p.L.lat.catchup, p.L.ticks_run);
+	assert_int_equal(lat->n + lat->catchup, loop_result(p.L)->ticks_run);
 	assert_int_equal(pu_csv_read(&c, path), 0);
 	cl = pu_csv_col(&c, "late_us");
 	ct = pu_csv_col(&c, "tick");

@@ -3,7 +3,8 @@
  * test_play_safety.c - the ways a run ends early, on the virtual clock: the
  * e-stop within one tick, a stop input, SIGINT (once: to rest within the
  * limits; twice: at once), a drive that trips, an axis that jams (following
- * error), a scene beyond its limits (refused, or clamped with --force).
+ * error), a scene beyond its limits (refused, or clamped with --force),
+ * and which reason the report keeps when there are two.
  */
 #include <math.h>
 #include <signal.h>
@@ -58,7 +59,7 @@ static void no_exposure_from(struct play *p, int64_t tick)
 
 	for (i = 0; i < n; i++)
 		assert_true(sim_camera_exposure(p->rig.camera[0], i)->tick < tick);
-	assert_int_equal((int64_t)n, p->L.frames_fired);
+	assert_int_equal((int64_t)n, loop_result(p->L)->frames_fired);
 }
 
 /* The e-stop opens during tick 3000's period (or exactly as it begins):
@@ -78,10 +79,10 @@ static void test_estop(void **state)
 
 		prepare(&p, &r, &ps, &o, PU_ESTOP);
 		assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0,
-						   loop_due(&p.L, 3000) + when[k], true), 0);
+						   loop_due(p.L, 3000) + when[k], true), 0);
 		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
-		assert_int_equal(p.L.rep.cause, LOOP_CAUSE_ESTOP);
-		assert_int_equal(p.L.rep.tick, 3000);
+		assert_int_equal(loop_result(p.L)->rep.cause, LOOP_CAUSE_ESTOP);
+		assert_int_equal(loop_result(p.L)->rep.tick, 3000);
 		for (i = 0; i < 2; i++) {
 			assert_int_equal(watch(&p, i)->disabled_tick, 3000);
 			assert_int_equal(watch(&p, i)->last_commit_tick, 2999);
@@ -89,7 +90,7 @@ static void test_estop(void **state)
 		}
 		assert_false(sim_gpio_out_level(p.rig.sim_gpio[0], 0)); /* active high: low */
 		no_exposure_from(&p, 3000);
-		assert_true(p.L.frames_fired > 60);
+		assert_true(loop_result(p.L)->frames_fired > 60);
 		play_free(&p);
 	}
 }
@@ -105,7 +106,7 @@ static void test_estop_before_start(void **state)
 	prepare(&p, &r, &ps, &o, PU_ESTOP);
 	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, INT64_MIN, true), 0);
 	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
-	assert_int_equal(p.L.rep.tick, 0);
+	assert_int_equal(loop_result(p.L)->rep.tick, 0);
 	assert_int_equal(watch(&p, 0)->commits, 0);
 	assert_int_equal(sim_camera_count(p.rig.camera[0]), 0);
 	play_free(&p);
@@ -123,12 +124,12 @@ static void test_stop_input(void **state)
 	prepare(&p, &r, &ps, &o, PU_STOP);
 	sim_drive_trace(p.rig.sim_drive[0], trace[0], 12000);
 	sim_drive_trace(p.rig.sim_drive[1], trace[1], 12000);
-	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, loop_due(&p.L, 3000), true), 0);
+	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, loop_due(p.L, 3000), true), 0);
 	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_STOPPED);
-	assert_int_equal(p.L.rep.cause, LOOP_CAUSE_STOP_INPUT);
+	assert_int_equal(loop_result(p.L)->rep.cause, LOOP_CAUSE_STOP_INPUT);
 	no_exposure_from(&p, 3001);
 	/* a was moving fast: stopping took a while, and ended at rest */
-	assert_true(p.L.ticks_run > 3010);
+	assert_true(loop_result(p.L)->ticks_run > 3010);
 	assert_at_rest(trace[0], sim_drive_traced(p.rig.sim_drive[0]), 1, 0);
 	assert_at_rest(trace[1], sim_drive_traced(p.rig.sim_drive[1]), 1, 0);
 	play_free(&p);
@@ -152,13 +153,13 @@ static void kill_at_100(void *ctx, const struct sim_exposure *e)
 	struct play *p = ctx;
 	int i;
 
-	if (p->L.last_frame != 100)
+	if (loop_result(p->L)->last_frame != 100)
 		return;
 	for (i = 0; i < kills_wanted; i++) {
 		int want = i + 1;
 
 		kill(getpid(), SIGINT);
-		for (int spin = 0; spin < 5000 && (atomic_load(&p->L.stop_req) & 3) < want; spin++)
+		for (int spin = 0; spin < 5000 && loop_stop_requested(p->L) < want; spin++)
 			usleep(1000);
 	}
 }
@@ -178,6 +179,7 @@ static void test_sigint(void **state)
 		struct play p;
 		int64_t trace[12000];
 		int64_t at;
+		const struct loop_result *res;
 
 		sigints = 0;
 		kills_wanted = k;
@@ -186,16 +188,17 @@ static void test_sigint(void **state)
 		sim_camera_on_exposure(p.rig.camera[0], kill_at_100, &p);
 		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_STOPPED);
 		at = sim_camera_exposure(p.rig.camera[0], 100)->tick;
+		res = loop_result(p.L);
 		assert_int_equal(sim_camera_count(p.rig.camera[0]), 101);
-		assert_int_equal(p.L.rep.tick, at + 1);
+		assert_int_equal(res->rep.tick, at + 1);
 		if (k == 1) {
-			assert_int_equal(p.L.rep.cause, LOOP_CAUSE_SIGNAL);
+			assert_int_equal(res->rep.cause, LOOP_CAUSE_SIGNAL);
 			/* a was moving at frame 100: it decelerated to rest */
-			assert_true(p.L.ticks_run > at + 10);
+			assert_true(res->ticks_run > at + 10);
 			assert_at_rest(trace, sim_drive_traced(p.rig.sim_drive[0]), 1, 0);
 			assert_true(watch(&p, 0)->powered || watch(&p, 0)->disabled_tick > at + 10);
 		} else {
-			assert_int_equal(p.L.rep.cause, LOOP_CAUSE_IMMEDIATE);
+			assert_int_equal(res->rep.cause, LOOP_CAUSE_IMMEDIATE);
 			assert_int_equal(watch(&p, 0)->disabled_tick, at + 1);
 			assert_int_equal(watch(&p, 1)->disabled_tick, at + 1);
 		}
@@ -215,16 +218,18 @@ static void test_drive_trip(void **state)
 	struct play p;
 	int64_t trace[12000];
 	char msg[512];
+	const struct loop_report *rep;
 
 	prepare(&p, &r, &ps, &o, 0);
 	sim_drive_trace(p.rig.sim_drive[0], trace, 12000);
 	sim_drive_inject(p.rig.sim_drive[1], 0, 3000, SIM_DRIVE_TRIP);
 	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
-	assert_int_equal(p.L.rep.cause, LOOP_CAUSE_DEVICE);
-	assert_string_equal(p.L.rep.device, "arm2");
-	assert_int_equal(p.L.rep.channel, 0);
-	assert_int_equal(p.L.rep.out, 1);
-	assert_int_equal(p.L.rep.tick, 3000);
+	rep = &loop_result(p.L)->rep;
+	assert_int_equal(rep->cause, LOOP_CAUSE_DEVICE);
+	assert_string_equal(rep->device, "arm2");
+	assert_int_equal(rep->channel, 0);
+	assert_int_equal(rep->out, 1);
+	assert_int_equal(rep->tick, 3000);
 	assert_int_equal(watch(&p, 1)->disabled_tick, 3000);
 	no_exposure_from(&p, 3000);
 	assert_at_rest(trace, sim_drive_traced(p.rig.sim_drive[0]), 1, 0);
@@ -232,6 +237,50 @@ static void test_drive_trip(void **state)
 	printf("%s\n", msg);
 	assert_non_null(strstr(msg, "device 'arm2' channel 0 (b.position): overcurrent"));
 	play_free(&p);
+}
+
+/* Two reasons to end: the first stands, but an e-stop outranks it. arm2
+ * trips at tick 3000 and the run stops for it; a stop input at tick 3005
+ * changes nothing, an e-stop at 3005 takes over (every drive off at once,
+ * exit 6, the input named). */
+static void test_first_reason_stands(void **state)
+{
+	int k;
+
+	for (k = 0; k < 2; k++) {
+		struct pu_source ps;
+		struct pu_rig r;
+		struct play_opts o;
+		struct play p;
+		const struct loop_report *rep;
+		uint32_t line = k == 0 ? 1 : 0; /* the stop input, the e-stop */
+
+		prepare(&p, &r, &ps, &o, PU_ESTOP | PU_STOP);
+		sim_drive_inject(p.rig.sim_drive[1], 0, 3000, SIM_DRIVE_TRIP);
+		assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], line, loop_due(p.L, 3005),
+						   true), 0);
+		if (k == 0) {
+			assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
+			rep = &loop_result(p.L)->rep;
+			assert_int_equal(rep->cause, LOOP_CAUSE_DEVICE);
+			assert_string_equal(rep->device, "arm2");
+			assert_int_equal(rep->out, 1);
+			assert_int_equal(rep->tick, 3000);
+			assert_true(loop_result(p.L)->ticks_run > 3005);
+		} else {
+			assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
+			rep = &loop_result(p.L)->rep;
+			assert_int_equal(rep->cause, LOOP_CAUSE_ESTOP);
+			assert_string_equal(rep->device, "estop");
+			assert_int_equal(rep->channel, 0);
+			assert_int_equal(rep->out, -1);
+			assert_null(rep->what);
+			assert_int_equal(rep->tick, 3005);
+			assert_int_equal(watch(&p, 0)->disabled_tick, 3005);
+		}
+		assert_int_equal(watch(&p, 1)->disabled_tick, 3000);
+		play_free(&p);
+	}
 }
 
 /* a's axis jams while moving: the following error outgrows its bound
@@ -247,15 +296,17 @@ static void test_following_error(void **state)
 		struct play_opts o;
 		struct play p;
 		char msg[512];
+		const struct loop_report *rep;
 
 		prepare(&p, &r, &ps, &o, 0);
 		sim_drive_inject(p.rig.sim_drive[0], 0, 3000, faults[k]);
 		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
-		assert_int_equal(p.L.rep.cause, LOOP_CAUSE_FERROR);
-		assert_string_equal(p.L.rep.device, "arm");
-		assert_int_equal(p.L.rep.out, 0);
-		assert_true(fabs(p.L.rep.value) > p.L.rep.bound);
-		assert_true(p.L.rep.tick > 3000 && p.L.rep.tick < 3000 + 2000);
+		rep = &loop_result(p.L)->rep;
+		assert_int_equal(rep->cause, LOOP_CAUSE_FERROR);
+		assert_string_equal(rep->device, "arm");
+		assert_int_equal(rep->out, 0);
+		assert_true(fabs(rep->value) > rep->bound);
+		assert_true(rep->tick > 3000 && rep->tick < 3000 + 2000);
 		play_describe(&p, msg, sizeof(msg));
 		printf("%s\n", msg);
 		assert_non_null(strstr(msg, "following error: device 'arm' channel 0 (a.angle)"));
@@ -278,6 +329,7 @@ static void test_runtime_limits(void **state)
 		struct play p;
 		char err[256];
 		int code;
+		const struct loop_result *res;
 
 		pu_source_init(&ps, "too-fast", 24, 1, 1000, 0, 100);
 		pu_source_add(&ps, "a.angle", SRC_UNIT_TURNS, pu_smooth, &fast, 60, 120);
@@ -290,16 +342,17 @@ static void test_runtime_limits(void **state)
 		pu_alloc_hook_install();
 		assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
 		code = pu_finish(&p, true);
+		res = loop_result(p.L);
 		if (!force) {
 			assert_int_equal(code, STRAND_EXIT_FAULT);
-			assert_true(p.L.rep.cause == LOOP_CAUSE_LIMIT_ACC ||
-				    p.L.rep.cause == LOOP_CAUSE_LIMIT_VEL);
-			assert_int_equal(p.L.rep.out, 0);
+			assert_true(res->rep.cause == LOOP_CAUSE_LIMIT_ACC ||
+				    res->rep.cause == LOOP_CAUSE_LIMIT_VEL);
+			assert_int_equal(res->rep.out, 0);
 			play_describe(&p, err, sizeof(err));
 			printf("%s\n", err);
 		} else {
 			assert_int_equal(code, STRAND_EXIT_OK);
-			assert_true(p.L.limited[0] > 100);
+			assert_true(res->limited[0] > 100);
 			assert_int_equal(sim_camera_count(p.rig.camera[0]), 101);
 		}
 		play_free(&p);
@@ -332,6 +385,7 @@ int main(void)
 		cmocka_unit_test(test_stop_input),
 		cmocka_unit_test(test_sigint),
 		cmocka_unit_test(test_drive_trip),
+		cmocka_unit_test(test_first_reason_stands),
 		cmocka_unit_test(test_following_error),
 		cmocka_unit_test(test_runtime_limits),
 	};

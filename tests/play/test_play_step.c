@@ -154,7 +154,7 @@ static void test_step_camera_ready(void **state)
 		pu_alloc_hook_install();
 		assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
 		assert_int_equal(pu_finish(&p, false), STRAND_EXIT_OK);
-		assert_int_equal(p.L.frames_fired, 10);
+		assert_int_equal(loop_result(p.L)->frames_fired, 10);
 		if (!wired) {
 			assert_true(sim_camera_missed(p.rig.camera[0]) > 0);
 		} else {

@@ -1,0 +1,279 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * loop_setup.c - a run put together before it starts: the loop's one
+ * block (measured, allocated, carved, sealed), where the rig stands, and
+ * the plan into the first pass. Every function here is [init], but for
+ * the two name tables, which any thread may read.
+ */
+#include "loop_priv.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "motion/arena.h"
+
+static const char *const state_names[] = {
+	[LOOP_PREROLL] = "pre-roll",	 [LOOP_RUNUP] = "run-up",
+	[LOOP_PLAY] = "play",
+	[LOOP_BRIDGE_STOP] = "bridge",	 [LOOP_BRIDGE_MOVE] = "bridge",
+	[LOOP_POSTROLL] = "post-roll",	 [LOOP_STEP_NEXT] = "step",
+	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
+	[LOOP_STEP_EXPOSE] = "expose",	 [LOOP_STOPPING] = "stopping",
+	[LOOP_ENDED] = "ended",
+};
+
+static const char *const cause_names[] = {
+	[LOOP_CAUSE_NONE] = "",
+	[LOOP_CAUSE_FINISHED] = "finished",
+	[LOOP_CAUSE_DURATION] = "duration reached",
+	[LOOP_CAUSE_SIGNAL] = "stop requested (signal)",
+	[LOOP_CAUSE_IMMEDIATE] = "immediate stop (second signal)",
+	[LOOP_CAUSE_STOP_INPUT] = "stop input",
+	[LOOP_CAUSE_ESTOP] = "e-stop",
+	[LOOP_CAUSE_DEVICE] = "device fault",
+	[LOOP_CAUSE_FERROR] = "following error",
+	[LOOP_CAUSE_LIMIT_POS] = "position limit",
+	[LOOP_CAUSE_LIMIT_VEL] = "velocity limit",
+	[LOOP_CAUSE_LIMIT_ACC] = "acceleration limit",
+	[LOOP_CAUSE_IN_POSITION] = "not in position",
+	[LOOP_CAUSE_READY] = "camera not ready",
+	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
+	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
+};
+
+const char *loop_state_name(enum loop_state s)
+{
+	return s <= LOOP_ENDED ? state_names[s] : "?";
+}
+
+const char *loop_cause_name(enum loop_cause c)
+{
+	return c <= LOOP_CAUSE_SATURATION ? cause_names[c] : "?";
+}
+
+/* ---- the block ---- */
+
+/* n elements of `size` bytes, or a failed arena when n * size overflows. */
+static void *carve_array(struct mot_arena *a, size_t n, size_t size, size_t align)
+{
+	if (size && n > SIZE_MAX / size) {
+		a->failed = true;
+		return NULL;
+	}
+	return mot_arena_alloc(a, n * size, align);
+}
+
+#define CARVE(a, type, n) ((type *)carve_array((a), (n), sizeof(type), _Alignof(type)))
+
+/*
+ * The loop's block, laid out in the order a tick touches it: struct loop,
+ * the per-output state and poses, the per-device and per-trigger flags,
+ * and last the result, whose latency histogram is most of the block. On
+ * an arena without memory this only measures (and returns NULL); the same
+ * code then carves, so the two cannot disagree.
+ */
+static struct loop *carve(struct mot_arena *a, const struct rig *rig)
+{
+	uint32_t n = rig->nout;
+	struct loop *L = CARVE(a, struct loop, 1);
+	struct loop_out *out = CARVE(a, struct loop_out, n);
+	mot_q32 *val = CARVE(a, mot_q32, n);
+	mot_q32 *prev = CARVE(a, mot_q32, n);
+	mot_q32 *target = CARVE(a, mot_q32, n);
+	mot_q32 *ru_end = CARVE(a, mot_q32, n);
+	struct move_ch *mv_ch = CARVE(a, struct move_ch, n);
+	double *vmax = CARVE(a, double, n);
+	double *amax = CARVE(a, double, n);
+	bool *dev_off = CARVE(a, bool, rig->naxes);
+	struct loop_pulse *pulse = CARVE(a, struct loop_pulse, rig->ntrig);
+	bool *dout_dirty = CARVE(a, bool, rig->ndouts);
+	int64_t *limited = CARVE(a, int64_t, n);
+	struct loop_result *res = carve_array(a, 1, sizeof(*res), 64);
+
+	if (!L || a->failed)
+		return NULL;
+	L->n = n;
+	L->out = out;
+	L->val = val;
+	L->prev = prev;
+	L->seq.target = target;
+	L->seq.ru_end = ru_end;
+	L->seq.mv.ch = mv_ch;
+	L->seq.vmax = vmax;
+	L->seq.amax = amax;
+	L->safety.dev_off = dev_off;
+	L->trig.pulse = pulse;
+	L->trig.dout_dirty = dout_dirty;
+	L->limited = limited;
+	L->res = res;
+	res->limited = limited;
+	return L;
+}
+
+/* The block: measured, allocated once (64-byte aligned, as the arena
+ * wants its base), carved, sealed. NULL when out of memory. */
+static struct loop *block_new(const struct rig *rig)
+{
+	struct mot_arena a;
+	struct loop *L;
+	size_t size;
+	void *block;
+
+	mot_arena_init(&a, NULL, 0);
+	carve(&a, rig);
+	if (a.failed)
+		return NULL;
+	size = (a.used + 63) & ~(size_t)63;
+	block = aligned_alloc(64, size);
+	if (!block)
+		return NULL;
+	mot_arena_init(&a, block, size);
+	L = carve(&a, rig);
+	mot_arena_seal(&a);
+	if (!L) { /* cannot happen: the same carving measured it */
+		free(block);
+		return NULL;
+	}
+	return L; /* carved first: the block's own address */
+}
+
+/* ---- the plan ---- */
+
+/* Where the rig stands: feedback where there is some, else home. */
+static void read_rig(struct loop *L)
+{
+	const struct rig *rig = L->rig;
+	uint32_t i;
+
+	for (i = 0; i < L->n; i++) {
+		const struct rig_out *o = &rig->out[i];
+		int64_t act;
+
+		L->seq.vmax[i] = o->vmax;
+		L->seq.amax[i] = o->amax;
+		L->prev[i] = o->vel_mode ? 0 : o->home;
+		if (!o->vel_mode && hal_axis_input(rig->axes[o->dev], -1) == 0 &&
+		    hal_axis_actual(rig->axes[o->dev], o->ch, &act))
+			L->prev[i] = move_d2q((double)(act - o->scale.offset) /
+					      o->scale.per_unit_d);
+		L->val[i] = L->prev[i];
+		L->out[i].sent = o->vel_mode ? 0 : hal_scale_counts(&o->scale, L->prev[i], NULL);
+	}
+}
+
+static int plan_step(struct loop *L, char *err, size_t errsize)
+{
+	const struct loop_cfg *cfg = &L->cfg;
+
+	if (!cfg->frames || !cfg->frames->n) {
+		snprintf(err, errsize, "step mode: no frames to shoot");
+		return -EINVAL;
+	}
+	L->res->total_frames = frames_count(cfg->frames) * L->rig->ntrig;
+	L->seq.state = LOOP_STEP_NEXT;
+	return 0;
+}
+
+static int plan_continuous(struct loop *L, char *err, size_t errsize)
+{
+	const struct loop_cfg *cfg = &L->cfg;
+	const struct rig *rig = L->rig;
+	int32_t bad;
+
+	if (cfg->to < cfg->from) {
+		snprintf(err, errsize, "--from %lld is after --to %lld", (long long)cfg->from,
+			 (long long)cfg->to);
+		return -EINVAL;
+	}
+	if (cfg->ping_pong && cfg->to == cfg->from) {
+		snprintf(err, errsize, "--ping-pong needs at least two frames");
+		return -EINVAL;
+	}
+	if ((cfg->loop || cfg->ping_pong) && cfg->passes == 0) {
+		L->res->total_frames = -1;
+	} else {
+		int64_t per = cfg->to - cfg->from + 1, p = (cfg->loop || cfg->ping_pong) ?
+							   cfg->passes : 1;
+
+		L->res->total_frames = (cfg->ping_pong ? per + (p - 1) * (per - 1) : per * p) *
+				       rig->ntrig;
+	}
+	L->seq.pass = 0;
+	loop_pass_setup(L);
+	if (loop_entry_plan(L, &bad)) {
+		const struct rig_out *o = &rig->out[bad];
+
+		snprintf(err, errsize,
+			 "%s moves at %.6g %s/s at frame %lld: coming up to that speed within "
+			 "its acceleration limit needs a run-up from %.6g %s, outside its limits; "
+			 "start from a frame where it moves slower",
+			 o->channel, rig_file_units(o->unit, L->out[bad].ru_v),
+			 rig_unit_name(o->unit), (long long)L->seq.pass_first,
+			 rig_file_units(o->unit, move_q2d(L->seq.target[bad])),
+			 rig_unit_name(o->unit));
+		return -ERANGE;
+	}
+	loop_move_plan(L, L->prev, L->seq.target);
+	L->seq.state = LOOP_PREROLL;
+	return 0;
+}
+
+int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
+	      struct play_source *src, struct hal_clock *clk, struct hal_ring *status_ring,
+	      char *err, size_t errsize)
+{
+	int64_t min_off = 0, max_off = 0;
+	struct loop *L;
+	uint32_t i;
+	int rc;
+
+	*out = NULL;
+	L = block_new(rig);
+	if (!L) {
+		snprintf(err, errsize, "out of memory");
+		return -ENOMEM;
+	}
+	L->cfg = *cfg;
+	if (L->cfg.status_every < 1)
+		L->cfg.status_every = 1;
+	L->rig = rig;
+	L->src = src;
+	L->clk = clk;
+	L->status = status_ring;
+	L->tm = &src->timing;
+	lat_reset(&L->res->lat);
+	L->res->last_frame = -1;
+	L->res->ferr_worst_out = -1;
+	L->res->rep.channel = -1;
+	L->res->rep.out = -1;
+	for (i = 0; i < rig->nin; i++)
+		L->step.has_ready_input |= rig->in[i].role == RIG_INPUT_CAMERA_READY;
+	for (i = 0; i < rig->ntrig; i++) {
+		if (rig->trig[i].offset < min_off)
+			min_off = rig->trig[i].offset;
+		if (rig->trig[i].offset > max_off)
+			max_off = rig->trig[i].offset;
+	}
+	L->seq.lead = -min_off;
+	L->seq.tail = max_off;
+	read_rig(L);
+	rc = cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
+					   plan_continuous(L, err, errsize);
+	if (rc) {
+		loop_free(L);
+		return rc;
+	}
+	*out = L;
+	return 0;
+}
+
+void loop_set_journal(struct loop *L, struct journal *jr)
+{
+	L->trig.jr = jr;
+}
+
+void loop_free(struct loop *L)
+{
+	free(L); /* the block */
+}
