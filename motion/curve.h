@@ -42,7 +42,7 @@
  * O(n^2) by de Casteljau: 130 ns for 4 keys, 400 ns for 10, 2.3 us for 32. Key intervals or Beta shapes far from uniform (gap
  * ratios of 1e4 and more, beta1 < 0.01, beta2 > 100) flatten a piece's frame
  * near its ends and take up to about 20 iterations; the solve never exceeds
- * 64 (NEWTON_MAX_IT in curve.c).
+ * 64 (NEWTON_MAX_IT in curve_solve.c).
  */
 #ifndef MOT_CURVE_H
 #define MOT_CURVE_H
@@ -90,10 +90,10 @@ struct mot_curve_opts {
  * Piece j of the curve: for step/linear/hermite the key interval j; for
  * bspline/beta the cubic on extended control points j..j+3; for bezier only
  * entry 0 (the whole curve), and the c[] and fc[] of every entry hold its
- * power form (curve.c). A polynomial P is kept as int64 coefficients of
- * powers of a parameter u in Q2.62, scaled by 2^sh so that their magnitudes
- * add up to at most 2^61 (block floating point: ~60 significant bits however
- * small or large the segment):
+ * power form (curve_bezier.c). A polynomial P is kept as int64 coefficients
+ * of powers of a parameter u in Q2.62, scaled by 2^sh so that their
+ * magnitudes add up to at most 2^61 (block floating point: ~60 significant
+ * bits however small or large the segment):
  *     value(u) = vref + P(u) / 2^vsh        (Q32.32 value)
  *     frame(u) = fref + F(u) / 2^fsh        (Q32.32 frame; approximating kinds)
  *
@@ -108,7 +108,7 @@ struct mot_curve_seg {
 	int64_t c[4];            /* value polynomial P */
 	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
 	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
-	uint8_t start;           /* Newton start rule (curve.c) */
+	uint8_t start;           /* Newton start rule (curve_solve.c) */
 	union {
 		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
@@ -123,7 +123,7 @@ struct mot_curve {
 	uint32_t nkeys;
 	uint32_t nseg;          /* entries of seg[] in use */
 	bool seg_ease;          /* some key interval has a non-zero ease fraction */
-	bool power;             /* bezier evaluated in power form (curve.c) */
+	bool power;             /* bezier evaluated in power form (curve_bezier.c) */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
 	const struct mot_key *keys;

@@ -16,8 +16,27 @@
 #define mot_curve_eval cvp_curve_eval_
 #define mot_curve_integral cvp_curve_integral_
 #define mot_curve_newton_iterations cvp_curve_newton_iterations_
+/* what the curve files share (motion/curve_priv.h) */
+#define mot_cv_acc_sar cvp_cv_acc_sar_
+#define mot_cv_acc_bitlen cvp_cv_acc_bitlen_
+#define mot_cv_acc_round_shift cvp_cv_acc_round_shift_
+#define mot_cv_acc_div_round cvp_cv_acc_div_round_
+#define mot_cv_poly_prep cvp_cv_poly_prep_
+#define mot_cv_locate cvp_cv_locate_
+#define mot_cv_prep_interp cvp_cv_prep_interp_
+#define mot_cv_prep_spline cvp_cv_prep_spline_
+#define mot_cv_prep_bezier cvp_cv_prep_bezier_
+#define mot_cv_prep_area cvp_cv_prep_area_
+#define mot_cv_approx_eval cvp_cv_approx_eval_
 #include "curve_portable.h"
 #include "motion/curve.c"
+#include "motion/curve_poly.c"
+#include "motion/curve_locate.c"
+#include "motion/curve_interp.c"
+#include "motion/curve_integral.c"
+#include "motion/curve_approx.c"
+#include "motion/curve_solve.c"
+#include "motion/curve_bezier.c"
 #include "motion/ease.c"
 #include "motion/fix.c"
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* curve_portable.h - motion/curve.c, ease.c and fix.c compiled with
+/* curve_portable.h - motion/curve*.c, ease.c and fix.c compiled with
  * MOT_NO_INT128 (the path armhf and Cortex-M take), callable from a test
  * built with __int128. The curve structs differ between the two builds, so
  * these wrappers take only keys, options and frames. */

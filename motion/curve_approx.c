@@ -1,0 +1,178 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * curve_approx.c - the pieces of the approximating splines: the uniform
+ * cubic B-spline and Barsky's Beta-spline (FORMULAS section 6; the seed
+ * paper sections 5.3.3 and 5.3.5).
+ *
+ * Both are curves on the 2-D control points (frame, value) of the keys, the
+ * first and last key tripled so that the curve starts and ends on them: n + 4
+ * control points, n + 1 cubic pieces, each inside the convex hull of its four
+ * points. Piece j is kept as two cubics in u, frame(u) and value(u); the
+ * value at a frame is found by solving frame(u) = f (curve_solve.c). Init
+ * only.
+ */
+#include "curve_priv.h"
+
+/* x * y for 0 <= x < 2^127, 0 <= y < 2^63, when the product fits 127 bits. */
+static mot_acc acc_mul_u(mot_acc x, int64_t y)
+{
+	uint64_t lo = mot_acc_lo(x);
+	mot_acc r = acc_shl(mot_acc_mul((int64_t)mot_acc_hi(x), y), 64);
+
+	r = mot_acc_add(r, acc_shl(mot_acc_mul((int64_t)(lo >> 32), y), 32));
+	return mot_acc_add(r, mot_acc_mul((int64_t)(lo & 0xffffffffu), y));
+}
+
+/*
+ * The cubic basis of the uniform B-spline and of Barsky's Beta-spline
+ * (FORMULAS section 6), as the power-form weights N[k][p] of control points
+ * V(i-1+k) on u^p over a common denominator den. Expanding the section's
+ * b(-1)..b(2) with T3 = 2 beta1^3, T2 = 2 beta1^2, T1 = 2 beta1:
+ *   b(-1) = T3 (1 - 3u + 3u^2 - u^3)
+ *   b(0)  = (2 T2 + 2 T1 + beta2) + 3 (T3 - T1) u - 3 (T3 + T2 + beta2) u^2
+ *           + (T3 + T2 + T1 + 2 beta2) u^3
+ *   b(1)  = 2 + 3 T1 u + 3 (T2 + beta2) u^2 - (T2 + T1 + 2 beta2 + 2) u^3
+ *   b(2)  = 2 u^3,        den = delta = T3 + 2 T2 + 2 T1 + beta2 + 2.
+ * For the Beta-spline everything is first formed exactly at scale 2^96 in
+ * 128 bits (beta1 in Q32.32 has a cube in Q32.96), then rounded once to a
+ * common scale that keeps the largest entry below 2^60: ~60 significant bits,
+ * where rounding beta1^3 to Q32.32 would change a curve by tens of LSB.
+ * Column u^0 must sum to den and the others to 0 for the curve to keep its
+ * partition of unity and start and end exactly on the tripled keys, so b(1)'s
+ * row is formed last as what the others leave; b(-1) stays T3 times
+ * (1, -3, 3, -1), so the last piece is an exact cube. beta1 = 1, beta2 = 0
+ * gives 2^k times the B-spline's integer matrix (den 6).
+ */
+static void basis(const struct mot_curve *c, int64_t nb[4][4], uint64_t *den)
+{
+	static const int8_t bsp[4][4] = {
+		{ 1, -3, 3, -1 }, { 4, 0, -6, 3 }, { 1, 3, 3, -3 }, { 0, 0, 0, 1 },
+	};
+	mot_acc b1sq, t3, t2, t1, b2, two, d, r1[4];
+	unsigned k, p, sh;
+
+	if (c->kind == MOT_INTERP_BSPLINE) {
+		for (k = 0; k < 4; k++)
+			for (p = 0; p < 4; p++)
+				nb[k][p] = bsp[k][p] * MOT_Q32_ONE;
+		*den = 6 * (uint64_t)MOT_Q32_ONE;
+		return;
+	}
+	/* beta1 <= 2^40 raw, beta2 <= 2^56 raw: every term below is < 2^124 */
+	b1sq = mot_acc_mul(c->beta1, c->beta1);
+	t3 = acc_shl(acc_mul_u(b1sq, c->beta1), 1);
+	t2 = acc_shl(b1sq, 33);
+	t1 = acc_shl(mot_acc_from(c->beta1, 0), 65);
+	b2 = acc_shl(mot_acc_from(c->beta2, 0), 64);
+	two = acc_shl(mot_acc_from(1, 0), 97);
+	/* den = T3 + 2 T2 + 2 T1 + beta2 + 2 */
+	d = mot_acc_add(mot_acc_add(t3, acc_shl(mot_acc_add(t2, t1), 1)), mot_acc_add(b2, two));
+	/* b(0): 2 T2 + 2 T1 + beta2, 3 (T3 - T1), -3 (T3 + T2 + beta2), T3 + T2 + T1 + 2 beta2 */
+	r1[0] = mot_acc_add(acc_shl(mot_acc_add(t2, t1), 1), b2);
+	r1[1] = mot_acc_sub(t3, t1);
+	r1[1] = mot_acc_add(acc_shl(r1[1], 1), r1[1]);
+	r1[2] = mot_acc_neg(mot_acc_add(mot_acc_add(t3, t2), b2));
+	r1[2] = mot_acc_add(acc_shl(r1[2], 1), r1[2]);
+	r1[3] = mot_acc_add(mot_acc_add(mot_acc_add(t3, t2), t1), acc_shl(b2, 1));
+	/* den is the largest but for 3 x */
+	sh = mot_cv_acc_bitlen(d) > 60 ? mot_cv_acc_bitlen(d) - 60 : 0;
+	sh += 2;
+	nb[0][0] = (int64_t)mot_acc_lo(mot_cv_acc_round_shift(t3, (int)sh));
+	nb[0][1] = -3 * nb[0][0];
+	nb[0][2] = 3 * nb[0][0];
+	nb[0][3] = -nb[0][0];
+	for (p = 0; p < 4; p++) {
+		nb[1][p] = (int64_t)mot_acc_lo(mot_cv_acc_round_shift(r1[p], (int)sh));
+		nb[3][p] = p == 3 ? (int64_t)mot_acc_lo(mot_cv_acc_round_shift(two, (int)sh)) : 0;
+	}
+	*den = mot_acc_lo(mot_cv_acc_round_shift(d, (int)sh));
+	for (p = 0; p < 4; p++)
+		nb[2][p] = (p == 0 ? (int64_t)*den : 0) - nb[0][p] - nb[1][p] - nb[3][p];
+}
+
+/* Spline piece j on the extended control points E(j)..E(j+3), E(m) = key
+ * clamp(m - 2, 0, n - 1): both polynomials relative to E(j+1), their frame
+ * interval [f0, ...) and the Newton start rule. */
+static int prep_piece(struct mot_curve *c, uint32_t j, int64_t nb[4][4], uint64_t den)
+{
+	const struct mot_key *k = c->keys;
+	struct mot_curve_seg *s = &c->seg[j];
+	int64_t n1 = (int64_t)c->nkeys - 1, df[4], dv[4], f0;
+	mot_acc nf[4], nv[4];
+	unsigned p, m;
+	int err;
+
+	for (m = 0; m < 4; m++) {
+		int64_t e = (int64_t)j + m - 2;
+		const struct mot_key *km = &k[e < 0 ? 0 : e > n1 ? n1 : e];
+
+		if (m == 0) {
+			/* the reference point E(j+1) */
+			const struct mot_key *kr = &k[e + 1 < 0 ? 0 : e + 1 > n1 ? n1 : e + 1];
+
+			s->fref = kr->frame;
+			s->vref = kr->value;
+		}
+
+		df[m] = km->frame - s->fref;
+		dv[m] = km->value - s->vref;
+	}
+	for (p = 0; p < 4; p++) {
+		nf[p] = nv[p] = mot_acc_zero();
+		for (m = 0; m < 4; m++) {
+			nf[p] = mot_acc_mac(nf[p], nb[m][p], df[m]);
+			nv[p] = mot_acc_mac(nv[p], nb[m][p], dv[m]);
+		}
+	}
+	err = mot_cv_poly_prep(s->fc, &s->fsh, nf, den);
+	if (!err)
+		err = mot_cv_poly_prep(s->c, &s->vsh, nv, den);
+	if (err || !mot_cv_acc_div_round(&f0, nf[0], 0, den))
+		return MOT_E_RANGE;
+	/* The piece starts at ceil(frame(0)): a frame f in [ceil(F(0)),
+	 * ceil(F(1))) has its root inside [0, 1), even when the piece is a few
+	 * LSB wide (rounding to nearest would put it up to half an LSB of frame
+	 * outside, and the solve would clamp). */
+	{
+		mot_acc rest = mot_acc_sub(nf[0], mot_acc_mul(f0, (int64_t)den)); /* F(0) - f0 */
+
+		if (!mot_acc_is_neg(rest) && mot_cv_acc_bitlen(rest) != 0)
+			f0++;
+	}
+	s->f0 = s->fref + f0;
+	s->start = START_CHORD;
+	/* frame(u) - frame(0) = w u^3, or frame(1) - frame(u) = w (1 - u)^3, tested
+	 * on the exact numerators: the first and last piece (and every piece of a
+	 * beta spline with beta1 = 0, beta2 = 0). */
+	{
+		mot_acc n3 = mot_acc_add(mot_acc_add(nf[3], nf[3]), nf[3]);
+
+		if (mot_cv_acc_bitlen(nf[1]) == 0 && mot_cv_acc_bitlen(nf[2]) == 0)
+			s->start = START_CUBE0;
+		else if (mot_cv_acc_bitlen(mot_acc_sub(nf[1], n3)) == 0 &&
+			 mot_cv_acc_bitlen(mot_acc_add(nf[2], n3)) == 0)
+			s->start = START_CUBE1;
+	}
+	return MOT_OK;
+}
+
+int mot_cv_prep_spline(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, j;
+	int64_t nb[4][4];
+	uint64_t den;
+	int err = MOT_OK;
+
+	basis(c, nb, &den);
+	for (j = 0; j < c->nseg && !err; j++)
+		err = prep_piece(c, j, nb, den);
+	for (j = 0; j < c->nseg && !err; j++) {
+		struct mot_curve_seg *s = &c->seg[j];
+
+		s->f1 = j + 1 < c->nseg ? c->seg[j + 1].f0 : k[n - 1].frame;
+		if (s->f1 > s->f0)
+			err = mot_recip_init(&s->inv_w, s->f1 - s->f0);
+	}
+	return err;
+}

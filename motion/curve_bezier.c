@@ -1,0 +1,111 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * curve_bezier.c - Bezier curves: one curve of degree n - 1 on all n keys as
+ * control points (frame, value), through the first and last key only, the
+ * paper's damped path (FORMULAS section 6; the seed paper section 5.3.4).
+ * Here its preparation: the scales of its key offsets and, where it keeps
+ * the precision, its power form. Like the splines it is evaluated where its
+ * frame coordinate equals the frame, by Horner's rule on the power form or by
+ * de Casteljau's algorithm (curve_solve.c). Init only.
+ */
+#include "curve_priv.h"
+
+/*
+ * Bezier in power form. With x_i the offsets of the keys from the first,
+ *     B(u) = sum x_i C(m, i) u^i (1 - u)^(m - i) = sum a_k u^k,
+ *     a_k = C(m, k) Delta^k x_0,     m = n - 1, a_0 = 0,
+ * (Delta^k: the k-th forward difference), so Horner's rule gives the frame
+ * and its derivative for 2m - 1 products and the value for m, where de
+ * Casteljau's algorithm takes m (m + 1) / 2 for each. The power form is
+ * ill-conditioned: sum |a_k| can reach 3^m max |x_i| while the curve stays
+ * within max |x_i|, and Horner's rounding is relative to sum |a_k|. So the
+ * coefficients are kept as exact integers (raw Q32.32 units) scaled by 2^sh,
+ * sum k |a_k| 2^sh < 2^61 for the frame (its derivative's partial sums too)
+ * and sum |a_k| 2^sh < 2^61 for the value, and the form is used only when
+ * sh >= 8: Horner's m roundings of half a unit stay below 1/16 LSB. Other
+ * curves (many keys, or keys far apart: 12 keys over +-1000 units, 32 keys
+ * of any size) keep de Casteljau. The coefficients live in the c[] and
+ * fc[] of the curve's entries, which a Bezier curve does not otherwise use:
+ * the frame's a_1 .. a_m in slots 0 .. m - 1, the value's in m .. 2m - 1
+ * (the n - 1 entries hold 8 (n - 1) >= 2m slots; power_slot).
+ */
+#define POWER_MIN_SHIFT 8
+
+/* Bezier: scales that keep the key offsets from the first key within 2^58:
+ * de Casteljau differences are then within 2^59, and the frame derivative
+ * (n - 1) (w1 - w0) within 31 * 2^58 < 2^63. */
+static int bezier_shift(int64_t maxdiff)
+{
+	return maxdiff == 0 ? 0 : 58 - (int)bitlen64((uint64_t)maxdiff);
+}
+
+/* The power form of a Bezier curve when it keeps its precision (see
+ * above): exact coefficients and their scales, or c->power false. */
+static void prep_power(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, m = n - 1, i, j, side;
+	int64_t a[2][MOT_BEZIER_MAX_KEYS - 1];
+	unsigned len[2];
+
+	c->power = false;
+	for (side = 0; side < 2; side++) {
+		mot_acc d[MOT_BEZIER_MAX_KEYS];
+		uint64_t b = 1, sum = 0;
+
+		for (i = 0; i < n; i++)
+			d[i] = mot_acc_from(side ? k[i].value - k[0].value
+						 : k[i].frame - k[0].frame, 0);
+		for (j = 1; j <= m; j++) {
+			/* d[0] = Delta^j x_0 (|.| < 2^(63 + j)), b = C(m, j) */
+			for (i = 0; i + j < n; i++)
+				d[i] = mot_acc_sub(d[i + 1], d[i]);
+			b = b * (m - j + 1) / j;
+			if (mot_cv_acc_bitlen(d[0]) + bitlen64(b) > 54)
+				return; /* |a_j| may reach 2^54: out of the form's range */
+			a[side][j - 1] = (int64_t)mot_acc_lo(d[0]) * (int64_t)b;
+			/* below 32 * 31 * 2^54 */
+			sum += (side ? 1 : j) * (uint64_t)mot_abs(a[side][j - 1]);
+		}
+		len[side] = bitlen64(sum);
+		if (len[side] > 61 - POWER_MIN_SHIFT)
+			return;
+	}
+	for (side = 0; side < 2; side++) {
+		int sh = 61 - (int)len[side];
+
+		for (j = 0; j < m; j++) {
+			uint32_t slot = side * m + j;
+
+			*power_slot(c, slot) = a[side][j] * ((int64_t)1 << sh);
+		}
+		if (side)
+			c->seg[0].vsh = (int16_t)sh;
+		else
+			c->seg[0].fsh = (int16_t)sh;
+	}
+	c->power = true;
+}
+
+int mot_cv_prep_bezier(struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	struct mot_curve_seg *s = &c->seg[0];
+	int64_t dv = 0;
+	uint32_t i;
+
+	for (i = 1; i < c->nkeys; i++) {
+		int64_t d = k[i].value - k[0].value;
+
+		d = d < 0 ? -d : d;
+		dv = d > dv ? d : dv;
+	}
+	s->fsh = (int16_t)bezier_shift(k[c->nkeys - 1].frame - k[0].frame);
+	s->vsh = (int16_t)bezier_shift(dv);
+	s->fref = s->f0 = k[0].frame;
+	s->vref = k[0].value;
+	s->f1 = k[c->nkeys - 1].frame;
+	s->start = START_CHORD;
+	prep_power(c);
+	return mot_recip_init(&s->inv_w, s->f1 - s->f0);
+}

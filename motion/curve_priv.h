@@ -1,0 +1,262 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * curve_priv.h - what the files of the curves share; not a public interface
+ * (see curve.h). The files, one idea each:
+ *
+ *     curve.c           init and its checks, evaluation and its dispatch by
+ *                       kind, the time warps of ease
+ *     curve_poly.c      the numbers: 128-bit shifts and roundings, block
+ *                       floating point of a cubic
+ *     curve_locate.c    the piece or key interval of a frame, from a cursor
+ *     curve_interp.c    the interpolating kinds' pieces: step, linear, Hermite
+ *     curve_integral.c  running integrals of the interpolating kinds (rpm)
+ *     curve_approx.c    the B-spline's and Beta-spline's pieces
+ *     curve_solve.c     an approximating curve's value at a frame: the Newton
+ *                       solve of frame(u) = f on a spline piece or a Bezier
+ *                       curve (Horner on its power form, or de Casteljau)
+ *     curve_bezier.c    Bezier curves' preparation: the power form where it
+ *                       keeps the precision
+ *
+ * Numbers. Frames and values are Q32.32. Curve parameters (s of a key
+ * interval, u of a spline piece) are Q2.62 in [0, 1]. Every cubic is kept in
+ * power form with int64 coefficients in block floating point: one scale 2^sh
+ * per polynomial, chosen at init so that the coefficients' magnitudes add up
+ * to at most 2^61 (mot_cv_poly_prep). Horner's rule then needs one 64x64
+ * product and one rounding per degree, never overflows, and keeps ~60
+ * significant bits whether a segment spans a thousandth of a frame or a
+ * million frames. The divisions (tangent ratios, basis denominators,
+ * reciprocals of widths) are all done at init; evaluation multiplies.
+ *
+ * Speed. mot_curve_eval() was one file's static functions, inlined or
+ * called with everything the compiler knew of them; split, it must lose
+ * none of it (make bench-count). So what evaluation needs on every sample is
+ * defined here, static inline; the Newton solve keeps in its file every
+ * evaluator it calls in its loop; and the functions it calls in other files
+ * are declared const (a function of its arguments' values) or pure (it also
+ * reads memory, writes none). Without that a loop around such a call must
+ * load the curve's fields again after it: 1% more instructions on Bezier
+ * curves, where it reloaded the degree in every iteration.
+ *
+ * The rest lives in the files above, named mot_cv_* (the core exports only
+ * mot_ names; these are not curve.h's).
+ */
+#ifndef MOT_CURVE_PRIV_H
+#define MOT_CURVE_PRIV_H
+
+#include "curve.h"
+
+#define ONE62 MOT_Q62_ONE
+
+/* Newton start rules (seg->start; curve_solve.c). */
+enum {
+	START_CHORD, /* u0 = (f - f0) / (f1 - f0) */
+	START_CUBE0, /* frame(u) = frame(0) + w u^3: u0 ~ cbrt of the chord fraction */
+	START_CUBE1, /* frame(u) = frame(1) - w (1 - u)^3: mirrored */
+};
+
+/* ---- 128-bit and scaling helpers (curve_poly.c) ------------------------------ */
+
+static inline unsigned bitlen64(uint64_t x)
+{
+	return 64 - mot_clz64(x);
+}
+
+/* x * 2^n for 0 <= n < 128 (bits above 127 are lost: callers check). */
+static inline mot_acc acc_shl(mot_acc x, unsigned n)
+{
+	uint64_t hi = mot_acc_hi(x), lo = mot_acc_lo(x);
+
+	if (n == 0)
+		return x;
+	if (n >= 64)
+		return mot_acc_make(lo << (n - 64), 0);
+	return mot_acc_make((hi << n) | (lo >> (64 - n)), lo << n);
+}
+
+/* floor(x / 2^n) for 0 <= n < 128 (arithmetic shift). */
+mot_acc mot_cv_acc_sar(mot_acc x, unsigned n) __attribute__((const));
+
+/* Bit length of |x| (x != -2^127). */
+unsigned mot_cv_acc_bitlen(mot_acc x) __attribute__((const));
+
+/* round(x / 2^sh), 128 bits in and out, -127 < sh < 127; a left shift
+ * (sh < 0) must not overflow (callers bound it). */
+mot_acc mot_cv_acc_round_shift(mot_acc x, int sh) __attribute__((const));
+
+/*
+ * round(num * 2^sh / den) for den > 0, as int64 in *out. False when the
+ * shifted numerator or the quotient would not fit (the prepared scales keep
+ * quotients below 2^59). For sh < 0 the numerator is floored first: an error
+ * below one unit of the result.
+ */
+bool mot_cv_acc_div_round(int64_t *out, mot_acc num, int sh, uint64_t den);
+
+/* Block floating point for one cubic: c[p] = round(num[p] / den * 2^sh),
+ * sum |c[p]| <= 2^60 + 2; MOT_E_RANGE when a coefficient does not fit. */
+int mot_cv_poly_prep(int64_t c[4], int16_t *sh, const mot_acc num[4], uint64_t den);
+
+/* round(x / 2^sh) for an int64 x and any sh, saturating. */
+static inline int64_t round_shift(int64_t x, int sh, uint32_t *sat)
+{
+	if (sh > 0)
+		return sh >= 127 ? 0 : mot_acc_round(mot_acc_from(x, 0), (unsigned)sh, sat);
+	if (sh < 0) {
+		int64_t lim = sh > -63 ? INT64_MAX >> -sh : 0;
+
+		if (x > lim || x < -lim - 1) {
+			if (sat)
+				*sat |= MOT_SAT_OVERFLOW;
+			return x < 0 ? INT64_MIN : INT64_MAX;
+		}
+		return x * ((int64_t)1 << -sh);
+	}
+	return x;
+}
+
+/* ref + round(p / 2^sh), saturating only when the sum does not fit: p / 2^sh
+ * alone may exceed int64 by a little where ref brings it back (a piece from
+ * -2^62 to 2^62). */
+static inline mot_q32 value_of_wide(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
+{
+	mot_acc a;
+	uint64_t lo;
+
+	if (sh > -64)
+		a = mot_cv_acc_round_shift(mot_acc_from(p, 0), sh);
+	else
+		a = p ? acc_shl(mot_acc_from(p, 0), 64) : mot_acc_zero();
+	a = mot_acc_add(a, mot_acc_from(ref, 0));
+	lo = mot_acc_lo(a);
+	if (mot_acc_hi(a) != ((int64_t)lo < 0 ? ~(uint64_t)0 : 0)) {
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return mot_acc_is_neg(a) ? MOT_Q32_MIN : MOT_Q32_MAX;
+	}
+	return (mot_q32)lo;
+}
+
+/* The same in int64 when nothing overflows: scales are positive and the
+ * polynomials stay below 2^62, so this is the path every valid curve takes. */
+static inline mot_q32 value_of(mot_q32 ref, int64_t p, int sh, uint32_t *sat)
+{
+	int64_t q;
+	mot_q32 r;
+
+	if (sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
+	    !__builtin_add_overflow(ref, q >> sh, &r))
+		return r;
+	return value_of_wide(ref, p, sh, sat);
+}
+
+/* a * u / 2^62, rounded, for |u| <= 2^62 (so the result fits without a
+ * saturation test): one Horner or de Casteljau step with u in Q2.62. */
+static inline int64_t mul62(int64_t a, int64_t u)
+{
+	uint64_t ov = 0; /* |a u| < 2^125: the result fits */
+
+	return mot_acc_round_ov(mot_acc_mul(a, u), 62, &ov);
+}
+
+/* P(u) = c0 + u (c1 + u (c2 + u c3)); |partial sums| <= sum |c| <= 2^61. */
+static inline int64_t poly_eval(const int64_t c[4], int64_t u)
+{
+	int64_t r = c[3];
+
+	r = mul62(r, u) + c[2];
+	r = mul62(r, u) + c[1];
+	return mul62(r, u) + c[0];
+}
+
+/* P'(u) = c1 + u (2 c2 + u 3 c3); |partial sums| <= 3 * 2^61 < 2^63. */
+static inline int64_t poly_deriv(const int64_t c[4], int64_t u)
+{
+	int64_t r = 3 * c[3];
+
+	r = mul62(r, u) + 2 * c[2];
+	return mul62(r, u) + c[1];
+}
+
+/* round(x * 2^62 / d) for the prepared reciprocal of d: the parameter in
+ * Q2.62 of an offset x in [0, d]. (Only d = 1 has a shift of 30.) */
+static inline int64_t frac62(int64_t x, const struct mot_recip *r)
+{
+	unsigned sh = r->shift - 30; /* 1 .. 63 past the test below */
+	uint64_t ov = 0;             /* below 2^64 / 2^63: never set */
+	int64_t s;
+
+	if (r->shift <= 30)
+		return x <= 0 ? 0 : ONE62;
+	if (x <= 0)
+		return 0;
+	if ((uint64_t)x >> sh)
+		return ONE62; /* x / d >= m / 2^62 >= 1 */
+	/* round(x m / 2^sh) with x moved up to 63 bits: the shift of the
+	 * rounding is then a constant */
+	s = mot_acc_round_ov(mot_acc_mul(x * ((int64_t)1 << (63 - sh)), r->m), 63, &ov);
+	return s > ONE62 ? ONE62 : s;
+}
+
+/* ---- segment lookup (curve_locate.c) ------------------------------------------ */
+
+/* The last index j in [0, n) whose start is at or before f: of the key
+ * intervals (keys, n = nkeys - 1) or of the pieces (n = nseg), trying the
+ * hint first. */
+uint32_t mot_cv_locate(const struct mot_curve *c, bool keys, uint32_t n, uint32_t hint,
+		       mot_q32 f) __attribute__((pure));
+
+/* The piece of frame f (span_f0 <= f), through the cursor when there is one. */
+static inline uint32_t locate_seg(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
+{
+	uint32_t j = mot_cv_locate(c, false, c->nseg, cur ? cur->seg : 0, f);
+
+	if (cur)
+		cur->seg = j;
+	return j;
+}
+
+/* The key interval of frame f (span_f0 <= f), likewise. */
+static inline uint32_t locate_key(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
+{
+	uint32_t i = mot_cv_locate(c, true, c->nkeys - 1, cur ? cur->key : 0, f);
+
+	if (cur)
+		cur->key = i;
+	return i;
+}
+
+/* ---- Bezier in power form (curve_bezier.c) --------------------------------------- */
+
+/* Slot j of the power form's coefficients: the frame's a_1 .. a_m in slots
+ * 0 .. m - 1, the value's in m .. 2m - 1, kept in the c[] and fc[] of the
+ * curve's entries, 8 an entry. */
+static inline int64_t *power_slot(const struct mot_curve *c, uint32_t j)
+{
+	struct mot_curve_seg *s = &c->seg[j / 8];
+
+	return j % 8 < 4 ? &s->c[j % 4] : &s->fc[j % 4];
+}
+
+/* ---- preparation, by kind (init only) --------------------------------------------- */
+
+/* The pieces of a step, linear or hermite curve of two keys or more
+ * (curve_interp.c). */
+int mot_cv_prep_interp(struct mot_curve *c);
+
+/* The pieces of a bspline or beta curve of two keys or more (curve_approx.c). */
+int mot_cv_prep_spline(struct mot_curve *c);
+
+/* Entry 0 of a Bezier curve of two keys or more: scales, frame range, and
+ * its power form where that keeps the precision (curve_bezier.c). */
+int mot_cv_prep_bezier(struct mot_curve *c);
+
+/* The running integrals of a prepared interpolating curve (curve_integral.c). */
+int mot_cv_prep_area(struct mot_curve *c);
+
+/* ---- evaluation of the approximating kinds (curve_solve.c) ------------------------- */
+
+/* Value of an approximating curve at a (warped) frame strictly inside the
+ * span; *iters: the Newton iterations it took. */
+mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f,
+			   int *iters, uint32_t *sat);
+
+#endif /* MOT_CURVE_PRIV_H */
