@@ -39,6 +39,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "rt.h" /* STRAND_RT */
+
 /* One channel's setpoint for one tick, in device counts. pos is the target
  * position (cyclic synchronous position); vel the velocity in counts per
  * second: the velocity target of a velocity-mode channel (a spin joint in
@@ -97,32 +99,33 @@ static inline int hal_axis_start(struct hal_axis *ax)
 	return ax->ops->start(ax);
 }
 
-static inline int hal_axis_input(struct hal_axis *ax, int64_t tick)
+static inline int STRAND_RT hal_axis_input(struct hal_axis *ax, int64_t tick)
 {
 	return ax->ops->input(ax, tick);
 }
 
-static inline bool hal_axis_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
+static inline bool STRAND_RT hal_axis_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 {
 	return ax->ops->actual(ax, ch, counts);
 }
 
-static inline void hal_axis_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
+static inline void STRAND_RT hal_axis_set(struct hal_axis *ax, uint32_t ch,
+					  const struct hal_setpoint *sp)
 {
 	ax->ops->set(ax, ch, sp);
 }
 
-static inline int hal_axis_commit(struct hal_axis *ax, int64_t tick)
+static inline int STRAND_RT hal_axis_commit(struct hal_axis *ax, int64_t tick)
 {
 	return ax->ops->commit(ax, tick);
 }
 
-static inline int hal_axis_fault(struct hal_axis *ax, struct hal_fault *f)
+static inline int STRAND_RT hal_axis_fault(struct hal_axis *ax, struct hal_fault *f)
 {
 	return ax->ops->fault(ax, f);
 }
 
-static inline void hal_axis_disable(struct hal_axis *ax)
+static inline void STRAND_RT hal_axis_disable(struct hal_axis *ax)
 {
 	ax->ops->disable(ax);
 }
