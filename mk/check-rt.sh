@@ -1,5 +1,5 @@
 #!/bin/sh
-# check-rt.sh OBJDUMP TRUSTED OBJ... - the real-time boundary, checked on
+# check-rt.sh OBJDUMP TRUSTED OBJ|ARCHIVE... - the real-time boundary, checked on
 # the objects as modpost checks the kernel's sections: every reference made
 # from the section .text.strand_rt (the functions tagged STRAND_RT,
 # hal/rt.h) must go to
@@ -46,7 +46,12 @@ trap 'rm -f "$tmp"' EXIT
 	echo "@@trusted"
 	[ "$trusted" = - ] || "$objdump" -t "$trusted"
 	echo "@@objects"
-	"$objdump" -t -r "$@"
+	# one at a time: an archive's members are named "ARCHIVE(MEMBER)", and
+	# objdump says where an archive starts, not where it ends
+	for o in "$@"; do
+		"$objdump" -t -r "$o"
+		echo "@@objects"
+	done
 } >"$tmp"
 
 status=0
