@@ -2,7 +2,7 @@
 #
 #   make          build the core library, the programs and the tests
 #   make run      play the robot-arm demo on the simulated rig (mk/play.mk)
-#   make test     build and run every test (unit, layers, freestanding,
+#   make test     build and run every test (unit, layers, freestanding, rt,
 #                 cross-arch, Cortex-M4, fuzz, VM) and print a summary
 #   make bench    build and run the benchmarks (prints BENCH lines)
 #   make clean    remove $(BUILD)/

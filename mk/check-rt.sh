@@ -6,7 +6,9 @@
 #   - code in .text.strand_rt itself, of this object or another one;
 #   - a function of TRUSTED (an archive or object, or "-" for none): the
 #     motion core, which `make check-freestanding` proves allocation- and
-#     libc-free;
+#     libc-free; and a copy of a static inline function of a HEADER of it
+#     (-H), which the compiler may keep in the calling object (-O0,
+#     -fno-inline, -Os) under the header's own name;
 #   - data of any kind (tables, state, strings: reading and writing memory
 #     is what rt code does);
 #   - a name outside the project that an allow line of mk/check-rt.list
@@ -28,7 +30,14 @@
 # (-ffunction-sections would put it in the section; hal/rt.h).
 # Prints the allowed names it saw and the motion functions called.
 set -eu
-[ $# -ge 3 ] || { echo "usage: check-rt.sh OBJDUMP TRUSTED|- OBJ..." >&2; exit 2; }
+usage="usage: check-rt.sh [-H HEADER]... OBJDUMP TRUSTED|- OBJ|ARCHIVE..."
+hdrs=
+while [ $# -gt 0 ] && [ "$1" = -H ]; do
+	[ $# -ge 2 ] || { echo "$usage" >&2; exit 2; }
+	hdrs="$hdrs $2"
+	shift 2
+done
+[ $# -ge 3 ] || { echo "$usage" >&2; exit 2; }
 objdump=$1
 trusted=$2
 shift 2
@@ -45,6 +54,10 @@ trap 'rm -f "$tmp"' EXIT
 	sed -e 's/#.*//' -e '/^[[:space:]]*$/d' "$list"
 	echo "@@trusted"
 	[ "$trusted" = - ] || "$objdump" -t "$trusted"
+	echo "@@inlines"
+	# shellcheck disable=SC2086
+	[ -z "$hdrs" ] || sed -n \
+		's/^static inline[^(]*[ *]\([A-Za-z_][A-Za-z0-9_]*\)(.*/\1/p' $hdrs
 	echo "@@objects"
 	# one at a time: an archive's members are named "ARCHIVE(MEMBER)", and
 	# objdump says where an archive starts, not where it ends
@@ -85,6 +98,11 @@ report=$(awk -v rtsec=.text.strand_rt '
 				return fnn[k, i]
 		return ""
 	}
+	# The function GCC made a copy of: foo for foo.constprop.0, foo.isra.1
+	function clone_of(n) {
+		sub(/\.(constprop|isra|part)\.[0-9]+$/, "", n)
+		return n
+	}
 	# Is the untagged NAME referenced from OBJ on a ref line?
 	function excused(obj, name,    j, o) {
 		for (j = 1; j <= nref; j++) {
@@ -104,6 +122,8 @@ report=$(awk -v rtsec=.text.strand_rt '
 	}
 	$0 == "@@list" { part = "list"; next }
 	$0 == "@@trusted" { part = "trusted"; next }
+	$0 == "@@inlines" { part = "inlines"; next }
+	part == "inlines" && $0 !~ /^@@/ { trust_inline[$1] = 1; next }
 	$0 == "@@objects" { part = "objects"; arch = ""; next }
 	part == "list" {
 		if ($1 == "ref") {
@@ -208,7 +228,9 @@ report=$(awk -v rtsec=.text.strand_rt '
 						continue
 					}
 				}
-				if (!excused(obj, name))
+				if (clone_of(name) in trust_inline)
+					trusted_seen[clone_of(name)] = 1
+				else if (!excused(obj, name))
 					bad(obj, fn, name ", a function of the project that is not STRAND_RT (" s " of this object)")
 				continue
 			}

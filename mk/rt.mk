@@ -18,6 +18,8 @@
 EXTRA_TEST_STEPS += check-rt
 
 RT_SELFTEST := $(BUILD)/rt-selftest
+# the core's header inlines, wherever the compiler keeps a copy of one
+RT_TRUST    := $(foreach h,$(MOTION_HDR),-H $(h))
 RT_BAD := allocator:bad_malloc \
           stdio:bad_printf \
           'a lock':bad_mutex \
@@ -37,16 +39,22 @@ $(RT_SELFTEST)/%.o: tests/rt/%.c hal/rt.h | $(BUILD)/.deps-build
 	$(Q)$(CC) $(FW_CFLAGS) -iquote . $(OPT) -c $< -o $@
 
 check-rt: $(RT_SELFTEST_OBJ) $(LIB_OBJ) $(FW_SAN_OBJ) $(GPIOD_LIB) $(BUILD)/libmotion.a \
-		$(BUILD)/san/libmotion.a mk/check-rt.sh mk/check-rt.list
-	$(Q)sh mk/check-rt.sh objdump $(BUILD)/libmotion.a $(RT_SELFTEST)/good.o \
+		$(BUILD)/san/libmotion.a mk/check-rt.sh mk/check-rt.list $(MOTION_HDR)
+	$(Q)sh mk/check-rt.sh $(RT_TRUST) objdump $(BUILD)/libmotion.a $(RT_SELFTEST)/good.o \
 		>$(RT_SELFTEST)/good.log 2>&1 || \
 		{ echo "check-rt: self-test: good.c is refused:"; cat $(RT_SELFTEST)/good.log; exit 1; }
 	@echo "check-rt: self-test: good.c: accepted"
+	$(Q)if sh mk/check-rt.sh objdump $(BUILD)/libmotion.a $(RT_SELFTEST)/good.o \
+			>$(RT_SELFTEST)/good-nohdr.log 2>&1 || \
+		! grep -q 'mot_add_sat, a function of the project that is not' $(RT_SELFTEST)/good-nohdr.log; then \
+		echo "check-rt: self-test: good.c passed without the core's headers (-H); it must not"; \
+		cat $(RT_SELFTEST)/good-nohdr.log; exit 1; fi
+	@echo "check-rt: self-test: good.c without the core's headers: refused (mot_add_sat, its copy of an inline)"
 	$(Q)for t in $(RT_BAD); do \
 		why=$${t%%:*}; f=$${t#*:}; other=; \
 		case $$f in *+*) other=$(RT_SELFTEST)/$${f#*+}.o; f=$${f%%+*};; esac; \
 		log=$(RT_SELFTEST)/$$f.log; \
-		if sh mk/check-rt.sh objdump $(BUILD)/libmotion.a $(RT_SELFTEST)/$$f.o $$other \
+		if sh mk/check-rt.sh $(RT_TRUST) objdump $(BUILD)/libmotion.a $(RT_SELFTEST)/$$f.o $$other \
 				>$$log 2>&1; then \
 			echo "check-rt: self-test: $$f.c passed; it must not"; cat $$log; exit 1; \
 		elif ! grep -q -- "$$why" $$log; then \
@@ -55,12 +63,15 @@ check-rt: $(RT_SELFTEST_OBJ) $(LIB_OBJ) $(FW_SAN_OBJ) $(GPIOD_LIB) $(BUILD)/libm
 		echo "check-rt: self-test: $$f.c: refused ($$(grep -m1 -- "$$why" $$log | \
 			sed 's/^check-rt: [^ :]*\.o: //'))"; \
 	done
-	$(Q)sh mk/check-rt.sh objdump $(BUILD)/libmotion.a $(LIB_OBJ) $(GPIOD_LIB) \
-		>$(RT_SELFTEST)/release.log
-	$(Q)sh mk/check-rt.sh objdump $(BUILD)/san/libmotion.a $(FW_SAN_OBJ) $(GPIOD_LIB) \
-		>$(RT_SELFTEST)/san.log
-	@sed 's/^check-rt:/check-rt: release (-O2):/' $(RT_SELFTEST)/release.log
-	@sed 's/^check-rt:/check-rt: sanitized (-O1):/' $(RT_SELFTEST)/san.log
+	@# both, whatever the first finds, so that one run reports everything
+	$(Q)st=0; \
+	sh mk/check-rt.sh $(RT_TRUST) objdump $(BUILD)/libmotion.a $(LIB_OBJ) $(GPIOD_LIB) \
+		>$(RT_SELFTEST)/release.log 2>&1 || st=1; \
+	sh mk/check-rt.sh $(RT_TRUST) objdump $(BUILD)/san/libmotion.a $(FW_SAN_OBJ) $(GPIOD_LIB) \
+		>$(RT_SELFTEST)/san.log 2>&1 || st=1; \
+	sed 's/^check-rt:/check-rt: release (-O2):/' $(RT_SELFTEST)/release.log; \
+	sed 's/^check-rt:/check-rt: sanitized (-O1):/' $(RT_SELFTEST)/san.log; \
+	exit $$st
 	@echo "RT ok: $$(sed -n 's/^check-rt: \([0-9]*\) object(s), \([0-9]*\) rt function(s) in \([0-9]*\) .*/\2 rt functions (in \3 of \1 objects)/p' \
 		$(RT_SELFTEST)/release.log) reach no allocator, stdio, lock or sleeping call," \
 		"nor untagged code; the sanitized build's too; self-test passed"

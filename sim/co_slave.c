@@ -94,7 +94,9 @@ static bool STRAND_RT plant_on(struct co_slave *s)
 
 	if ((!s->plant || hz != s->plant_hz || vel != s->plant_vel) && !plant_make(s, hz, vel))
 		return false;
-	hal_axis_start(plant_axis(s));
+	/* the table's start, not hal_axis_start(): that wrapper is [init]
+	 * and untagged, the simulated drive's start is rt (sd_start) */
+	plant_axis(s)->ops->start(plant_axis(s));
 	s->prev_target = s->actual_pos;
 	return true;
 }
