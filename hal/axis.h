@@ -23,6 +23,9 @@
  *           blocking system call, no lock shared with another thread, bounded
  *           time. A backend whose bus blocks (libmodbus) hands the work to an
  *           I/O thread of its own through a lock-free slot.
+ * Both are enforced (hal/rt.h): every [rt] operation of a backend is
+ * STRAND_RT, which `make check-rt` holds to these rules, and an [init] one
+ * that may block starts with STRAND_ASSERT_NOT_RT().
  *
  * Every operation of a backend's table is implemented (there is no NULL to
  * test for in the loop); a device without feedback answers false from

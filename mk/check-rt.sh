@@ -279,6 +279,7 @@ printf '%s\n' "$report" | sed -n 's/^bad /check-rt: /p' >&2
 printf '%s\n' "$report" | grep -q '^bad' && status=1
 allowed=$(printf '%s\n' "$report" | sed -n 's/^allowed //p' | sort | tr "\n" " " | sed "s/ $//")
 ntrusted=$(printf '%s\n' "$report" | grep -c '^trusted ' || true)
+# shellcheck disable=SC2046 # three numbers, split on purpose
 set -- $(printf '%s\n' "$report" | sed -n 's/^count //p')
 echo "check-rt: $1 object(s), $2 rt function(s) in $3 of them; allowed outside the project: ${allowed:-none}; motion functions called: $ntrusted"
 exit $status

@@ -228,7 +228,8 @@ static uint32_t STRAND_RT check(struct co_slave *s, const struct od *e, uint32_t
 }
 
 /* Read an object into buf; 0 or an abort code. */
-static uint32_t STRAND_RT read_obj(struct co_slave *s, const struct od *e, uint8_t *buf, uint32_t *n)
+static uint32_t STRAND_RT read_obj(struct co_slave *s, const struct od *e, uint8_t *buf,
+				   uint32_t *n)
 {
 	if (!(e->flags & R))
 		return CO_ABORT_WRITE_ONLY;
@@ -249,7 +250,7 @@ static uint32_t STRAND_RT read_obj(struct co_slave *s, const struct od *e, uint8
 
 /* Write n bytes to an object; 0 or an abort code. */
 static uint32_t STRAND_RT write_obj(struct co_slave *s, const struct od *e, const uint8_t *buf,
-			  uint32_t n, int64_t now)
+				    uint32_t n, int64_t now)
 {
 	uint32_t v, abort;
 

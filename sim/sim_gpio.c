@@ -161,7 +161,8 @@ static int STRAND_RT q_insert(struct sim_gpio *g, const struct sched_edge *e)
 	return 0;
 }
 
-static uint32_t STRAND_RT gi_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev, uint32_t max)
+static uint32_t STRAND_RT gi_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
+				  uint32_t max)
 {
 	struct sim_gpio *g = of_din(d);
 	struct sched_edge e;

@@ -107,7 +107,7 @@ static bool STRAND_RT is_quick_stop(uint16_t cw)
 }
 
 enum co402_state STRAND_RT co402_next(enum co402_state s, uint16_t cw, uint16_t prev,
-			    bool quick_stop_stays)
+				      bool quick_stop_stays)
 {
 	switch (s) {
 	case CO402_DISABLED:

@@ -95,8 +95,8 @@ static const struct step steps[] = {
 #define NSTEPS (sizeof(steps) / sizeof(steps[0]))
 
 /* The value step s writes to node n; false: skip the step. */
-static bool STRAND_RT value_of(const struct co_master *m, const struct co_node *n, const struct step *s,
-		     uint32_t *v)
+static bool STRAND_RT value_of(const struct co_master *m, const struct co_node *n,
+			       const struct step *s, uint32_t *v)
 {
 	switch (s->val) {
 	case V_HEARTBEAT:
@@ -174,7 +174,7 @@ void STRAND_RT co_config_begin(struct co_master *m, struct co_node *n, int64_t n
 }
 
 static void STRAND_RT sdo_fault(struct co_master *m, struct co_node *n, const struct step *s,
-		      uint32_t abort)
+				uint32_t abort)
 {
 	struct co_fault f = {
 		.code = -EIO, .kind = CO_FAULT_SDO, .node = n->cfg.node, .index = s->index,
@@ -185,7 +185,8 @@ static void STRAND_RT sdo_fault(struct co_master *m, struct co_node *n, const st
 }
 
 /* What a read brought: false when it is not acceptable (fault latched). */
-static bool STRAND_RT take(struct co_master *m, struct co_node *n, const struct step *s, int64_t now)
+static bool STRAND_RT take(struct co_master *m, struct co_node *n, const struct step *s,
+			   int64_t now)
 {
 	uint32_t got = n->sdo.pos;
 

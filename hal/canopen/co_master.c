@@ -102,8 +102,8 @@ void STRAND_RT co_latch(struct co_master *m, const struct co_fault *f)
 		m->phase = CO_MASTER_FAILED;
 }
 
-void STRAND_RT co_fail(struct co_master *m, enum co_fault_kind kind, int code, const struct co_node *n,
-	     uint32_t detail)
+void STRAND_RT co_fail(struct co_master *m, enum co_fault_kind kind, int code,
+		       const struct co_node *n, uint32_t detail)
 {
 	struct co_fault f = {
 		.code = code, .kind = (uint8_t)kind, .node = n ? n->cfg.node : 0,
@@ -185,7 +185,8 @@ static void STRAND_RT heartbeat(struct co_master *m, struct co_node *n, uint8_t 
 		co_fail(m, CO_FAULT_NMT, -ECONNRESET, n, state);
 }
 
-static void STRAND_RT sdo(struct co_master *m, struct co_node *n, const struct co_frame *f, int64_t now)
+static void STRAND_RT sdo(struct co_master *m, struct co_node *n, const struct co_frame *f,
+			  int64_t now)
 {
 	struct co_frame out;
 
@@ -197,7 +198,8 @@ static void STRAND_RT sdo(struct co_master *m, struct co_node *n, const struct c
 		co_config_next(m, n, now);
 }
 
-static void STRAND_RT tpdo(struct co_master *m, struct co_node *n, const struct co_frame *f, int64_t now)
+static void STRAND_RT tpdo(struct co_master *m, struct co_node *n, const struct co_frame *f,
+			   int64_t now)
 {
 	enum co402_state s;
 

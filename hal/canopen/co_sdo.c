@@ -61,7 +61,7 @@ static void STRAND_RT mux(struct co_frame *f, uint16_t index, uint8_t sub)
 }
 
 void STRAND_RT co_sdo_abort_frame(struct co_frame *out, uint16_t id, uint16_t index, uint8_t sub,
-			uint32_t code)
+				  uint32_t code)
 {
 	co_frame_init(out, id, 8);
 	out->data[0] = CS_ABORT;
@@ -99,7 +99,7 @@ static void STRAND_RT begin(struct co_sdo *s, uint16_t index, uint8_t sub)
 }
 
 void STRAND_RT co_sdo_download(struct co_sdo *s, uint16_t index, uint8_t sub, const void *data,
-		     uint32_t n, int64_t now, struct co_frame *out)
+			       uint32_t n, int64_t now, struct co_frame *out)
 {
 	begin(s, index, sub);
 	s->src = data;
@@ -118,7 +118,7 @@ void STRAND_RT co_sdo_download(struct co_sdo *s, uint16_t index, uint8_t sub, co
 }
 
 void STRAND_RT co_sdo_upload(struct co_sdo *s, uint16_t index, uint8_t sub, void *dst, uint32_t cap,
-		   int64_t now, struct co_frame *out)
+			     int64_t now, struct co_frame *out)
 {
 	begin(s, index, sub);
 	s->dst = dst;
@@ -147,7 +147,8 @@ static bool STRAND_RT next_segment(struct co_sdo *s, int64_t now, struct co_fram
 	return true;
 }
 
-static bool STRAND_RT upload_init(struct co_sdo *s, const uint8_t *d, int64_t now, struct co_frame *out)
+static bool STRAND_RT upload_init(struct co_sdo *s, const uint8_t *d, int64_t now,
+				  struct co_frame *out)
 {
 	uint32_t n;
 
@@ -174,7 +175,8 @@ static bool STRAND_RT upload_init(struct co_sdo *s, const uint8_t *d, int64_t no
 	return true;
 }
 
-static bool STRAND_RT upload_seg(struct co_sdo *s, const uint8_t *d, int64_t now, struct co_frame *out)
+static bool STRAND_RT upload_seg(struct co_sdo *s, const uint8_t *d, int64_t now,
+				 struct co_frame *out)
 {
 	uint32_t n = 7 - ((d[0] >> 1) & 7);
 
@@ -199,7 +201,8 @@ static bool STRAND_RT upload_seg(struct co_sdo *s, const uint8_t *d, int64_t now
 	return true;
 }
 
-bool STRAND_RT co_sdo_rx(struct co_sdo *s, const struct co_frame *in, int64_t now, struct co_frame *out)
+bool STRAND_RT co_sdo_rx(struct co_sdo *s, const struct co_frame *in, int64_t now,
+			 struct co_frame *out)
 {
 	const uint8_t *d = in->data;
 	uint8_t cs = d[0] & CS_MASK;

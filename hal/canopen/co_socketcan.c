@@ -60,7 +60,7 @@ static int STRAND_RT sc_send(struct co_bus *b, const struct co_frame *f, uint32_
 }
 
 enum co_bus_state STRAND_RT co_socketcan_error_state(enum co_bus_state prev, uint32_t can_id,
-					   const uint8_t *data)
+						     const uint8_t *data)
 {
 	if (can_id & CAN_ERR_BUSOFF)
 		return CO_BUS_OFF;

@@ -234,7 +234,8 @@ static int din_start(struct hal_din *d)
 	return 0;
 }
 
-static uint32_t STRAND_RT din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev, uint32_t max)
+static uint32_t STRAND_RT din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
+				   uint32_t max)
 {
 	struct gpio_din *g = to_din(d);
 	uint32_t n = 0;

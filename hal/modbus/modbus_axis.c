@@ -25,7 +25,7 @@ static const char *const type_names[] = {
 
 /* A fault found here or at start: the message is m->msg, fixed from now. */
 static int STRAND_RT latch_here(struct modbus_drv *m, int code, int32_t ch, const char *text,
-		      uint32_t reg)
+				uint32_t reg)
 {
 	if (m->fault.code)
 		return m->fault.code;
