@@ -2,7 +2,7 @@
 #
 #   make          build the core library, the programs and the tests
 #   make run      play the robot-arm demo on the simulated rig (mk/play.mk)
-#   make test     build and run every test (unit, layers, freestanding,
+#   make test     build and run every test (unit, layers, freestanding, rt,
 #                 cross-arch, Cortex-M4, fuzz, VM) and print a summary
 #   make bench    build and run the benchmarks (prints BENCH lines)
 #   make clean    remove $(BUILD)/
@@ -40,7 +40,10 @@ DEPFLAGS := -MMD -MP
 GCC_INC := $(shell $(CC) -print-file-name=include)
 CORE_CFLAGS := -std=c11 -ffreestanding -nostdinc -isystem $(GCC_INC) -fno-builtin \
                $(WARN) -Werror
-SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+# The sanitized build, which the tests run, is the debug build: STRAND_DEBUG
+# turns on what a release does without (hal/rt.h: STRAND_ASSERT_NOT_RT).
+SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer \
+           -DSTRAND_DEBUG
 
 # ---- the rooms ------------------------------------------------------------------
 # A folder's name as mk/layers.txt and the includes spell it ("scene") and where

@@ -23,6 +23,9 @@
  *           blocking system call, no lock shared with another thread, bounded
  *           time. A backend whose bus blocks (libmodbus) hands the work to an
  *           I/O thread of its own through a lock-free slot.
+ * Both are enforced (hal/rt.h): every [rt] operation of a backend is
+ * STRAND_RT, which `make check-rt` holds to these rules, and an [init] one
+ * that may block starts with STRAND_ASSERT_NOT_RT().
  *
  * Every operation of a backend's table is implemented (there is no NULL to
  * test for in the loop); a device without feedback answers false from
@@ -38,6 +41,8 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+
+#include "rt.h" /* STRAND_RT */
 
 /* One channel's setpoint for one tick, in device counts. pos is the target
  * position (cyclic synchronous position); vel the velocity in counts per
@@ -97,32 +102,33 @@ static inline int hal_axis_start(struct hal_axis *ax)
 	return ax->ops->start(ax);
 }
 
-static inline int hal_axis_input(struct hal_axis *ax, int64_t tick)
+static inline int STRAND_RT hal_axis_input(struct hal_axis *ax, int64_t tick)
 {
 	return ax->ops->input(ax, tick);
 }
 
-static inline bool hal_axis_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
+static inline bool STRAND_RT hal_axis_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 {
 	return ax->ops->actual(ax, ch, counts);
 }
 
-static inline void hal_axis_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
+static inline void STRAND_RT hal_axis_set(struct hal_axis *ax, uint32_t ch,
+					  const struct hal_setpoint *sp)
 {
 	ax->ops->set(ax, ch, sp);
 }
 
-static inline int hal_axis_commit(struct hal_axis *ax, int64_t tick)
+static inline int STRAND_RT hal_axis_commit(struct hal_axis *ax, int64_t tick)
 {
 	return ax->ops->commit(ax, tick);
 }
 
-static inline int hal_axis_fault(struct hal_axis *ax, struct hal_fault *f)
+static inline int STRAND_RT hal_axis_fault(struct hal_axis *ax, struct hal_fault *f)
 {
 	return ax->ops->fault(ax, f);
 }
 
-static inline void hal_axis_disable(struct hal_axis *ax)
+static inline void STRAND_RT hal_axis_disable(struct hal_axis *ax)
 {
 	ax->ops->disable(ax);
 }

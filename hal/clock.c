@@ -5,12 +5,14 @@
 #include <errno.h>
 #include <time.h>
 
-static int64_t ts_ns(const struct timespec *ts)
+#include "rt.h"
+
+static int64_t STRAND_RT ts_ns(const struct timespec *ts)
 {
 	return (int64_t)ts->tv_sec * 1000000000 + ts->tv_nsec;
 }
 
-int64_t hal_mono_ns(void)
+int64_t STRAND_RT hal_mono_ns(void)
 {
 	struct timespec ts;
 
@@ -18,12 +20,12 @@ int64_t hal_mono_ns(void)
 	return ts_ns(&ts);
 }
 
-static int64_t real_now(struct hal_clock *c)
+static int64_t STRAND_RT real_now(struct hal_clock *c)
 {
 	return hal_mono_ns();
 }
 
-static void real_sleep_until(struct hal_clock *c, int64_t t)
+static void STRAND_RT real_sleep_until(struct hal_clock *c, int64_t t)
 {
 	struct timespec ts = { .tv_sec = t / 1000000000, .tv_nsec = t % 1000000000 };
 
@@ -32,7 +34,7 @@ static void real_sleep_until(struct hal_clock *c, int64_t t)
 		;
 }
 
-static int64_t real_wall(struct hal_clock *c)
+static int64_t STRAND_RT real_wall(struct hal_clock *c)
 {
 	struct timespec ts;
 
@@ -40,18 +42,18 @@ static int64_t real_wall(struct hal_clock *c)
 	return ts_ns(&ts);
 }
 
-static int64_t virt_now(struct hal_clock *c)
+static int64_t STRAND_RT virt_now(struct hal_clock *c)
 {
 	return c->vnow;
 }
 
-static void virt_sleep_until(struct hal_clock *c, int64_t t)
+static void STRAND_RT virt_sleep_until(struct hal_clock *c, int64_t t)
 {
 	if (t > c->vnow)
 		c->vnow = t;
 }
 
-static int64_t virt_wall(struct hal_clock *c)
+static int64_t STRAND_RT virt_wall(struct hal_clock *c)
 {
 	return HAL_CLOCK_VIRTUAL_EPOCH_NS + c->vnow;
 }

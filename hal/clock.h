@@ -21,6 +21,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "rt.h" /* STRAND_RT */
+
 struct hal_clock;
 
 struct hal_clock_ops {
@@ -35,17 +37,17 @@ struct hal_clock {
 	int64_t vnow; /* virtual: the present */
 };
 
-static inline int64_t hal_clock_now(struct hal_clock *c)
+static inline int64_t STRAND_RT hal_clock_now(struct hal_clock *c)
 {
 	return c->ops->now(c);
 }
 
-static inline void hal_clock_sleep_until(struct hal_clock *c, int64_t t)
+static inline void STRAND_RT hal_clock_sleep_until(struct hal_clock *c, int64_t t)
 {
 	c->ops->sleep_until(c, t);
 }
 
-static inline int64_t hal_clock_wall(struct hal_clock *c)
+static inline int64_t STRAND_RT hal_clock_wall(struct hal_clock *c)
 {
 	return c->ops->wall(c);
 }

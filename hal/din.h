@@ -20,6 +20,7 @@
 #include <stdint.h>
 
 #include "axis.h" /* struct hal_fault */
+#include "rt.h"   /* STRAND_RT */
 
 struct hal_edge {
 	uint32_t line;
@@ -56,18 +57,18 @@ static inline int hal_din_start(struct hal_din *d)
 	return d->ops->start(d);
 }
 
-static inline uint32_t hal_din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
-				    uint32_t max)
+static inline uint32_t STRAND_RT hal_din_poll(struct hal_din *d, int64_t now_ns,
+					      struct hal_edge *ev, uint32_t max)
 {
 	return d->ops->poll(d, now_ns, ev, max);
 }
 
-static inline bool hal_din_level(struct hal_din *d, uint32_t line)
+static inline bool STRAND_RT hal_din_level(struct hal_din *d, uint32_t line)
 {
 	return d->ops->level(d, line);
 }
 
-static inline int hal_din_fault(struct hal_din *d, struct hal_fault *f)
+static inline int STRAND_RT hal_din_fault(struct hal_din *d, struct hal_fault *f)
 {
 	return d->ops->fault(d, f);
 }

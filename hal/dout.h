@@ -20,6 +20,7 @@
 #include <stdint.h>
 
 #include "axis.h" /* struct hal_fault */
+#include "rt.h"   /* STRAND_RT */
 
 struct hal_dout;
 
@@ -49,17 +50,17 @@ static inline int hal_dout_start(struct hal_dout *d)
 	return d->ops->start(d);
 }
 
-static inline void hal_dout_set(struct hal_dout *d, uint32_t line, bool asserted)
+static inline void STRAND_RT hal_dout_set(struct hal_dout *d, uint32_t line, bool asserted)
 {
 	d->ops->set(d, line, asserted);
 }
 
-static inline int hal_dout_commit(struct hal_dout *d, int64_t tick)
+static inline int STRAND_RT hal_dout_commit(struct hal_dout *d, int64_t tick)
 {
 	return d->ops->commit(d, tick);
 }
 
-static inline int hal_dout_fault(struct hal_dout *d, struct hal_fault *f)
+static inline int STRAND_RT hal_dout_fault(struct hal_dout *d, struct hal_fault *f)
 {
 	return d->ops->fault(d, f);
 }

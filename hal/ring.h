@@ -25,6 +25,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "rt.h" /* STRAND_RT */
+
 struct hal_ring {
 	_Alignas(64) _Atomic uint32_t head; /* producer's */
 	_Alignas(64) _Atomic uint32_t tail; /* consumer's */
@@ -37,7 +39,7 @@ struct hal_ring {
 int hal_ring_init(struct hal_ring *r, void *storage, uint32_t capacity, uint32_t esize);
 
 /* [rt, producer] Copy one element in: false when the ring is full. */
-static inline bool hal_ring_push(struct hal_ring *r, const void *e)
+static inline bool STRAND_RT hal_ring_push(struct hal_ring *r, const void *e)
 {
 	uint32_t h = atomic_load_explicit(&r->head, memory_order_relaxed);
 	uint32_t t = atomic_load_explicit(&r->tail, memory_order_acquire);
@@ -50,7 +52,7 @@ static inline bool hal_ring_push(struct hal_ring *r, const void *e)
 }
 
 /* [rt, consumer] Copy the oldest element out: false when empty. */
-static inline bool hal_ring_pop(struct hal_ring *r, void *e)
+static inline bool STRAND_RT hal_ring_pop(struct hal_ring *r, void *e)
 {
 	uint32_t t = atomic_load_explicit(&r->tail, memory_order_relaxed);
 	uint32_t h = atomic_load_explicit(&r->head, memory_order_acquire);
@@ -63,7 +65,7 @@ static inline bool hal_ring_pop(struct hal_ring *r, void *e)
 }
 
 /* Elements waiting, as seen from either side (a snapshot). */
-static inline uint32_t hal_ring_count(struct hal_ring *r)
+static inline uint32_t STRAND_RT hal_ring_count(struct hal_ring *r)
 {
 	return atomic_load_explicit(&r->head, memory_order_acquire) -
 	       atomic_load_explicit(&r->tail, memory_order_acquire);

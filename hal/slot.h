@@ -24,6 +24,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "rt.h" /* STRAND_RT */
+
 #define HAL_SLOT_FRESH 4u
 
 struct hal_slot {
@@ -38,14 +40,14 @@ struct hal_slot {
 int hal_slot_init(struct hal_slot *s, void *storage, uint32_t esize);
 
 /* [rt, producer] The buffer to fill before hal_slot_publish(). */
-static inline void *hal_slot_back(struct hal_slot *s)
+static inline void STRAND_RT *hal_slot_back(struct hal_slot *s)
 {
 	return s->buf + (size_t)s->back * s->esize;
 }
 
 /* [rt, producer] Publish the back buffer. true when the previous publication
  * had not been taken yet: it is replaced, never seen by the consumer. */
-static inline bool hal_slot_publish(struct hal_slot *s)
+static inline bool STRAND_RT hal_slot_publish(struct hal_slot *s)
 {
 	uint32_t old = atomic_exchange_explicit(&s->mid, s->back | HAL_SLOT_FRESH,
 						memory_order_acq_rel);
@@ -56,7 +58,7 @@ static inline bool hal_slot_publish(struct hal_slot *s)
 
 /* [rt, consumer] The newest publication not taken yet, or NULL. The
  * pointer stays valid until the next take. */
-static inline const void *hal_slot_take(struct hal_slot *s)
+static inline const void STRAND_RT *hal_slot_take(struct hal_slot *s)
 {
 	uint32_t old;
 

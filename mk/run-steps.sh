@@ -30,7 +30,7 @@ for step in "$@"; do
 	fi
 	printf '%s %-20s %4s s   (log: %s)\n' "$verdict" "$step" "$(cat "$logs/$step.time")" "$logs/$step.log"
 	if [ $verdict = PASS ]; then
-		grep -E '^(PASS|FAIL|SKIP|FREESTANDING|CROSS|CORTEX-M4|LAYERS) ' "$logs/$step.log" || true
+		grep -E '^(PASS|FAIL|SKIP|FREESTANDING|CROSS|CORTEX-M4|LAYERS|RT) ' "$logs/$step.log" || true
 	else
 		grep -v -e ", as expected" -e "^make\[" "$logs/$step.log" | tail -n 6
 	fi | sed 's/^/    /'

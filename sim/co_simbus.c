@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 /* A drive's connection to the bus: the ctx of its send callback. */
 struct port {
 	struct co_simbus *b;
@@ -34,12 +36,12 @@ struct co_simbus {
 	uint64_t log_cap, nlog;
 };
 
-static struct co_simbus *simbus_of(struct co_bus *bus)
+static struct co_simbus STRAND_RT *simbus_of(struct co_bus *bus)
 {
 	return (struct co_simbus *)bus; /* bus is the first member */
 }
 
-static void record(struct co_simbus *b, const struct co_frame *f, int16_t from)
+static void STRAND_RT record(struct co_simbus *b, const struct co_frame *f, int16_t from)
 {
 	struct co_simbus_rec *r;
 
@@ -52,7 +54,7 @@ static void record(struct co_simbus *b, const struct co_frame *f, int16_t from)
 }
 
 /* A drive sends: logged and queued for the master. */
-static int slave_send(void *ctx, const struct co_frame *f, uint32_t n)
+static int STRAND_RT slave_send(void *ctx, const struct co_frame *f, uint32_t n)
 {
 	struct port *p = ctx;
 	struct co_simbus *b = p->b;
@@ -69,7 +71,7 @@ static int slave_send(void *ctx, const struct co_frame *f, uint32_t n)
 	return 0;
 }
 
-void co_simbus_run(struct co_simbus *b, int64_t now)
+void STRAND_RT co_simbus_run(struct co_simbus *b, int64_t now)
 {
 	uint32_t i;
 
@@ -80,7 +82,7 @@ void co_simbus_run(struct co_simbus *b, int64_t now)
 /* ---- the master's transport ---- */
 
 /* Every drive receives f now. */
-static void deliver(struct co_simbus *b, const struct co_frame *f, int64_t now)
+static void STRAND_RT deliver(struct co_simbus *b, const struct co_frame *f, int64_t now)
 {
 	uint32_t k;
 
@@ -93,7 +95,7 @@ static void deliver(struct co_simbus *b, const struct co_frame *f, int64_t now)
 	}
 }
 
-static int sb_send(struct co_bus *bus, const struct co_frame *f, uint32_t n)
+static int STRAND_RT sb_send(struct co_bus *bus, const struct co_frame *f, uint32_t n)
 {
 	struct co_simbus *b = simbus_of(bus);
 	int64_t now = hal_clock_now(b->clk);
@@ -136,7 +138,7 @@ uint32_t co_simbus_deliver(struct co_simbus *b, uint32_t n)
 	return n;
 }
 
-static int sb_recv(struct co_bus *bus, struct co_frame *f, uint32_t max)
+static int STRAND_RT sb_recv(struct co_bus *bus, struct co_frame *f, uint32_t max)
 {
 	struct co_simbus *b = simbus_of(bus);
 	uint32_t n = 0;
@@ -150,7 +152,7 @@ static int sb_recv(struct co_bus *bus, struct co_frame *f, uint32_t max)
 	return (int)n;
 }
 
-static enum co_bus_state sb_state(struct co_bus *bus)
+static enum co_bus_state STRAND_RT sb_state(struct co_bus *bus)
 {
 	return (enum co_bus_state)simbus_of(bus)->state;
 }
@@ -160,6 +162,7 @@ static void sb_wait(struct co_bus *bus, int64_t until)
 	struct co_simbus *b = simbus_of(bus);
 	uint32_t i;
 
+	STRAND_ASSERT_NOT_RT();
 	if (b->qlen)
 		return;
 	for (i = 0; i < b->nslaves; i++)
@@ -183,6 +186,7 @@ static void sb_close(struct co_bus *bus)
 {
 	struct co_simbus *b = simbus_of(bus);
 
+	STRAND_ASSERT_NOT_RT();
 	b->bus_open = false;
 	if (b->freed)
 		destroy(b);
@@ -202,6 +206,7 @@ struct co_simbus *co_simbus_new(struct hal_clock *clk, uint32_t queue, uint64_t 
 {
 	struct co_simbus *b = calloc(1, sizeof(*b));
 
+	STRAND_ASSERT_NOT_RT();
 	if (!b)
 		return NULL;
 	b->bus.ops = &simbus_ops;
@@ -224,6 +229,7 @@ struct co_simbus *co_simbus_new(struct hal_clock *clk, uint32_t queue, uint64_t 
 
 void co_simbus_free(struct co_simbus *b)
 {
+	STRAND_ASSERT_NOT_RT();
 	if (!b)
 		return;
 	b->freed = true;
@@ -236,6 +242,7 @@ struct co_slave *co_simbus_add(struct co_simbus *b, const struct co_slave_cfg *c
 	struct co_slave_cfg c = *cfg;
 	struct port *p;
 
+	STRAND_ASSERT_NOT_RT();
 	if (b->nslaves == CO_NODE_MAX || co_simbus_node(b, cfg->node)) {
 		errno = EINVAL;
 		return NULL;

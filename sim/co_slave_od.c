@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "hal/canopen/co_sdo.h"
+#include "hal/rt.h"
 
 enum {
 	R = 1,      /* readable */
@@ -71,7 +72,7 @@ static const struct od od[] = {
 
 #define NOD (sizeof(od) / sizeof(od[0]))
 
-static const struct od *find(uint16_t index, uint8_t sub, uint32_t *abort)
+static const struct od STRAND_RT *find(uint16_t index, uint8_t sub, uint32_t *abort)
 {
 	bool index_found = false;
 	size_t i;
@@ -87,7 +88,7 @@ static const struct od *find(uint16_t index, uint8_t sub, uint32_t *abort)
 	return NULL;
 }
 
-static uint32_t get(const struct co_slave *s, const struct od *e)
+static uint32_t STRAND_RT get(const struct co_slave *s, const struct od *e)
 {
 	const uint8_t *p = (const uint8_t *)s + e->off;
 	uint32_t v32;
@@ -107,7 +108,7 @@ static uint32_t get(const struct co_slave *s, const struct od *e)
 	}
 }
 
-static void put(struct co_slave *s, const struct od *e, uint32_t v)
+static void STRAND_RT put(struct co_slave *s, const struct od *e, uint32_t v)
 {
 	uint8_t *p = (uint8_t *)s + e->off;
 	uint16_t v16 = (uint16_t)v;
@@ -125,7 +126,7 @@ static void put(struct co_slave *s, const struct od *e, uint32_t v)
 	}
 }
 
-bool co_slave_mappable(uint32_t map, bool tx)
+bool STRAND_RT co_slave_mappable(uint32_t map, bool tx)
 {
 	uint32_t abort;
 	const struct od *e = find((uint16_t)(map >> 16), (uint8_t)(map >> 8), &abort);
@@ -133,7 +134,7 @@ bool co_slave_mappable(uint32_t map, bool tx)
 	return e && (e->flags & (tx ? MAP_TX : MAP_RX)) && (map & 0xff) == e->size * 8u;
 }
 
-bool co_slave_map_get(struct co_slave *s, uint32_t map, uint32_t *v)
+bool STRAND_RT co_slave_map_get(struct co_slave *s, uint32_t map, uint32_t *v)
 {
 	uint32_t abort;
 	const struct od *e = find((uint16_t)(map >> 16), (uint8_t)(map >> 8), &abort);
@@ -144,7 +145,7 @@ bool co_slave_map_get(struct co_slave *s, uint32_t map, uint32_t *v)
 	return true;
 }
 
-bool co_slave_map_set(struct co_slave *s, uint32_t map, uint32_t v)
+bool STRAND_RT co_slave_map_set(struct co_slave *s, uint32_t map, uint32_t v)
 {
 	uint32_t abort;
 	const struct od *e = find((uint16_t)(map >> 16), (uint8_t)(map >> 8), &abort);
@@ -156,7 +157,7 @@ bool co_slave_map_set(struct co_slave *s, uint32_t map, uint32_t v)
 }
 
 /* The PDO an entry of 0x1400..0x1403, 0x1600.., 0x1800.., 0x1A00.. belongs to. */
-static struct co_pdo *pdo_of(struct co_slave *s, uint16_t index, bool *tx, bool *mapping)
+static struct co_pdo STRAND_RT *pdo_of(struct co_slave *s, uint16_t index, bool *tx, bool *mapping)
 {
 	unsigned base = index & 0xfe00, k = index & 0x1ff;
 
@@ -172,7 +173,7 @@ static struct co_pdo *pdo_of(struct co_slave *s, uint16_t index, bool *tx, bool 
 }
 
 /* CiA 301 7.5.2.35-38: what a PDO parameter may be set to, and when. */
-static uint32_t check_pdo(struct co_slave *s, const struct od *e, uint32_t v)
+static uint32_t STRAND_RT check_pdo(struct co_slave *s, const struct od *e, uint32_t v)
 {
 	bool tx, mapping;
 	struct co_pdo *p = pdo_of(s, e->index, &tx, &mapping);
@@ -210,7 +211,7 @@ static uint32_t check_pdo(struct co_slave *s, const struct od *e, uint32_t v)
 	return 0;
 }
 
-static uint32_t check(struct co_slave *s, const struct od *e, uint32_t v)
+static uint32_t STRAND_RT check(struct co_slave *s, const struct od *e, uint32_t v)
 {
 	switch (e->index) {
 	case 0x1005:
@@ -227,7 +228,8 @@ static uint32_t check(struct co_slave *s, const struct od *e, uint32_t v)
 }
 
 /* Read an object into buf; 0 or an abort code. */
-static uint32_t read_obj(struct co_slave *s, const struct od *e, uint8_t *buf, uint32_t *n)
+static uint32_t STRAND_RT read_obj(struct co_slave *s, const struct od *e, uint8_t *buf,
+				   uint32_t *n)
 {
 	if (!(e->flags & R))
 		return CO_ABORT_WRITE_ONLY;
@@ -247,8 +249,8 @@ static uint32_t read_obj(struct co_slave *s, const struct od *e, uint8_t *buf, u
 }
 
 /* Write n bytes to an object; 0 or an abort code. */
-static uint32_t write_obj(struct co_slave *s, const struct od *e, const uint8_t *buf,
-			  uint32_t n, int64_t now)
+static uint32_t STRAND_RT write_obj(struct co_slave *s, const struct od *e, const uint8_t *buf,
+				    uint32_t n, int64_t now)
 {
 	uint32_t v, abort;
 
@@ -290,7 +292,7 @@ static uint32_t write_obj(struct co_slave *s, const struct od *e, const uint8_t 
 
 enum { SRV_IDLE, SRV_DOWNLOAD, SRV_UPLOAD };
 
-static void reply(struct co_slave *s, uint8_t cs, const uint8_t *data, uint32_t n)
+static void STRAND_RT reply(struct co_slave *s, uint8_t cs, const uint8_t *data, uint32_t n)
 {
 	struct co_frame f;
 
@@ -301,7 +303,7 @@ static void reply(struct co_slave *s, uint8_t cs, const uint8_t *data, uint32_t 
 	co_slave_send(s, &f);
 }
 
-static void reply_mux(struct co_slave *s, uint8_t cs, const uint8_t *data, uint32_t n)
+static void STRAND_RT reply_mux(struct co_slave *s, uint8_t cs, const uint8_t *data, uint32_t n)
 {
 	uint8_t d[7] = { (uint8_t)s->srv.index, (uint8_t)(s->srv.index >> 8), s->srv.sub };
 
@@ -310,7 +312,7 @@ static void reply_mux(struct co_slave *s, uint8_t cs, const uint8_t *data, uint3
 	reply(s, cs, d, 7);
 }
 
-static void abort_srv(struct co_slave *s, uint32_t code)
+static void STRAND_RT abort_srv(struct co_slave *s, uint32_t code)
 {
 	struct co_frame f;
 
@@ -320,7 +322,7 @@ static void abort_srv(struct co_slave *s, uint32_t code)
 	s->srv.phase = SRV_IDLE;
 }
 
-static void upload_segment(struct co_slave *s, uint8_t cs)
+static void STRAND_RT upload_segment(struct co_slave *s, uint8_t cs)
 {
 	struct co_sdo_server *v = &s->srv;
 	uint32_t n = v->size - v->pos;
@@ -340,7 +342,7 @@ static void upload_segment(struct co_slave *s, uint8_t cs)
 		v->phase = SRV_IDLE;
 }
 
-static void download_segment(struct co_slave *s, const uint8_t *d, int64_t now)
+static void STRAND_RT download_segment(struct co_slave *s, const uint8_t *d, int64_t now)
 {
 	struct co_sdo_server *v = &s->srv;
 	uint32_t n = 7 - ((d[0] >> 1) & 7), abort;
@@ -376,7 +378,7 @@ static void download_segment(struct co_slave *s, const uint8_t *d, int64_t now)
 	v->phase = SRV_IDLE;
 }
 
-static void initiate(struct co_slave *s, const uint8_t *d, int64_t now)
+static void STRAND_RT initiate(struct co_slave *s, const uint8_t *d, int64_t now)
 {
 	struct co_sdo_server *v = &s->srv;
 	uint8_t cs = d[0] & 0xe0, buf[CO_SLAVE_NOTE_MAX];
@@ -432,7 +434,7 @@ static void initiate(struct co_slave *s, const uint8_t *d, int64_t now)
 	}
 }
 
-void co_slave_sdo(struct co_slave *s, const struct co_frame *f, int64_t now)
+void STRAND_RT co_slave_sdo(struct co_slave *s, const struct co_frame *f, int64_t now)
 {
 	const uint8_t *d = f->data;
 	uint8_t cs = d[0] & 0xe0;
@@ -466,7 +468,7 @@ void co_slave_sdo(struct co_slave *s, const struct co_frame *f, int64_t now)
 	}
 }
 
-void co_slave_od_defaults(struct co_slave *s, bool application)
+void STRAND_RT co_slave_od_defaults(struct co_slave *s, bool application)
 {
 	unsigned k;
 

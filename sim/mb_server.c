@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "hal/clock.h"
+#include "hal/rt.h"
 
 #define FC_WRITE_COIL 0x05
 #define FC_WRITE_REG 0x06
@@ -410,6 +411,7 @@ int mb_server_run(const struct mb_server_cfg *c, char *err, size_t errsize)
 	uint32_t top = 0, i, nw, nr;
 	int rc = -ENOMEM;
 
+	STRAND_ASSERT_NOT_RT();
 	s.w = calloc(c->nch + 1, sizeof(*s.w));
 	s.r = calloc(c->nch + 1, sizeof(*s.r));
 	s.rfield = calloc(c->nch ? c->nch : 1, sizeof(*s.rfield));

@@ -10,6 +10,8 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include "hal/rt.h"
+
 struct sim_camera {
 	struct sim_camera_params p;
 	struct sim_camera_log *mem; /* the exposures */
@@ -23,7 +25,7 @@ struct sim_camera {
 	void *ctx;
 };
 
-static void append(struct sim_camera_log *log, const struct sim_exposure *x)
+static void STRAND_RT append(struct sim_camera_log *log, const struct sim_exposure *x)
 {
 	uint64_t n = atomic_load_explicit(&log->count, memory_order_relaxed);
 
@@ -34,7 +36,7 @@ static void append(struct sim_camera_log *log, const struct sim_exposure *x)
 	atomic_store_explicit(&log->count, n + 1, memory_order_release);
 }
 
-static void on_edge(void *ctx, const struct sim_gpio_edge *e)
+static void STRAND_RT on_edge(void *ctx, const struct sim_gpio_edge *e)
 {
 	struct sim_camera *c = ctx;
 	struct sim_exposure x = { .tick = e->tick, .ts_ns = e->ts_ns, .exposed = 1 };
@@ -67,6 +69,7 @@ struct sim_camera *sim_camera_new(const struct sim_camera_params *p, uint64_t ca
 	size_t bytes = sizeof(struct sim_camera_log) + cap * sizeof(struct sim_exposure);
 	int fd, err;
 
+	STRAND_ASSERT_NOT_RT();
 	if (!c)
 		return NULL;
 	c->p = *p;
@@ -108,6 +111,7 @@ fail:
 
 void sim_camera_free(struct sim_camera *c)
 {
+	STRAND_ASSERT_NOT_RT();
 	if (!c)
 		return;
 	if (c->log)

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 struct sim_chan {
 	struct sim_drive_channel p;
 	struct sim_drive_watch w;
@@ -32,12 +34,15 @@ struct sim_drive {
 	struct sim_chan ch[];
 };
 
-static struct sim_drive *drive_of(struct hal_axis *ax)
+static struct sim_drive STRAND_RT *drive_of(struct hal_axis *ax)
 {
 	return (struct sim_drive *)ax; /* ax is the first member */
 }
 
-static int sd_start(struct hal_axis *ax)
+/* [init] for the loop, but rt-safe, and called in the loop's thread by a
+ * simulated CANopen drive that is commanded back to operation enabled
+ * (co_slave.c: plant_on): tagged, and without STRAND_ASSERT_NOT_RT. */
+static int STRAND_RT sd_start(struct hal_axis *ax)
 {
 	struct sim_drive *d = drive_of(ax);
 	uint32_t i;
@@ -50,7 +55,7 @@ static int sd_start(struct hal_axis *ax)
 	return 0;
 }
 
-static void latch(struct sim_drive *d, int code, uint32_t ch, const char *cause)
+static void STRAND_RT latch(struct sim_drive *d, int code, uint32_t ch, const char *cause)
 {
 	if (d->fault.code)
 		return;
@@ -61,7 +66,7 @@ static void latch(struct sim_drive *d, int code, uint32_t ch, const char *cause)
 }
 
 /* One tick of one channel's plant. */
-static void plant_step(struct sim_drive *d, struct sim_chan *c)
+static void STRAND_RT plant_step(struct sim_drive *d, struct sim_chan *c)
 {
 	double h = d->dt / d->nsub;
 	uint32_t s;
@@ -87,7 +92,7 @@ static void plant_step(struct sim_drive *d, struct sim_chan *c)
 	}
 }
 
-static int sd_input(struct hal_axis *ax, int64_t tick)
+static int STRAND_RT sd_input(struct hal_axis *ax, int64_t tick)
 {
 	struct sim_drive *d = drive_of(ax);
 	uint32_t i;
@@ -119,13 +124,13 @@ static int sd_input(struct hal_axis *ax, int64_t tick)
 	return d->fault.code;
 }
 
-static bool sd_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
+static bool STRAND_RT sd_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 {
 	*counts = (int64_t)llround(drive_of(ax)->ch[ch].w.x);
 	return true;
 }
 
-static void sd_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
+static void STRAND_RT sd_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
 {
 	struct sim_drive *d = drive_of(ax);
 	struct sim_chan *c = &d->ch[ch];
@@ -151,7 +156,7 @@ static void sd_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *
 	c->have_cmd = true;
 }
 
-static int sd_commit(struct hal_axis *ax, int64_t tick)
+static int STRAND_RT sd_commit(struct hal_axis *ax, int64_t tick)
 {
 	struct sim_drive *d = drive_of(ax);
 	uint32_t i;
@@ -172,7 +177,7 @@ static int sd_commit(struct hal_axis *ax, int64_t tick)
 	return d->fault.code;
 }
 
-static int sd_fault(struct hal_axis *ax, struct hal_fault *f)
+static int STRAND_RT sd_fault(struct hal_axis *ax, struct hal_fault *f)
 {
 	struct sim_drive *d = drive_of(ax);
 
@@ -181,7 +186,7 @@ static int sd_fault(struct hal_axis *ax, struct hal_fault *f)
 	return d->fault.code;
 }
 
-static void sd_disable(struct hal_axis *ax)
+static void STRAND_RT sd_disable(struct hal_axis *ax)
 {
 	struct sim_drive *d = drive_of(ax);
 	uint32_t i;
@@ -204,6 +209,7 @@ static int sd_stop(struct hal_axis *ax)
 
 static void sd_close(struct hal_axis *ax)
 {
+	STRAND_ASSERT_NOT_RT();
 	free(drive_of(ax));
 }
 
@@ -226,6 +232,7 @@ struct sim_drive *sim_drive_new(const char *name, uint32_t nch, uint32_t tick_hz
 	double wmax = 0;
 	uint32_t i;
 
+	STRAND_ASSERT_NOT_RT();
 	if (!nch || !tick_hz) {
 		errno = EINVAL;
 		return NULL;
@@ -263,7 +270,7 @@ struct sim_drive *sim_drive_new(const char *name, uint32_t nch, uint32_t tick_hz
 	return d;
 }
 
-struct hal_axis *sim_drive_axis(struct sim_drive *d)
+struct hal_axis STRAND_RT *sim_drive_axis(struct sim_drive *d)
 {
 	return &d->ax;
 }
@@ -293,7 +300,7 @@ int64_t sim_drive_traced(const struct sim_drive *d)
 	return d->traced;
 }
 
-const struct sim_drive_watch *sim_drive_watch(const struct sim_drive *d, uint32_t ch)
+const struct sim_drive_watch STRAND_RT *sim_drive_watch(const struct sim_drive *d, uint32_t ch)
 {
 	return &d->ch[ch].w;
 }

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "hal/ring.h"
+#include "hal/rt.h"
 
 #define INJECT_CAP 64
 
@@ -45,12 +46,12 @@ struct sim_gpio {
 	struct sched_edge inject_buf[INJECT_CAP];
 };
 
-static struct sim_gpio *of_dout(struct hal_dout *d)
+static struct sim_gpio STRAND_RT *of_dout(struct hal_dout *d)
 {
 	return (struct sim_gpio *)((char *)d - offsetof(struct sim_gpio, dout));
 }
 
-static struct sim_gpio *of_din(struct hal_din *d)
+static struct sim_gpio STRAND_RT *of_din(struct hal_din *d)
 {
 	return (struct sim_gpio *)((char *)d - offsetof(struct sim_gpio, din));
 }
@@ -62,6 +63,7 @@ static int go_start(struct hal_dout *d)
 	struct sim_gpio *g = of_dout(d);
 	uint32_t i;
 
+	STRAND_ASSERT_NOT_RT();
 	for (i = 0; i < d->nlines; i++) {
 		g->out[i].staged = false;
 		g->out[i].level = g->out[i].active_low;
@@ -69,12 +71,12 @@ static int go_start(struct hal_dout *d)
 	return 0;
 }
 
-static void go_set(struct hal_dout *d, uint32_t line, bool asserted)
+static void STRAND_RT go_set(struct hal_dout *d, uint32_t line, bool asserted)
 {
 	of_dout(d)->out[line].staged = asserted;
 }
 
-static int go_commit(struct hal_dout *d, int64_t tick)
+static int STRAND_RT go_commit(struct hal_dout *d, int64_t tick)
 {
 	struct sim_gpio *g = of_dout(d);
 	int64_t now = 0;
@@ -107,7 +109,7 @@ static int go_commit(struct hal_dout *d, int64_t tick)
 	return 0;
 }
 
-static int go_fault(struct hal_dout *d, struct hal_fault *f)
+static int STRAND_RT go_fault(struct hal_dout *d, struct hal_fault *f)
 {
 	return 0;
 }
@@ -116,6 +118,7 @@ static int go_stop(struct hal_dout *d)
 {
 	uint32_t i;
 
+	STRAND_ASSERT_NOT_RT();
 	for (i = 0; i < d->nlines; i++)
 		go_set(d, i, false);
 	return go_commit(d, -1);
@@ -123,6 +126,7 @@ static int go_stop(struct hal_dout *d)
 
 static void go_close(struct hal_dout *d)
 {
+	STRAND_ASSERT_NOT_RT();
 }
 
 static const struct hal_dout_ops sim_dout_ops = {
@@ -138,12 +142,13 @@ static const struct hal_dout_ops sim_dout_ops = {
 
 static int gi_start(struct hal_din *d)
 {
+	STRAND_ASSERT_NOT_RT();
 	return 0;
 }
 
 /* Insert keeping the queue sorted by time (stable: equal times keep their
  * order). The queue is short: a handful of frames in flight. */
-static int q_insert(struct sim_gpio *g, const struct sched_edge *e)
+static int STRAND_RT q_insert(struct sim_gpio *g, const struct sched_edge *e)
 {
 	uint32_t i;
 
@@ -156,7 +161,8 @@ static int q_insert(struct sim_gpio *g, const struct sched_edge *e)
 	return 0;
 }
 
-static uint32_t gi_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev, uint32_t max)
+static uint32_t STRAND_RT gi_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
+				  uint32_t max)
 {
 	struct sim_gpio *g = of_din(d);
 	struct sched_edge e;
@@ -186,23 +192,25 @@ static uint32_t gi_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev, 
 	return n;
 }
 
-static bool gi_level(struct hal_din *d, uint32_t line)
+static bool STRAND_RT gi_level(struct hal_din *d, uint32_t line)
 {
 	return of_din(d)->in[line].asserted;
 }
 
-static int gi_fault(struct hal_din *d, struct hal_fault *f)
+static int STRAND_RT gi_fault(struct hal_din *d, struct hal_fault *f)
 {
 	return 0;
 }
 
 static int gi_stop(struct hal_din *d)
 {
+	STRAND_ASSERT_NOT_RT();
 	return 0;
 }
 
 static void gi_close(struct hal_din *d)
 {
+	STRAND_ASSERT_NOT_RT();
 }
 
 static const struct hal_din_ops sim_din_ops = {
@@ -219,6 +227,7 @@ struct sim_gpio *sim_gpio_new(const char *name, uint32_t nout, uint32_t nin, str
 {
 	struct sim_gpio *g = calloc(1, sizeof(*g));
 
+	STRAND_ASSERT_NOT_RT();
 	if (!g)
 		return NULL;
 	g->out = calloc(nout ? nout : 1, sizeof(*g->out));
@@ -243,6 +252,7 @@ struct sim_gpio *sim_gpio_new(const char *name, uint32_t nout, uint32_t nin, str
 
 void sim_gpio_free(struct sim_gpio *g)
 {
+	STRAND_ASSERT_NOT_RT();
 	if (!g)
 		return;
 	free(g->out);
@@ -294,7 +304,7 @@ bool sim_gpio_out_level(const struct sim_gpio *g, uint32_t line)
 	return g->out[line].level;
 }
 
-int sim_gpio_schedule(struct sim_gpio *g, uint32_t line, int64_t at_ns, bool asserted)
+int STRAND_RT sim_gpio_schedule(struct sim_gpio *g, uint32_t line, int64_t at_ns, bool asserted)
 {
 	struct sched_edge e = { .at_ns = at_ns, .line = line, .asserted = asserted };
 

@@ -40,7 +40,9 @@
  */
 #include "co_402.h"
 
-enum co402_state co402_decode(uint16_t sw)
+#include "hal/rt.h"
+
+enum co402_state STRAND_RT co402_decode(uint16_t sw)
 {
 	switch (sw & 0x4f) {
 	case 0x00:
@@ -67,7 +69,7 @@ enum co402_state co402_decode(uint16_t sw)
 	return CO402_NOT_READY;
 }
 
-uint16_t co402_state_bits(enum co402_state s)
+uint16_t STRAND_RT co402_state_bits(enum co402_state s)
 {
 	static const uint16_t bits[] = {
 		[CO402_NOT_READY] = 0x00,   [CO402_DISABLED] = 0x40,
@@ -79,33 +81,33 @@ uint16_t co402_state_bits(enum co402_state s)
 	return s <= CO402_FAULT ? bits[s] : 0;
 }
 
-static bool is_shutdown(uint16_t cw)
+static bool STRAND_RT is_shutdown(uint16_t cw)
 {
 	return (cw & 0x87) == 0x06;
 }
 
-static bool is_switch_on(uint16_t cw)
+static bool STRAND_RT is_switch_on(uint16_t cw)
 {
 	return (cw & 0x8f) == 0x07;
 }
 
-static bool is_enable(uint16_t cw)
+static bool STRAND_RT is_enable(uint16_t cw)
 {
 	return (cw & 0x8f) == 0x0f;
 }
 
-static bool is_disable_voltage(uint16_t cw)
+static bool STRAND_RT is_disable_voltage(uint16_t cw)
 {
 	return (cw & 0x82) == 0x00;
 }
 
-static bool is_quick_stop(uint16_t cw)
+static bool STRAND_RT is_quick_stop(uint16_t cw)
 {
 	return (cw & 0x86) == 0x02;
 }
 
-enum co402_state co402_next(enum co402_state s, uint16_t cw, uint16_t prev,
-			    bool quick_stop_stays)
+enum co402_state STRAND_RT co402_next(enum co402_state s, uint16_t cw, uint16_t prev,
+				      bool quick_stop_stays)
 {
 	switch (s) {
 	case CO402_DISABLED:
@@ -147,7 +149,7 @@ enum co402_state co402_next(enum co402_state s, uint16_t cw, uint16_t prev,
 	}
 }
 
-uint16_t co402_toward_enabled(enum co402_state s, uint16_t prev)
+uint16_t STRAND_RT co402_toward_enabled(enum co402_state s, uint16_t prev)
 {
 	switch (s) {
 	case CO402_READY:

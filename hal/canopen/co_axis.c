@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 struct co_axis {
 	struct hal_axis ax; /* first: the HAL view */
 	struct co_master m;
@@ -23,18 +25,18 @@ struct co_axis {
 
 static const struct hal_axis_ops co_axis_ops;
 
-static struct co_axis *axis_of(struct hal_axis *ax)
+static struct co_axis STRAND_RT *axis_of(struct hal_axis *ax)
 {
 	return (struct co_axis *)ax; /* ax is the first member */
 }
 
-static int bus_send(void *ctx, const struct co_frame *f, uint32_t n)
+static int STRAND_RT bus_send(void *ctx, const struct co_frame *f, uint32_t n)
 {
 	return co_bus_send(((struct co_axis *)ctx)->bus, f, n);
 }
 
 /* Everything received so far, up to a tick's worth, then the bus state. */
-static void drain(struct co_axis *a, int64_t now)
+static void STRAND_RT drain(struct co_axis *a, int64_t now)
 {
 	uint32_t total = 0;
 	enum co_bus_state st;
@@ -85,6 +87,7 @@ static int ca_start(struct hal_axis *ax)
 	struct co_fault f;
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	a->started = true;
 	/* what came before the start (boot-ups of drives powered on since
 	 * the interface opened) is not an answer to anything of this run */
@@ -101,7 +104,7 @@ static int ca_start(struct hal_axis *ax)
 	return rc ? rc : -EIO;
 }
 
-static int ca_input(struct hal_axis *ax, int64_t tick)
+static int STRAND_RT ca_input(struct hal_axis *ax, int64_t tick)
 {
 	struct co_axis *a = axis_of(ax);
 	int64_t now = hal_clock_now(a->clk);
@@ -111,7 +114,7 @@ static int ca_input(struct hal_axis *ax, int64_t tick)
 	return co_master_fault(&a->m, NULL);
 }
 
-static bool ca_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
+static bool STRAND_RT ca_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 {
 	struct co_axis *a = axis_of(ax);
 	int i = co_master_index(&a->m, (uint8_t)ch);
@@ -119,7 +122,7 @@ static bool ca_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 	return ch <= CO_NODE_MAX && i >= 0 && co_master_actual(&a->m, (uint32_t)i, counts);
 }
 
-static void ca_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
+static void STRAND_RT ca_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
 {
 	struct co_axis *a = axis_of(ax);
 	int i = ch <= CO_NODE_MAX ? co_master_index(&a->m, (uint8_t)ch) : -1;
@@ -130,7 +133,7 @@ static void ca_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *
 			a->m.node[i].cfg.mode == CO402_MODE_CSV ? sp->vel : sp->pos);
 }
 
-static int ca_commit(struct hal_axis *ax, int64_t tick)
+static int STRAND_RT ca_commit(struct hal_axis *ax, int64_t tick)
 {
 	struct co_axis *a = axis_of(ax);
 
@@ -141,7 +144,7 @@ static int ca_commit(struct hal_axis *ax, int64_t tick)
 /* "emergency 0x2310 (current, device output side)": four hex digits and a
  * static class, put together by hand in the loop's thread, where printf
  * has no place. */
-static const char *emcy_text(struct co_axis *a, uint16_t code)
+static const char STRAND_RT *emcy_text(struct co_axis *a, uint16_t code)
 {
 	static const char head[] = "emergency 0x", hex[] = "0123456789ABCDEF";
 	const char *cls = co_emcy_class(code);
@@ -162,7 +165,7 @@ static const char *emcy_text(struct co_axis *a, uint16_t code)
 	return a->emcy;
 }
 
-static int ca_fault(struct hal_axis *ax, struct hal_fault *hf)
+static int STRAND_RT ca_fault(struct hal_axis *ax, struct hal_fault *hf)
 {
 	struct co_axis *a = axis_of(ax);
 	struct co_fault f;
@@ -180,7 +183,7 @@ static int ca_fault(struct hal_axis *ax, struct hal_fault *hf)
 	return code;
 }
 
-static void ca_disable(struct hal_axis *ax)
+static void STRAND_RT ca_disable(struct hal_axis *ax)
 {
 	struct co_axis *a = axis_of(ax);
 
@@ -191,6 +194,7 @@ static int ca_stop(struct hal_axis *ax)
 {
 	struct co_axis *a = axis_of(ax);
 
+	STRAND_ASSERT_NOT_RT();
 	if (!a->started)
 		return 0;
 	co_master_stop(&a->m, hal_clock_now(a->clk));
@@ -206,6 +210,7 @@ static void ca_close(struct hal_axis *ax)
 {
 	struct co_axis *a = axis_of(ax);
 
+	STRAND_ASSERT_NOT_RT();
 	co_bus_close(a->bus);
 	free(a->nodes);
 	free(a->cycle);
@@ -230,6 +235,7 @@ struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
 	struct co_axis *a = calloc(1, sizeof(*a));
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	if (a) {
 		a->nodes = calloc(cfg->ndrives ? cfg->ndrives : 1, sizeof(*a->nodes));
 		a->cycle = calloc(cfg->ndrives + 1, sizeof(*a->cycle));

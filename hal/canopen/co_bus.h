@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "co_frame.h"
+#include "hal/rt.h" /* STRAND_RT */
 
 struct co_bus;
 
@@ -44,17 +45,17 @@ struct co_bus {
 	const char *name;             /* the interface: "can0", "sim" */
 };
 
-static inline int co_bus_send(struct co_bus *b, const struct co_frame *f, uint32_t n)
+static inline int STRAND_RT co_bus_send(struct co_bus *b, const struct co_frame *f, uint32_t n)
 {
 	return b->ops->send(b, f, n);
 }
 
-static inline int co_bus_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
+static inline int STRAND_RT co_bus_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
 {
 	return b->ops->recv(b, f, max);
 }
 
-static inline enum co_bus_state co_bus_state(struct co_bus *b)
+static inline enum co_bus_state STRAND_RT co_bus_state(struct co_bus *b)
 {
 	return b->ops->state(b);
 }

@@ -22,6 +22,8 @@
 #include <errno.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 enum val {
 	V_CONST,      /* value as given */
 	V_HEARTBEAT,  /* cfg.heartbeat_ms */
@@ -93,8 +95,8 @@ static const struct step steps[] = {
 #define NSTEPS (sizeof(steps) / sizeof(steps[0]))
 
 /* The value step s writes to node n; false: skip the step. */
-static bool value_of(const struct co_master *m, const struct co_node *n, const struct step *s,
-		     uint32_t *v)
+static bool STRAND_RT value_of(const struct co_master *m, const struct co_node *n,
+			       const struct step *s, uint32_t *v)
 {
 	switch (s->val) {
 	case V_HEARTBEAT:
@@ -128,14 +130,14 @@ static bool value_of(const struct co_master *m, const struct co_node *n, const s
 }
 
 /* Where a read goes. */
-static uint8_t *read_buf(struct co_node *n, const struct step *s)
+static uint8_t STRAND_RT *read_buf(struct co_node *n, const struct step *s)
 {
 	return s->index == 0x1008 ? (uint8_t *)n->name : n->xfer;
 }
 
 /* Issue step n->step, or the next one not skipped; past the last, NMT
  * start and on to the 402 sequence. */
-static void issue(struct co_master *m, struct co_node *n, int64_t now)
+static void STRAND_RT issue(struct co_master *m, struct co_node *n, int64_t now)
 {
 	const struct step *s = NULL;
 	struct co_frame out;
@@ -163,7 +165,7 @@ static void issue(struct co_master *m, struct co_node *n, int64_t now)
 	co_send(m, &out, 1);
 }
 
-void co_config_begin(struct co_master *m, struct co_node *n, int64_t now)
+void STRAND_RT co_config_begin(struct co_master *m, struct co_node *n, int64_t now)
 {
 	n->phase = CO_NODE_CONFIG;
 	n->step = 0;
@@ -171,8 +173,8 @@ void co_config_begin(struct co_master *m, struct co_node *n, int64_t now)
 	issue(m, n, now);
 }
 
-static void sdo_fault(struct co_master *m, struct co_node *n, const struct step *s,
-		      uint32_t abort)
+static void STRAND_RT sdo_fault(struct co_master *m, struct co_node *n, const struct step *s,
+				uint32_t abort)
 {
 	struct co_fault f = {
 		.code = -EIO, .kind = CO_FAULT_SDO, .node = n->cfg.node, .index = s->index,
@@ -183,7 +185,8 @@ static void sdo_fault(struct co_master *m, struct co_node *n, const struct step 
 }
 
 /* What a read brought: false when it is not acceptable (fault latched). */
-static bool take(struct co_master *m, struct co_node *n, const struct step *s, int64_t now)
+static bool STRAND_RT take(struct co_master *m, struct co_node *n, const struct step *s,
+			   int64_t now)
 {
 	uint32_t got = n->sdo.pos;
 
@@ -214,7 +217,7 @@ static bool take(struct co_master *m, struct co_node *n, const struct step *s, i
 	return true;
 }
 
-void co_config_next(struct co_master *m, struct co_node *n, int64_t now)
+void STRAND_RT co_config_next(struct co_master *m, struct co_node *n, int64_t now)
 {
 	const struct step *s = &steps[n->step];
 

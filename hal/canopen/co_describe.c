@@ -5,7 +5,9 @@
 #include <stdio.h>
 #include <string.h>
 
-const char *co_fault_cause(const struct co_fault *f)
+#include "hal/rt.h"
+
+const char STRAND_RT *co_fault_cause(const struct co_fault *f)
 {
 	switch (f->kind) {
 	case CO_FAULT_NONE:
@@ -90,6 +92,7 @@ void co_master_describe(const struct co_master *m, const struct co_fault *f, cha
 	const char *st = co402_state_name((enum co402_state)f->state);
 	char node[16] = "", em[112];
 
+	STRAND_ASSERT_NOT_RT();
 	if (f->node)
 		snprintf(node, sizeof(node), "node %u: ", f->node);
 	last_emcy(m, f->node, em, sizeof(em));

@@ -4,6 +4,8 @@
 
 #include <string.h>
 
+#include "hal/rt.h"
+
 /*
  * CiA 301 table 21, "emergency error codes": a code matches an entry when
  * (code & mask) == value; the table is searched from its most specific
@@ -50,7 +52,7 @@ static const struct {
 	{ 0x9000, 0xf000, "external error" },
 };
 
-const char *co_emcy_class(uint16_t code)
+const char STRAND_RT *co_emcy_class(uint16_t code)
 {
 	size_t i;
 
@@ -60,7 +62,7 @@ const char *co_emcy_class(uint16_t code)
 	return "unknown error class";
 }
 
-uint8_t co_emcy_register_bit(uint16_t code)
+uint8_t STRAND_RT co_emcy_register_bit(uint16_t code)
 {
 	switch (code >> 12) {
 	case 0x2:
@@ -76,7 +78,7 @@ uint8_t co_emcy_register_bit(uint16_t code)
 	}
 }
 
-bool co_emcy_parse(const struct co_frame *f, uint16_t sync_id, struct co_emcy *e)
+bool STRAND_RT co_emcy_parse(const struct co_frame *f, uint16_t sync_id, struct co_emcy *e)
 {
 	if (f->id <= CO_ID_EMCY || f->id > CO_ID_EMCY + CO_NODE_MAX || f->id == sync_id ||
 	    f->len != 8)
@@ -88,7 +90,7 @@ bool co_emcy_parse(const struct co_frame *f, uint16_t sync_id, struct co_emcy *e
 	return true;
 }
 
-void co_emcy_frame(struct co_frame *f, uint8_t node, uint16_t code, uint8_t reg)
+void STRAND_RT co_emcy_frame(struct co_frame *f, uint8_t node, uint16_t code, uint8_t reg)
 {
 	co_frame_init(f, (uint16_t)(CO_ID_EMCY + node), 8);
 	co_put16(&f->data[0], code);

@@ -18,6 +18,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 struct co_frame {
 	uint16_t id;      /* 11-bit identifier (COB-ID) */
 	uint8_t len;      /* data length, 0..8 */
@@ -39,12 +41,12 @@ enum {
 #define CO_NODE_MAX 127
 
 /* PDO n (1..4): TPDOn at 0x180 + 0x100 (n - 1), RPDOn at 0x200 + 0x100 (n - 1). */
-static inline uint16_t co_tpdo_id(unsigned n, uint8_t node)
+static inline uint16_t STRAND_RT co_tpdo_id(unsigned n, uint8_t node)
 {
 	return (uint16_t)(CO_ID_TPDO1 + 0x100 * (n - 1) + node);
 }
 
-static inline uint16_t co_rpdo_id(unsigned n, uint8_t node)
+static inline uint16_t STRAND_RT co_rpdo_id(unsigned n, uint8_t node)
 {
 	return (uint16_t)(CO_ID_RPDO1 + 0x100 * (n - 1) + node);
 }
@@ -73,28 +75,28 @@ enum co_nmt_state {
 /* Sub-index 2: transmission type 1 = synchronous, every SYNC. */
 #define CO_PDO_SYNC_EVERY 1
 /* A mapping entry: index << 16 | sub-index << 8 | length in bits. */
-static inline uint32_t co_map(uint16_t index, uint8_t sub, uint8_t bits)
+static inline uint32_t STRAND_RT co_map(uint16_t index, uint8_t sub, uint8_t bits)
 {
 	return (uint32_t)index << 16 | (uint32_t)sub << 8 | bits;
 }
 
-static inline uint16_t co_get16(const uint8_t *p)
+static inline uint16_t STRAND_RT co_get16(const uint8_t *p)
 {
 	return (uint16_t)(p[0] | p[1] << 8);
 }
 
-static inline uint32_t co_get32(const uint8_t *p)
+static inline uint32_t STRAND_RT co_get32(const uint8_t *p)
 {
 	return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
-static inline void co_put16(uint8_t *p, uint16_t v)
+static inline void STRAND_RT co_put16(uint8_t *p, uint16_t v)
 {
 	p[0] = (uint8_t)v;
 	p[1] = (uint8_t)(v >> 8);
 }
 
-static inline void co_put32(uint8_t *p, uint32_t v)
+static inline void STRAND_RT co_put32(uint8_t *p, uint32_t v)
 {
 	p[0] = (uint8_t)v;
 	p[1] = (uint8_t)(v >> 8);
@@ -103,7 +105,7 @@ static inline void co_put32(uint8_t *p, uint32_t v)
 }
 
 /* Little-endian value of n bytes (1..4). */
-static inline uint32_t co_get(const uint8_t *p, unsigned n)
+static inline uint32_t STRAND_RT co_get(const uint8_t *p, unsigned n)
 {
 	uint32_t v = 0;
 
@@ -112,7 +114,7 @@ static inline uint32_t co_get(const uint8_t *p, unsigned n)
 	return v;
 }
 
-static inline void co_put(uint8_t *p, uint32_t v, unsigned n)
+static inline void STRAND_RT co_put(uint8_t *p, uint32_t v, unsigned n)
 {
 	unsigned i;
 
@@ -120,7 +122,7 @@ static inline void co_put(uint8_t *p, uint32_t v, unsigned n)
 		p[i] = (uint8_t)v;
 }
 
-static inline void co_frame_init(struct co_frame *f, uint16_t id, uint8_t len)
+static inline void STRAND_RT co_frame_init(struct co_frame *f, uint16_t id, uint8_t len)
 {
 	memset(f, 0, sizeof(*f));
 	f->id = id;

@@ -8,6 +8,8 @@
 #include <errno.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 int co_interp_period(uint32_t tick_hz, uint8_t *value, int8_t *exp)
 {
 	uint64_t pow = 1; /* 10^-e */
@@ -85,14 +87,14 @@ uint32_t co_master_rx_ids(const struct co_drive_cfg *drives, uint32_t n, uint16_
 	return k;
 }
 
-int co_master_index(const struct co_master *m, uint8_t node)
+int STRAND_RT co_master_index(const struct co_master *m, uint8_t node)
 {
 	return node <= CO_NODE_MAX ? m->slot[node] : -1;
 }
 
 /* ---- faults and sending ---- */
 
-void co_latch(struct co_master *m, const struct co_fault *f)
+void STRAND_RT co_latch(struct co_master *m, const struct co_fault *f)
 {
 	if (m->fault.kind == CO_FAULT_NONE)
 		m->fault = *f;
@@ -100,8 +102,8 @@ void co_latch(struct co_master *m, const struct co_fault *f)
 		m->phase = CO_MASTER_FAILED;
 }
 
-void co_fail(struct co_master *m, enum co_fault_kind kind, int code, const struct co_node *n,
-	     uint32_t detail)
+void STRAND_RT co_fail(struct co_master *m, enum co_fault_kind kind, int code,
+		       const struct co_node *n, uint32_t detail)
 {
 	struct co_fault f = {
 		.code = code, .kind = (uint8_t)kind, .node = n ? n->cfg.node : 0,
@@ -111,7 +113,7 @@ void co_fail(struct co_master *m, enum co_fault_kind kind, int code, const struc
 	co_latch(m, &f);
 }
 
-void co_send(struct co_master *m, const struct co_frame *f, uint32_t n)
+void STRAND_RT co_send(struct co_master *m, const struct co_frame *f, uint32_t n)
 {
 	int rc;
 
@@ -126,7 +128,7 @@ void co_send(struct co_master *m, const struct co_frame *f, uint32_t n)
 	}
 }
 
-void co_nmt(struct co_master *m, enum co_nmt_cmd cmd, uint8_t node)
+void STRAND_RT co_nmt(struct co_master *m, enum co_nmt_cmd cmd, uint8_t node)
 {
 	struct co_frame f;
 
@@ -136,7 +138,7 @@ void co_nmt(struct co_master *m, enum co_nmt_cmd cmd, uint8_t node)
 	co_send(m, &f, 1);
 }
 
-int co_master_fault(const struct co_master *m, struct co_fault *f)
+int STRAND_RT co_master_fault(const struct co_master *m, struct co_fault *f)
 {
 	if (m->fault.kind == CO_FAULT_NONE)
 		return 0;
@@ -145,7 +147,7 @@ int co_master_fault(const struct co_master *m, struct co_fault *f)
 	return m->fault.code;
 }
 
-void co_master_bus(struct co_master *m, enum co_bus_state s)
+void STRAND_RT co_master_bus(struct co_master *m, enum co_bus_state s)
 {
 	m->bus = (uint8_t)s;
 	if (s == CO_BUS_PASSIVE) {
@@ -160,7 +162,7 @@ void co_master_bus(struct co_master *m, enum co_bus_state s)
 
 /* ---- frames in ---- */
 
-static void heartbeat(struct co_master *m, struct co_node *n, uint8_t state, int64_t now)
+static void STRAND_RT heartbeat(struct co_master *m, struct co_node *n, uint8_t state, int64_t now)
 {
 	if (n->hb_last >= 0 && !n->lost)
 		n->hb_last = now;
@@ -183,7 +185,8 @@ static void heartbeat(struct co_master *m, struct co_node *n, uint8_t state, int
 		co_fail(m, CO_FAULT_NMT, -ECONNRESET, n, state);
 }
 
-static void sdo(struct co_master *m, struct co_node *n, const struct co_frame *f, int64_t now)
+static void STRAND_RT sdo(struct co_master *m, struct co_node *n, const struct co_frame *f,
+			  int64_t now)
 {
 	struct co_frame out;
 
@@ -195,7 +198,8 @@ static void sdo(struct co_master *m, struct co_node *n, const struct co_frame *f
 		co_config_next(m, n, now);
 }
 
-static void tpdo(struct co_master *m, struct co_node *n, const struct co_frame *f, int64_t now)
+static void STRAND_RT tpdo(struct co_master *m, struct co_node *n, const struct co_frame *f,
+			   int64_t now)
 {
 	enum co402_state s;
 
@@ -229,7 +233,7 @@ static void tpdo(struct co_master *m, struct co_node *n, const struct co_frame *
 	}
 }
 
-static void emcy(struct co_master *m, struct co_node *n, const struct co_emcy *e)
+static void STRAND_RT emcy(struct co_master *m, struct co_node *n, const struct co_emcy *e)
 {
 	if (e->code == CO_EMCY_RESET)
 		return;
@@ -245,7 +249,7 @@ static void emcy(struct co_master *m, struct co_node *n, const struct co_emcy *e
 	}
 }
 
-void co_master_rx(struct co_master *m, const struct co_frame *f, int64_t now)
+void STRAND_RT co_master_rx(struct co_master *m, const struct co_frame *f, int64_t now)
 {
 	struct co_emcy e;
 	unsigned fn = f->id & 0x780, id = f->id & 0x7f;
@@ -275,7 +279,7 @@ void co_master_rx(struct co_master *m, const struct co_frame *f, int64_t now)
 /* ---- the cyclic exchange ---- */
 
 /* RPDO1 of every node in the sequence, then the SYNC. */
-static void send_cycle(struct co_master *m)
+static void STRAND_RT send_cycle(struct co_master *m)
 {
 	uint32_t i, k = 0;
 
@@ -296,7 +300,7 @@ static void send_cycle(struct co_master *m)
 	m->syncs++;
 }
 
-void co_master_stage(struct co_master *m, uint32_t i, int64_t target)
+void STRAND_RT co_master_stage(struct co_master *m, uint32_t i, int64_t target)
 {
 	struct co_node *n = &m->node[i];
 
@@ -307,7 +311,7 @@ void co_master_stage(struct co_master *m, uint32_t i, int64_t target)
 	n->target = (int32_t)target;
 }
 
-void co_master_cycle(struct co_master *m, int64_t now)
+void STRAND_RT co_master_cycle(struct co_master *m, int64_t now)
 {
 	/* after any fault the loop disables the device: nothing more of the
 	 * motion goes out, not even this tick's */
@@ -316,7 +320,7 @@ void co_master_cycle(struct co_master *m, int64_t now)
 	send_cycle(m);
 }
 
-void co_master_disable(struct co_master *m, int64_t now)
+void STRAND_RT co_master_disable(struct co_master *m, int64_t now)
 {
 	uint32_t i;
 
@@ -348,7 +352,7 @@ void co_master_start(struct co_master *m, int64_t now)
 
 /* Start-up: timeouts, the 402 commands of the next cycle, and whether
  * every drive is enabled with a TPDO answering the latest SYNC. */
-static void poll_start(struct co_master *m, int64_t now, bool *cycling)
+static void STRAND_RT poll_start(struct co_master *m, int64_t now, bool *cycling)
 {
 	bool all = true;
 	uint32_t i;
@@ -418,7 +422,7 @@ void co_master_stop(struct co_master *m, int64_t now)
 	}
 }
 
-static void poll_stop(struct co_master *m, int64_t now, bool *cycling)
+static void STRAND_RT poll_stop(struct co_master *m, int64_t now, bool *cycling)
 {
 	bool all = true;
 	uint32_t i;
@@ -448,13 +452,13 @@ static void poll_stop(struct co_master *m, int64_t now, bool *cycling)
 
 /* ---- timers ---- */
 
-static int64_t earlier(int64_t a, int64_t b)
+static int64_t STRAND_RT earlier(int64_t a, int64_t b)
 {
 	return a < b ? a : b;
 }
 
 /* The heartbeat consumer, and the TPDO watchdog of a running master. */
-static int64_t watch(struct co_master *m, int64_t now)
+static int64_t STRAND_RT watch(struct co_master *m, int64_t now)
 {
 	int64_t limit = m->cfg.heartbeat_timeout_ms * CO_MS, next = INT64_MAX;
 	uint32_t i;
@@ -483,7 +487,7 @@ static int64_t watch(struct co_master *m, int64_t now)
 	return next;
 }
 
-int64_t co_master_poll(struct co_master *m, int64_t now)
+int64_t STRAND_RT co_master_poll(struct co_master *m, int64_t now)
 {
 	int64_t next = watch(m, now);
 	bool cycling = false;
@@ -515,7 +519,7 @@ int64_t co_master_poll(struct co_master *m, int64_t now)
 	return next;
 }
 
-bool co_master_actual(const struct co_master *m, uint32_t i, int64_t *counts)
+bool STRAND_RT co_master_actual(const struct co_master *m, uint32_t i, int64_t *counts)
 {
 	const struct co_node *n = &m->node[i];
 	uint64_t s, best, lo;

@@ -49,6 +49,7 @@
 #include "co_emcy.h"
 #include "co_frame.h"
 #include "co_sdo.h"
+#include "hal/rt.h" /* STRAND_RT */
 
 /* A drive, as the master is told of it. */
 struct co_drive_cfg {
@@ -220,7 +221,7 @@ void co_master_disable(struct co_master *m, int64_t now);
  * is STOPPED (or FAILED with CO_FAULT_STOP). */
 void co_master_stop(struct co_master *m, int64_t now);
 
-static inline enum co_master_phase co_master_phase(const struct co_master *m)
+static inline enum co_master_phase STRAND_RT co_master_phase(const struct co_master *m)
 {
 	return (enum co_master_phase)m->phase;
 }

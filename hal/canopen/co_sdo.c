@@ -21,6 +21,8 @@
 
 #include <string.h>
 
+#include "hal/rt.h"
+
 enum {
 	PH_DL_INIT,
 	PH_DL_SEG,
@@ -45,21 +47,21 @@ enum {
 #define F_LAST 0x01
 #define TOGGLE 0x10
 
-static void request(struct co_sdo *s, struct co_frame *out, uint8_t cs, int64_t now)
+static void STRAND_RT request(struct co_sdo *s, struct co_frame *out, uint8_t cs, int64_t now)
 {
 	co_frame_init(out, (uint16_t)(CO_ID_SDO_RX + s->node), 8);
 	out->data[0] = cs;
 	s->deadline = now + s->timeout_ns;
 }
 
-static void mux(struct co_frame *f, uint16_t index, uint8_t sub)
+static void STRAND_RT mux(struct co_frame *f, uint16_t index, uint8_t sub)
 {
 	co_put16(&f->data[1], index);
 	f->data[3] = sub;
 }
 
-void co_sdo_abort_frame(struct co_frame *out, uint16_t id, uint16_t index, uint8_t sub,
-			uint32_t code)
+void STRAND_RT co_sdo_abort_frame(struct co_frame *out, uint16_t id, uint16_t index, uint8_t sub,
+				  uint32_t code)
 {
 	co_frame_init(out, id, 8);
 	out->data[0] = CS_ABORT;
@@ -68,7 +70,7 @@ void co_sdo_abort_frame(struct co_frame *out, uint16_t id, uint16_t index, uint8
 }
 
 /* End the transfer with an abort of ours; true: send it. */
-static bool abort_ours(struct co_sdo *s, uint32_t code, struct co_frame *out)
+static bool STRAND_RT abort_ours(struct co_sdo *s, uint32_t code, struct co_frame *out)
 {
 	s->state = CO_SDO_ABORTED;
 	s->abort = code;
@@ -84,7 +86,7 @@ void co_sdo_init(struct co_sdo *s, uint8_t node, int64_t timeout_ns)
 	s->timeout_ns = timeout_ns;
 }
 
-static void begin(struct co_sdo *s, uint16_t index, uint8_t sub)
+static void STRAND_RT begin(struct co_sdo *s, uint16_t index, uint8_t sub)
 {
 	s->state = CO_SDO_BUSY;
 	s->index = index;
@@ -96,8 +98,8 @@ static void begin(struct co_sdo *s, uint16_t index, uint8_t sub)
 	s->toggle = 0;
 }
 
-void co_sdo_download(struct co_sdo *s, uint16_t index, uint8_t sub, const void *data,
-		     uint32_t n, int64_t now, struct co_frame *out)
+void STRAND_RT co_sdo_download(struct co_sdo *s, uint16_t index, uint8_t sub, const void *data,
+			       uint32_t n, int64_t now, struct co_frame *out)
 {
 	begin(s, index, sub);
 	s->src = data;
@@ -115,8 +117,8 @@ void co_sdo_download(struct co_sdo *s, uint16_t index, uint8_t sub, const void *
 	mux(out, index, sub);
 }
 
-void co_sdo_upload(struct co_sdo *s, uint16_t index, uint8_t sub, void *dst, uint32_t cap,
-		   int64_t now, struct co_frame *out)
+void STRAND_RT co_sdo_upload(struct co_sdo *s, uint16_t index, uint8_t sub, void *dst, uint32_t cap,
+			     int64_t now, struct co_frame *out)
 {
 	begin(s, index, sub);
 	s->dst = dst;
@@ -128,7 +130,7 @@ void co_sdo_upload(struct co_sdo *s, uint16_t index, uint8_t sub, void *dst, uin
 }
 
 /* The next download segment: up to 7 bytes, the last one flagged. */
-static bool next_segment(struct co_sdo *s, int64_t now, struct co_frame *out)
+static bool STRAND_RT next_segment(struct co_sdo *s, int64_t now, struct co_frame *out)
 {
 	uint32_t n = s->size - s->pos;
 	uint8_t cs;
@@ -145,7 +147,8 @@ static bool next_segment(struct co_sdo *s, int64_t now, struct co_frame *out)
 	return true;
 }
 
-static bool upload_init(struct co_sdo *s, const uint8_t *d, int64_t now, struct co_frame *out)
+static bool STRAND_RT upload_init(struct co_sdo *s, const uint8_t *d, int64_t now,
+				  struct co_frame *out)
 {
 	uint32_t n;
 
@@ -172,7 +175,8 @@ static bool upload_init(struct co_sdo *s, const uint8_t *d, int64_t now, struct 
 	return true;
 }
 
-static bool upload_seg(struct co_sdo *s, const uint8_t *d, int64_t now, struct co_frame *out)
+static bool STRAND_RT upload_seg(struct co_sdo *s, const uint8_t *d, int64_t now,
+				 struct co_frame *out)
 {
 	uint32_t n = 7 - ((d[0] >> 1) & 7);
 
@@ -197,7 +201,8 @@ static bool upload_seg(struct co_sdo *s, const uint8_t *d, int64_t now, struct c
 	return true;
 }
 
-bool co_sdo_rx(struct co_sdo *s, const struct co_frame *in, int64_t now, struct co_frame *out)
+bool STRAND_RT co_sdo_rx(struct co_sdo *s, const struct co_frame *in, int64_t now,
+			 struct co_frame *out)
 {
 	const uint8_t *d = in->data;
 	uint8_t cs = d[0] & CS_MASK;
@@ -246,7 +251,7 @@ bool co_sdo_rx(struct co_sdo *s, const struct co_frame *in, int64_t now, struct 
 	return abort_ours(s, CO_ABORT_COMMAND, out);
 }
 
-bool co_sdo_poll(struct co_sdo *s, int64_t now, struct co_frame *out)
+bool STRAND_RT co_sdo_poll(struct co_sdo *s, int64_t now, struct co_frame *out)
 {
 	if (s->state != CO_SDO_BUSY || now < s->deadline)
 		return false;

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "hal/clock.h"
+#include "hal/rt.h"
 
 struct co_socketcan {
 	struct co_bus bus; /* first: the transport */
@@ -29,12 +30,12 @@ struct co_socketcan {
 	struct mmsghdr txm[CO_SOCKETCAN_BATCH], rxm[CO_SOCKETCAN_BATCH];
 };
 
-static struct co_socketcan *sc_of(struct co_bus *b)
+static struct co_socketcan STRAND_RT *sc_of(struct co_bus *b)
 {
 	return (struct co_socketcan *)b; /* bus is the first member */
 }
 
-static int sc_send(struct co_bus *b, const struct co_frame *f, uint32_t n)
+static int STRAND_RT sc_send(struct co_bus *b, const struct co_frame *f, uint32_t n)
 {
 	struct co_socketcan *s = sc_of(b);
 	uint32_t i, done = 0;
@@ -58,8 +59,8 @@ static int sc_send(struct co_bus *b, const struct co_frame *f, uint32_t n)
 	return 0;
 }
 
-enum co_bus_state co_socketcan_error_state(enum co_bus_state prev, uint32_t can_id,
-					   const uint8_t *data)
+enum co_bus_state STRAND_RT co_socketcan_error_state(enum co_bus_state prev, uint32_t can_id,
+						     const uint8_t *data)
 {
 	if (can_id & CAN_ERR_BUSOFF)
 		return CO_BUS_OFF;
@@ -77,7 +78,7 @@ enum co_bus_state co_socketcan_error_state(enum co_bus_state prev, uint32_t can_
 	return prev;
 }
 
-static int sc_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
+static int STRAND_RT sc_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
 {
 	struct co_socketcan *s = sc_of(b);
 	uint32_t n = 0;
@@ -106,7 +107,7 @@ static int sc_recv(struct co_bus *b, struct co_frame *f, uint32_t max)
 	return (int)n;
 }
 
-static enum co_bus_state sc_state(struct co_bus *b)
+static enum co_bus_state STRAND_RT sc_state(struct co_bus *b)
 {
 	return (enum co_bus_state)sc_of(b)->state;
 }
@@ -117,6 +118,7 @@ static void sc_wait(struct co_bus *b, int64_t until)
 	struct pollfd p = { .fd = s->fd, .events = POLLIN };
 	int64_t now = hal_mono_ns(), ms;
 
+	STRAND_ASSERT_NOT_RT();
 	if (until <= now)
 		return;
 	ms = (until - now + 999999) / 1000000;
@@ -127,6 +129,7 @@ static void sc_close(struct co_bus *b)
 {
 	struct co_socketcan *s = sc_of(b);
 
+	STRAND_ASSERT_NOT_RT();
 	close(s->fd);
 	free(s);
 }
@@ -174,6 +177,7 @@ static int set_filter(int fd, const struct co_rx_filter *flt, uint32_t n)
 
 int co_socketcan_filter(struct co_bus *b, const struct co_rx_filter *flt, uint32_t n)
 {
+	STRAND_ASSERT_NOT_RT();
 	return set_filter(sc_of(b)->fd, flt, n);
 }
 
@@ -186,6 +190,7 @@ struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *
 	uint32_t i;
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	if (strlen(ifname) >= IF_NAMESIZE)
 		return fail(NULL, EINVAL, err, size, "CAN interface '%s': %s (name too long)", ifname);
 	s = calloc(1, sizeof(*s));

@@ -26,6 +26,7 @@
 
 #include "hal/clock.h"
 #include "hal/ring.h"
+#include "hal/rt.h"
 
 /* With no event for this long, the thread reads the lines back anyway: a
  * lost edge is found within it even when no other edge follows. */
@@ -51,7 +52,7 @@ struct gpio_din {
 	char name[];
 };
 
-static struct gpio_din *to_din(struct hal_din *d)
+static struct gpio_din STRAND_RT *to_din(struct hal_din *d)
 {
 	return (struct gpio_din *)d;
 }
@@ -205,6 +206,7 @@ static int din_start(struct hal_din *d)
 	pthread_attr_t attr;
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	if (!g->req || g->running)
 		return g->req ? 0 : -EBADF;
 	rc = initial_levels(g);
@@ -232,7 +234,8 @@ static int din_start(struct hal_din *d)
 	return 0;
 }
 
-static uint32_t din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev, uint32_t max)
+static uint32_t STRAND_RT din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
+				   uint32_t max)
 {
 	struct gpio_din *g = to_din(d);
 	uint32_t n = 0;
@@ -244,14 +247,14 @@ static uint32_t din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
 	return n;
 }
 
-static bool din_level(struct hal_din *d, uint32_t line)
+static bool STRAND_RT din_level(struct hal_din *d, uint32_t line)
 {
 	struct gpio_din *g = to_din(d);
 
 	return line < g->n && g->level[line];
 }
 
-static int din_fault(struct hal_din *d, struct hal_fault *f)
+static int STRAND_RT din_fault(struct hal_din *d, struct hal_fault *f)
 {
 	struct gpio_din *g = to_din(d);
 	int code = atomic_load(&g->fault);
@@ -280,6 +283,7 @@ static int din_stop(struct hal_din *d)
 	struct gpio_din *g = to_din(d);
 	uint64_t one = 1;
 
+	STRAND_ASSERT_NOT_RT();
 	if (g->running) {
 		if (write(g->wake_fd, &one, sizeof(one)) != sizeof(one))
 			pthread_cancel(g->thread);
@@ -295,6 +299,7 @@ static void din_close(struct hal_din *d)
 {
 	struct gpio_din *g = to_din(d);
 
+	STRAND_ASSERT_NOT_RT();
 	din_stop(d);
 	close(g->wake_fd);
 	free(g->ring_buf);
@@ -319,6 +324,7 @@ int hal_gpio_din_open(struct hal_din **out, const struct hal_gpio_cfg *cfg, char
 	char msg[256];
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	*out = NULL;
 	rc = hal_gpio_req_init(&rq, cfg, GPIO_REQ_INPUT_EDGES, err, errsize);
 	if (rc)

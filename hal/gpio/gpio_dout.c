@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 struct gpio_dout {
 	struct hal_dout base; /* first */
 	struct gpio_req *req;
@@ -18,13 +20,13 @@ struct gpio_dout {
 	char name[];
 };
 
-static struct gpio_dout *to_dout(struct hal_dout *d)
+static struct gpio_dout STRAND_RT *to_dout(struct hal_dout *d)
 {
 	return (struct gpio_dout *)d;
 }
 
 /* Every line to its staged level: one ioctl when something changed. */
-static int apply(struct gpio_dout *g, bool force)
+static int STRAND_RT apply(struct gpio_dout *g, bool force)
 {
 	bool high[GPIO_LINE_MAX];
 	bool changed = force;
@@ -52,13 +54,14 @@ static int dout_start(struct hal_dout *d)
 {
 	struct gpio_dout *g = to_dout(d);
 
+	STRAND_ASSERT_NOT_RT();
 	if (!g->req)
 		return -EBADF;
 	memset(g->staged, 0, sizeof(g->staged));
 	return apply(g, true);
 }
 
-static void dout_set(struct hal_dout *d, uint32_t line, bool asserted)
+static void STRAND_RT dout_set(struct hal_dout *d, uint32_t line, bool asserted)
 {
 	struct gpio_dout *g = to_dout(d);
 
@@ -66,7 +69,7 @@ static void dout_set(struct hal_dout *d, uint32_t line, bool asserted)
 		g->staged[line] = asserted;
 }
 
-static int dout_commit(struct hal_dout *d, int64_t tick)
+static int STRAND_RT dout_commit(struct hal_dout *d, int64_t tick)
 {
 	struct gpio_dout *g = to_dout(d);
 
@@ -75,7 +78,7 @@ static int dout_commit(struct hal_dout *d, int64_t tick)
 	return apply(g, false);
 }
 
-static int dout_fault(struct hal_dout *d, struct hal_fault *f)
+static int STRAND_RT dout_fault(struct hal_dout *d, struct hal_fault *f)
 {
 	struct gpio_dout *g = to_dout(d);
 
@@ -91,6 +94,7 @@ static int dout_stop(struct hal_dout *d)
 	struct gpio_dout *g = to_dout(d);
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	if (!g->req)
 		return 0;
 	memset(g->staged, 0, sizeof(g->staged));
@@ -104,6 +108,7 @@ static void dout_close(struct hal_dout *d)
 {
 	struct gpio_dout *g = to_dout(d);
 
+	STRAND_ASSERT_NOT_RT();
 	gpio_req_close(g->req);
 	free(g);
 }
@@ -126,6 +131,7 @@ int hal_gpio_dout_open(struct hal_dout **out, const struct hal_gpio_cfg *cfg, ch
 	uint32_t i;
 	int e;
 
+	STRAND_ASSERT_NOT_RT();
 	*out = NULL;
 	e = hal_gpio_req_init(&rq, cfg, GPIO_REQ_OUTPUT, err, errsize);
 	if (e)

@@ -14,6 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 static const struct hal_axis_ops modbus_ops;
 
 static const char *const type_names[] = {
@@ -22,8 +24,8 @@ static const char *const type_names[] = {
 };
 
 /* A fault found here or at start: the message is m->msg, fixed from now. */
-static int latch_here(struct modbus_drv *m, int code, int32_t ch, const char *text,
-		      uint32_t reg)
+static int STRAND_RT latch_here(struct modbus_drv *m, int code, int32_t ch, const char *text,
+				uint32_t reg)
 {
 	if (m->fault.code)
 		return m->fault.code;
@@ -66,6 +68,7 @@ static int mb_start(struct hal_axis *ax)
 	uint32_t i, nch = ax->nch;
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	m->pending = m->popped; /* no thread yet: the loop's buffer serves */
 	memset(m->pending, 0, m->done_size);
 	rc = mb_io_connect(m);
@@ -131,7 +134,7 @@ fail:
 	return rc;
 }
 
-static void take(struct modbus_drv *m, const struct mb_done *d)
+static void STRAND_RT take(struct modbus_drv *m, const struct mb_done *d)
 {
 	uint32_t i;
 
@@ -152,7 +155,7 @@ static void take(struct modbus_drv *m, const struct mb_done *d)
 		latch_here(m, d->code, -1, m->fault_text, d->detail);
 }
 
-static int mb_input(struct hal_axis *ax, int64_t tick)
+static int STRAND_RT mb_input(struct hal_axis *ax, int64_t tick)
 {
 	struct modbus_drv *m = mb_of(ax);
 
@@ -175,7 +178,7 @@ static int mb_input(struct hal_axis *ax, int64_t tick)
 /* The drive's position as read, moved by as much as the setpoint moved
  * since: the loop's setpoint minus this is the following error the drive
  * had when it was read, however old the reading. */
-static bool mb_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
+static bool STRAND_RT mb_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 {
 	struct modbus_drv *m = mb_of(ax);
 
@@ -185,7 +188,7 @@ static bool mb_actual(struct hal_axis *ax, uint32_t ch, int64_t *counts)
 	return true;
 }
 
-static void mb_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
+static void STRAND_RT mb_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *sp)
 {
 	struct modbus_drv *m = mb_of(ax);
 
@@ -193,7 +196,7 @@ static void mb_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *
 	m->last_pos[ch] = sp->pos;
 }
 
-static int mb_commit(struct hal_axis *ax, int64_t tick)
+static int STRAND_RT mb_commit(struct hal_axis *ax, int64_t tick)
 {
 	struct modbus_drv *m = mb_of(ax);
 	struct mb_update *u;
@@ -220,7 +223,7 @@ static int mb_commit(struct hal_axis *ax, int64_t tick)
 	return 0;
 }
 
-static int mb_fault(struct hal_axis *ax, struct hal_fault *f)
+static int STRAND_RT mb_fault(struct hal_axis *ax, struct hal_fault *f)
 {
 	struct modbus_drv *m = mb_of(ax);
 
@@ -229,7 +232,7 @@ static int mb_fault(struct hal_axis *ax, struct hal_fault *f)
 	return m->fault.code;
 }
 
-static void mb_disable(struct hal_axis *ax)
+static void STRAND_RT mb_disable(struct hal_axis *ax)
 {
 	struct modbus_drv *m = mb_of(ax);
 	uint32_t cmd = MB_CMD_DISABLE;
@@ -247,6 +250,7 @@ static int mb_stop(struct hal_axis *ax)
 	struct modbus_drv *m = mb_of(ax);
 	int rc = 0;
 
+	STRAND_ASSERT_NOT_RT();
 	if (m->thread_running) {
 		mb_disable(ax);
 		atomic_store(&m->quit, true);
@@ -269,6 +273,7 @@ static void mb_close(struct hal_axis *ax)
 	struct modbus_drv *m = mb_of(ax);
 	uint32_t i;
 
+	STRAND_ASSERT_NOT_RT();
 	mb_stop(ax);
 	if (m->mb)
 		modbus_free(m->mb);
@@ -354,6 +359,7 @@ struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t e
 	bool ok = true;
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	if (!nch || nch > d->naxes || !c->tick_hz) {
 		snprintf(err, errsize, "device '%s': %u axes used, %u in its register map", c->name,
 			 nch, d->naxes);

@@ -24,6 +24,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "hal/rt.h"
+
 enum modbus_type {
 	MODBUS_TYPE_INT16,
 	MODBUS_TYPE_UINT16,
@@ -48,30 +50,30 @@ struct modbus_reg {
 #define MODBUS_MAP_READ_MAX 125
 #define MODBUS_MAP_WRITE_MAX 123
 
-static inline uint32_t modbus_type_nregs(enum modbus_type t)
+static inline uint32_t STRAND_RT modbus_type_nregs(enum modbus_type t)
 {
 	return t == MODBUS_TYPE_INT32 || t == MODBUS_TYPE_UINT32 ? 2 : 1;
 }
 
-static inline int64_t modbus_type_min(enum modbus_type t)
+static inline int64_t STRAND_RT modbus_type_min(enum modbus_type t)
 {
 	return t == MODBUS_TYPE_INT16 ? INT16_MIN : t == MODBUS_TYPE_INT32 ? INT32_MIN : 0;
 }
 
-static inline int64_t modbus_type_max(enum modbus_type t)
+static inline int64_t STRAND_RT modbus_type_max(enum modbus_type t)
 {
 	return t == MODBUS_TYPE_INT16 ? INT16_MAX : t == MODBUS_TYPE_UINT16 ? UINT16_MAX :
 	       t == MODBUS_TYPE_INT32 ? INT32_MAX : UINT32_MAX;
 }
 
 /* [rt] true when v fits the register's type. */
-static inline bool modbus_reg_fits(const struct modbus_reg *r, int64_t v)
+static inline bool STRAND_RT modbus_reg_fits(const struct modbus_reg *r, int64_t v)
 {
 	return v >= modbus_type_min(r->type) && v <= modbus_type_max(r->type);
 }
 
 /* [rt] v (which must fit) into out[0 .. nregs - 1], in the register order. */
-static inline void modbus_reg_encode(const struct modbus_reg *r, int64_t v, uint16_t *out)
+static inline void STRAND_RT modbus_reg_encode(const struct modbus_reg *r, int64_t v, uint16_t *out)
 {
 	uint32_t u = (uint32_t)v; /* two's complement: the low 32 bits */
 
@@ -87,7 +89,7 @@ static inline void modbus_reg_encode(const struct modbus_reg *r, int64_t v, uint
 }
 
 /* [rt] The value registers in[0 .. nregs - 1] hold. */
-static inline int64_t modbus_reg_decode(const struct modbus_reg *r, const uint16_t *in)
+static inline int64_t STRAND_RT modbus_reg_decode(const struct modbus_reg *r, const uint16_t *in)
 {
 	uint32_t u;
 

@@ -18,6 +18,7 @@
 #include <stdatomic.h>
 
 #include "hal/ring.h"
+#include "hal/rt.h"
 #include "hal/slot.h"
 #include "modbus_dev.h"
 
@@ -116,7 +117,7 @@ struct modbus_drv {
 	char where[96];            /* "tcp 127.0.0.1:1502 unit 1", for messages */
 };
 
-static inline struct modbus_drv *mb_of(struct hal_axis *ax)
+static inline struct modbus_drv STRAND_RT *mb_of(struct hal_axis *ax)
 {
 	return (struct modbus_drv *)ax;
 }

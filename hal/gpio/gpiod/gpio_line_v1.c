@@ -15,6 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 _Static_assert(GPIO_LINE_MAX <= GPIOD_LINE_BULK_MAX_LINES, "a request is one v1 bulk");
 
 struct gpio_req {
@@ -185,7 +187,7 @@ uint32_t gpio_req_offset(const struct gpio_req *r, uint32_t line)
 	return r->offset[line];
 }
 
-int gpio_req_set(struct gpio_req *r, const bool *high)
+int STRAND_RT gpio_req_set(struct gpio_req *r, const bool *high)
 {
 	int v[GPIO_LINE_MAX];
 	uint32_t i;

@@ -19,6 +19,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/rt.h"
+
 #define EVENTS_MAX 16
 
 struct gpio_req {
@@ -300,7 +302,7 @@ uint32_t gpio_req_offset(const struct gpio_req *r, uint32_t line)
 	return r->offset[line];
 }
 
-int gpio_req_set(struct gpio_req *r, const bool *high)
+int STRAND_RT gpio_req_set(struct gpio_req *r, const bool *high)
 {
 	enum gpiod_line_value v[GPIO_LINE_MAX];
 	uint32_t i;
