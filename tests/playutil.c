@@ -190,11 +190,11 @@ int __sanitizer_install_malloc_and_free_hooks(void (*m)(const volatile void *, s
 
 static atomic_uint_fast64_t loop_allocs;
 
-/* play_in_loop until play.c says strand_rt_enter() (hal/rt.h), which
- * every loop's thread then does: either counts. */
+/* What the loop's thread allocates (it says so: strand_rt_enter(),
+ * hal/rt.h). */
 static void on_malloc(const volatile void *ptr, size_t size)
 {
-	if (play_in_loop || strand_rt_here())
+	if (strand_rt_here())
 		atomic_fetch_add(&loop_allocs, 1);
 }
 

@@ -5,8 +5,9 @@
  * stores into a mapping the service thread made, nothing else.
  */
 #include "journal.h"
+#include "hal/rt.h"
 
-struct journal_rec *journal_next(struct journal *j)
+struct journal_rec STRAND_RT *journal_next(struct journal *j)
 {
 	int64_t i = j->next;
 	unsigned char *c;
@@ -19,14 +20,14 @@ struct journal_rec *journal_next(struct journal *j)
 	return (struct journal_rec *)(c + (size_t)(i % j->per_chunk) * j->rec_bytes);
 }
 
-void journal_arm(struct journal *j, struct journal_rec *r)
+void STRAND_RT journal_arm(struct journal *j, struct journal_rec *r)
 {
 	atomic_store_explicit(&r->state, JOURNAL_ARMED, memory_order_release);
 	j->next++;
 	atomic_store_explicit(&j->written, j->next, memory_order_release);
 }
 
-void journal_fire(struct journal_rec *r, int64_t mono_ns, int64_t wall_ns)
+void STRAND_RT journal_fire(struct journal_rec *r, int64_t mono_ns, int64_t wall_ns)
 {
 	r->mono_ns = mono_ns;
 	r->wall_ns = wall_ns;

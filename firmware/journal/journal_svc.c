@@ -5,6 +5,7 @@
  * unmapped behind it.
  */
 #include "journal.h"
+#include "hal/rt.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -76,6 +77,7 @@ int journal_open(struct journal *j, const char *path, const struct journal_info 
 	uint32_t i;
 	int err;
 
+	STRAND_ASSERT_NOT_RT();
 	memset(j, 0, sizeof(*j));
 	j->fd = -1;
 	if (info->nout > JOURNAL_OUT_MAX || info->capacity < 1 || info->ahead < 1)
@@ -143,6 +145,7 @@ int journal_service(struct journal *j, int64_t now_ns)
 	uint32_t hi, cur = (uint32_t)(w / j->per_chunk);
 	int err;
 
+	STRAND_ASSERT_NOT_RT();
 	if (j->err)
 		return j->err;
 	if (want > j->capacity)
@@ -176,6 +179,7 @@ int journal_close(struct journal *j)
 	int err = 0;
 	uint32_t c;
 
+	STRAND_ASSERT_NOT_RT();
 	if (j->chunk_map)
 		for (c = 0; c < j->nchunks; c++)
 			if (j->chunk_map[c])

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* frames.c - step mode frame lists (see frames.h). */
 #include "frames.h"
+#include "hal/rt.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -107,7 +108,7 @@ int64_t frames_count(const struct frame_list *fl)
 	return total;
 }
 
-bool frames_next(const struct frame_list *fl, struct frame_iter *it, int64_t *frame)
+bool STRAND_RT frames_next(const struct frame_list *fl, struct frame_iter *it, int64_t *frame)
 {
 	const struct frame_item *c;
 

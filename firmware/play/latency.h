@@ -23,6 +23,8 @@
 
 #include <stdint.h>
 
+#include "hal/rt.h"
+
 #define LAT_HIST_US 10000
 
 struct lat_stats {
@@ -40,7 +42,7 @@ struct lat_stats {
 
 void lat_reset(struct lat_stats *s);
 
-static inline void lat_add(struct lat_stats *s, int64_t tick, int64_t ns)
+static inline void STRAND_RT lat_add(struct lat_stats *s, int64_t tick, int64_t ns)
 {
 	if (ns < s->min_ns)
 		s->min_ns = ns;

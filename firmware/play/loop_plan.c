@@ -7,15 +7,16 @@
  * is [rt].
  */
 #include "loop_priv.h"
+#include "hal/rt.h"
 
 #include <math.h>
 
-void loop_eval_at(struct loop *L, int64_t scene_tick, mot_q32 *out)
+void STRAND_RT loop_eval_at(struct loop *L, int64_t scene_tick, mot_q32 *out)
 {
 	src_eval(L->src, mot_timing_tick_frame(L->tm, scene_tick), out, &L->sat);
 }
 
-void loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to)
+void STRAND_RT loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to)
 {
 	/* limits were checked positive and finite when the rig was built */
 	move_plan(&L->seq.mv, L->seq.mv.ch, L->n, from, to, L->seq.vmax, L->seq.amax,
@@ -23,7 +24,7 @@ void loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to)
 	L->seq.mv_j = 0;
 }
 
-void loop_pass_setup(struct loop *L)
+void STRAND_RT loop_pass_setup(struct loop *L)
 {
 	const struct loop_cfg *c = &L->cfg;
 	struct loop_seq *s = &L->seq;
@@ -59,7 +60,7 @@ void loop_pass_setup(struct loop *L)
  * seq.target where the ramps start (the pre-roll's or bridge's
  * destination).
  */
-int loop_entry_plan(struct loop *L, int32_t *bad)
+int STRAND_RT loop_entry_plan(struct loop *L, int32_t *bad)
 {
 	const double hz = L->tm->tick_hz, dt = 1.0 / hz;
 	struct loop_seq *s = &L->seq;
@@ -93,7 +94,7 @@ int loop_entry_plan(struct loop *L, int32_t *bad)
 }
 
 /* j = 0: at rest at the ramp's start; j = ru_ticks: the pass's first pose. */
-mot_q32 loop_runup_at(const struct loop *L, uint32_t i, int64_t j)
+mot_q32 STRAND_RT loop_runup_at(const struct loop *L, uint32_t i, int64_t j)
 {
 	const struct loop_out *lo = &L->out[i];
 	int64_t n = lo->ru_n, m = j - (L->seq.ru_ticks - n); /* the ramps end together */
@@ -108,7 +109,7 @@ mot_q32 loop_runup_at(const struct loop *L, uint32_t i, int64_t j)
 	return L->seq.ru_end[i] - move_d2q(left);
 }
 
-bool loop_more_passes(const struct loop *L)
+bool STRAND_RT loop_more_passes(const struct loop *L)
 {
 	const struct loop_cfg *c = &L->cfg;
 
@@ -117,7 +118,7 @@ bool loop_more_passes(const struct loop *L)
 	return c->passes == 0 || L->seq.pass + 1 < c->passes;
 }
 
-bool loop_rest_step(struct loop *L)
+bool STRAND_RT loop_rest_step(struct loop *L)
 {
 	bool rest = true;
 	uint32_t i;

@@ -29,6 +29,7 @@
 
 #include "loop.h"
 #include "move.h"
+#include "hal/rt.h"
 
 /* Input edges taken per poll of a device; a device with more polls again. */
 #define LOOP_EDGES_MAX 32
@@ -134,7 +135,7 @@ struct loop_where {
 };
 
 /* [rt] Output i's speed from the last setpoint to this tick's, units/s. */
-static inline double loop_speed(const struct loop *L, uint32_t i)
+static inline double STRAND_RT loop_speed(const struct loop *L, uint32_t i)
 {
 	return (move_q2d(L->val[i]) - move_q2d(L->prev[i])) * L->tm->tick_hz;
 }
@@ -142,7 +143,7 @@ static inline double loop_speed(const struct loop *L, uint32_t i)
 /* [rt] Output i's following error (what was sent minus where the drive
  * is), core units, into *fe; false when there is none to measure: a
  * velocity channel, a disabled device, no feedback this tick. */
-static inline bool loop_ferror(const struct loop *L, uint32_t i, double *fe)
+static inline bool STRAND_RT loop_ferror(const struct loop *L, uint32_t i, double *fe)
 {
 	const struct rig_out *o = &L->rig->out[i];
 	int64_t act;

@@ -7,6 +7,7 @@
  * any thread (and a signal handler) may make.
  */
 #include "loop_priv.h"
+#include "hal/rt.h"
 
 #include <math.h>
 
@@ -16,7 +17,7 @@
 
 static const struct loop_where nowhere = { .channel = -1, .out = -1 };
 
-void loop_fail(struct loop *L, enum loop_end end, enum loop_cause cause,
+void STRAND_RT loop_fail(struct loop *L, enum loop_end end, enum loop_cause cause,
 	       const struct loop_where *w)
 {
 	struct loop_report *r = &L->res->rep;
@@ -42,7 +43,7 @@ void loop_fail(struct loop *L, enum loop_end end, enum loop_cause cause,
 	r->acted_ns = w->acted_ns;
 }
 
-void loop_halt(struct loop *L, enum loop_end end, enum loop_cause cause,
+void STRAND_RT loop_halt(struct loop *L, enum loop_end end, enum loop_cause cause,
 	       const struct loop_where *w)
 {
 	uint32_t i;
@@ -56,7 +57,7 @@ void loop_halt(struct loop *L, enum loop_end end, enum loop_cause cause,
 	L->seq.state = LOOP_ENDED;
 }
 
-void loop_stop(struct loop *L, enum loop_end end, enum loop_cause cause,
+void STRAND_RT loop_stop(struct loop *L, enum loop_end end, enum loop_cause cause,
 	       const struct loop_where *w)
 {
 	uint32_t i;
@@ -70,13 +71,13 @@ void loop_stop(struct loop *L, enum loop_end end, enum loop_cause cause,
 	L->seq.seg_j = 0;
 }
 
-struct loop_where loop_where_fault(const char *device, const struct hal_fault *f)
+struct loop_where STRAND_RT loop_where_fault(const char *device, const struct hal_fault *f)
 {
 	return (struct loop_where){ .device = device, .channel = f->channel, .out = -1,
 				    .what = f->cause, .code = f->code, .detail = f->detail };
 }
 
-struct loop_where loop_where_out(const struct loop *L, uint32_t i, double value, double bound)
+struct loop_where STRAND_RT loop_where_out(const struct loop *L, uint32_t i, double value, double bound)
 {
 	const struct rig_out *o = &L->rig->out[i];
 
@@ -85,7 +86,7 @@ struct loop_where loop_where_out(const struct loop *L, uint32_t i, double value,
 				    .value = value, .bound = bound };
 }
 
-void loop_fault_device(struct loop *L, uint32_t dev, const struct hal_fault *f)
+void STRAND_RT loop_fault_device(struct loop *L, uint32_t dev, const struct hal_fault *f)
 {
 	struct loop_where w = loop_where_fault(L->rig->axes[dev]->name, f);
 	uint32_t i;
@@ -101,7 +102,7 @@ void loop_fault_device(struct loop *L, uint32_t dev, const struct hal_fault *f)
 /* ---- inputs ---- */
 
 /* The edges of device d's lines, each to what its line is for. */
-static void input_edges(struct loop *L, uint32_t d, const struct hal_edge *ev, uint32_t n)
+static void STRAND_RT input_edges(struct loop *L, uint32_t d, const struct hal_edge *ev, uint32_t n)
 {
 	const struct rig *r = L->rig;
 	uint32_t e, i;
@@ -129,7 +130,7 @@ static void input_edges(struct loop *L, uint32_t d, const struct hal_edge *ev, u
 	}
 }
 
-void loop_inputs(struct loop *L, int64_t now)
+void STRAND_RT loop_inputs(struct loop *L, int64_t now)
 {
 	const struct rig *r = L->rig;
 	struct hal_edge *ev = L->safety.edges;
@@ -171,7 +172,7 @@ void loop_inputs(struct loop *L, int64_t now)
 
 /* Feedback, device faults and following errors; this tick's worst
  * |following error| (core units) into *worst, and its output. */
-void loop_feedback(struct loop *L, double *worst, int32_t *worst_out)
+void STRAND_RT loop_feedback(struct loop *L, double *worst, int32_t *worst_out)
 {
 	const struct rig *r = L->rig;
 	struct hal_fault f;
@@ -209,7 +210,7 @@ void loop_feedback(struct loop *L, double *worst, int32_t *worst_out)
 
 /* ---- limits ---- */
 
-void loop_limits(struct loop *L)
+void STRAND_RT loop_limits(struct loop *L)
 {
 	const double hz = L->tm->tick_hz;
 	uint32_t i;
@@ -262,7 +263,7 @@ void loop_limits(struct loop *L)
 
 /* ---- stop requests ---- */
 
-void loop_request_stop(struct loop *L, int level, enum loop_cause cause)
+void STRAND_RT loop_request_stop(struct loop *L, int level, enum loop_cause cause)
 {
 	int old = atomic_load(&L->safety.stop_req);
 
@@ -272,7 +273,7 @@ void loop_request_stop(struct loop *L, int level, enum loop_cause cause)
 		;
 }
 
-int loop_stop_requested(const struct loop *L)
+int STRAND_RT loop_stop_requested(const struct loop *L)
 {
 	return atomic_load(&L->safety.stop_req) & 3;
 }

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 
 #include "motion/arena.h"
+#include "hal/rt.h"
 
 static const char *const state_names[] = {
 	[LOOP_PREROLL] = "pre-roll",	 [LOOP_RUNUP] = "run-up",
@@ -228,6 +229,7 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	uint32_t i;
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	*out = NULL;
 	L = block_new(rig);
 	if (!L) {
@@ -275,5 +277,7 @@ void loop_set_journal(struct loop *L, struct journal *jr)
 
 void loop_free(struct loop *L)
 {
+	STRAND_ASSERT_NOT_RT();
+
 	free(L); /* the block */
 }

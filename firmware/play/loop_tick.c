@@ -6,10 +6,11 @@
  * function here is [rt].
  */
 #include "loop_priv.h"
+#include "hal/rt.h"
 
 #include <time.h>
 
-int64_t loop_due(const struct loop *L, int64_t k)
+int64_t STRAND_RT loop_due(const struct loop *L, int64_t k)
 {
 	uint32_t hz = L->tm->tick_hz;
 
@@ -25,7 +26,7 @@ const struct loop_result *loop_result(const struct loop *L)
 
 /* ---- the sequence ---- */
 
-static void hold(struct loop *L, const mot_q32 *pose)
+static void STRAND_RT hold(struct loop *L, const mot_q32 *pose)
 {
 	uint32_t i;
 
@@ -34,7 +35,7 @@ static void hold(struct loop *L, const mot_q32 *pose)
 }
 
 /* This tick's setpoints into L->val, moving through the segments. */
-static void sequence(struct loop *L)
+static void STRAND_RT sequence(struct loop *L)
 {
 	struct loop_seq *s = &L->seq;
 	int32_t bad;
@@ -135,7 +136,7 @@ static void sequence(struct loop *L)
 
 /* This tick's setpoints in device counts, and the speed they make; false
  * when a scaling saturated (nothing is sent then). */
-static bool scale_outputs(struct loop *L)
+static bool STRAND_RT scale_outputs(struct loop *L)
 {
 	const struct rig *r = L->rig;
 	uint32_t i, sat = 0;
@@ -157,7 +158,7 @@ static bool scale_outputs(struct loop *L)
 	return !sat;
 }
 
-static void outputs(struct loop *L)
+static void STRAND_RT outputs(struct loop *L)
 {
 	const struct rig *r = L->rig;
 	uint32_t i, d;
@@ -181,7 +182,7 @@ static void outputs(struct loop *L)
 
 /* ---- the tick ---- */
 
-static void status(struct loop *L)
+static void STRAND_RT status(struct loop *L)
 {
 	const struct loop_result *res = L->res;
 	struct loop_status s;
@@ -204,7 +205,7 @@ static void status(struct loop *L)
 		L->res->status_dropped++;
 }
 
-bool loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_ns)
+bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_ns)
 {
 	struct loop_result *res = L->res;
 	double fe = 0;
@@ -256,7 +257,7 @@ out:
 	return L->seq.state != LOOP_ENDED;
 }
 
-void loop_run(struct loop *L, int64_t t0)
+void STRAND_RT loop_run(struct loop *L, int64_t t0)
 {
 	struct lat_stats *lat = &L->res->lat;
 	struct timespec c0, c1;

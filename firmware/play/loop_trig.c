@@ -8,11 +8,12 @@
  * when its trigger fires. Every function here is [rt].
  */
 #include "loop_priv.h"
+#include "hal/rt.h"
 
 #include <math.h>
 #include <sched.h>
 
-void loop_triggers_off(struct loop *L)
+void STRAND_RT loop_triggers_off(struct loop *L)
 {
 	uint32_t i;
 
@@ -27,7 +28,7 @@ void loop_triggers_off(struct loop *L)
 		hal_dout_commit(L->rig->douts[i], L->tick);
 }
 
-bool loop_pulses_active(const struct loop *L)
+bool STRAND_RT loop_pulses_active(const struct loop *L)
 {
 	uint32_t i;
 
@@ -39,7 +40,7 @@ bool loop_pulses_active(const struct loop *L)
 
 /* The journal record of trigger i firing frame f, filled and ARMED; NULL
  * when the journal cannot take it. */
-static struct journal_rec *journal_take(struct loop *L, uint32_t i, int64_t f, int64_t due)
+static struct journal_rec STRAND_RT *journal_take(struct loop *L, uint32_t i, int64_t f, int64_t due)
 {
 	struct journal *jr = L->trig.jr;
 	struct journal_rec *rec;
@@ -68,7 +69,7 @@ static struct journal_rec *journal_take(struct loop *L, uint32_t i, int64_t f, i
 
 /* Raise trigger i for frame f in this tick; false when the journal
  * refused it (the run is stopping then). */
-static bool rise(struct loop *L, uint32_t i, int64_t f, int64_t due)
+static bool STRAND_RT rise(struct loop *L, uint32_t i, int64_t f, int64_t due)
 {
 	const struct rig_trig *t = &L->rig->trig[i];
 	struct loop_pulse *pl = &L->trig.pulse[i];
@@ -92,7 +93,7 @@ static bool rise(struct loop *L, uint32_t i, int64_t f, int64_t due)
 }
 
 /* PLAY: the edges due at this scene tick; true when one rose. */
-static bool play_edges(struct loop *L, int64_t due)
+static bool STRAND_RT play_edges(struct loop *L, int64_t due)
 {
 	const struct rig *r = L->rig;
 	bool any = false;
@@ -120,7 +121,7 @@ static bool play_edges(struct loop *L, int64_t due)
 /* STEP_SETTLE: true when the frame may be shot (every drive in position
  * for the settle time, no pulse under way, the camera ready); stops the
  * run when that takes longer than the timeout. */
-static bool step_settled(struct loop *L)
+static bool STRAND_RT step_settled(struct loop *L)
 {
 	const struct rig *r = L->rig;
 	struct loop_step *st = &L->step;
@@ -153,7 +154,7 @@ static bool step_settled(struct loop *L)
 
 /* STEP_SETTLE, settled: the frame's trigger on every line; true when it
  * rose (the run may be stopping instead, when the journal refused). */
-static bool step_fire(struct loop *L, int64_t due)
+static bool STRAND_RT step_fire(struct loop *L, int64_t due)
 {
 	uint32_t i;
 
@@ -170,7 +171,7 @@ static bool step_fire(struct loop *L, int64_t due)
 
 /* STEP_EXPOSE: on to the next frame once exposed (the exposure time, or
  * the camera-ready edge) and the pulse is over. */
-static void step_exposed(struct loop *L)
+static void STRAND_RT step_exposed(struct loop *L)
 {
 	const struct loop_step *st = &L->step;
 	int64_t since = L->tick - st->fired_at;
@@ -183,7 +184,7 @@ static void step_exposed(struct loop *L)
 		loop_stop(L, LOOP_END_FAULT, LOOP_CAUSE_READY, NULL);
 }
 
-void loop_triggers(struct loop *L, int64_t due)
+void STRAND_RT loop_triggers(struct loop *L, int64_t due)
 {
 	const struct rig *r = L->rig;
 	bool any = false;

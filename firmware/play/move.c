@@ -1,11 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* move.c - point-to-point moves and stops within limits (see move.h). */
 #include "move.h"
+#include "hal/rt.h"
 
 #include <errno.h>
 #include <math.h>
 
-mot_q32 move_d2q(double x)
+mot_q32 STRAND_RT move_d2q(double x)
 {
 	double r = x * 4294967296.0;
 
@@ -17,14 +18,14 @@ mot_q32 move_d2q(double x)
 }
 
 /* Shortest time to cover distance d (>= 0) from rest to rest. */
-static double t_min(double d, double v, double a)
+static double STRAND_RT t_min(double d, double v, double a)
 {
 	if (d <= v * v / a)
 		return 2 * sqrt(d / a);
 	return d / v + v / a;
 }
 
-int move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mot_q32 *from,
+int STRAND_RT move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mot_q32 *from,
 	      const mot_q32 *to, const double *vmax, const double *amax, uint32_t tick_hz)
 {
 	double t = 0;
@@ -63,7 +64,7 @@ int move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mot_q32 *fro
 	return 0;
 }
 
-mot_q32 move_at(const struct move *m, uint32_t i, int64_t k)
+mot_q32 STRAND_RT move_at(const struct move *m, uint32_t i, int64_t k)
 {
 	const struct move_ch *c = &m->ch[i];
 	double t, s, T = m->t;
@@ -84,7 +85,7 @@ mot_q32 move_at(const struct move *m, uint32_t i, int64_t k)
 	return c->from + move_d2q(c->d < 0 ? -s : s);
 }
 
-bool move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double amax,
+bool STRAND_RT move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double amax,
 		    uint32_t tick_hz)
 {
 	double dv = amax / tick_hz, dt = 1.0 / tick_hz, nv;

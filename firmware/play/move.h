@@ -34,6 +34,7 @@
 #include <stdint.h>
 
 #include "motion/fix.h"
+#include "hal/rt.h"
 
 struct move_ch {
 	mot_q32 from, to;
@@ -70,7 +71,7 @@ bool move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double 
 		    uint32_t tick_hz);
 
 /* Q32.32 <-> double in core units. */
-static inline double move_q2d(mot_q32 x)
+static inline double STRAND_RT move_q2d(mot_q32 x)
 {
 	return (double)x * (1.0 / 4294967296.0);
 }

@@ -11,14 +11,13 @@
 #include <time.h>
 
 #include "hal/modbus/modbus_dev.h"
+#include "hal/rt.h"
 #include "scene/timecode.h"
 
 /* Records the journal keeps mapped ahead of the loop: ten seconds of
  * frames, at least 4096. A run without an end gets room for this many. */
 #define JOURNAL_AHEAD_S 10
 #define JOURNAL_UNBOUNDED (1LL << 24)
-
-_Thread_local bool play_in_loop;
 
 static uint32_t journal_unit(enum src_unit u)
 {
@@ -76,6 +75,7 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 {
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	memset(p, 0, sizeof(*p));
 	p->o = *o;
 	atomic_init(&p->done, false);
@@ -148,9 +148,9 @@ static void *rt_main(void *arg)
 		 * start-up takes some), on a whole millisecond */
 		t0 = (hal_clock_now(&p->clk) + 999999) / 1000000 * 1000000;
 	}
-	play_in_loop = true;
+	strand_rt_enter();
 	loop_run(p->L, t0);
-	play_in_loop = false;
+	strand_rt_leave();
 	atomic_store(&p->done, true);
 	return NULL;
 }
@@ -237,6 +237,7 @@ int play_run(struct play *p)
 	int64_t start;
 	int rc;
 
+	STRAND_ASSERT_NOT_RT();
 	rt_lock_memory(&p->o.rt, &p->rt);
 	pthread_attr_init(&attr);
 	pthread_attr_setstacksize(&attr, RT_STACK_BYTES);
@@ -283,6 +284,8 @@ int play_run(struct play *p)
 
 void play_free(struct play *p)
 {
+	STRAND_ASSERT_NOT_RT();
+
 	if (p->has_journal)
 		journal_close(&p->jr);
 	if (p->telemetry)

@@ -98,8 +98,4 @@ void play_describe(const struct play *p, char *buf, size_t size);
  * play_describe's line first when `reason`. */
 void play_summary(const struct play *p, FILE *f, bool reason);
 
-/* Set by the loop thread while loop_run runs: what the tests' allocation
- * counter keys on. */
-extern _Thread_local bool play_in_loop;
-
 #endif /* STRAND_PLAY_H */

@@ -23,6 +23,7 @@
 #include <stdint.h>
 
 #include "motion/fix.h"
+#include "hal/rt.h"
 
 struct hal_scale {
 	mot_q32 per_unit; /* counts per core unit, Q32.32, non-zero */
@@ -31,14 +32,14 @@ struct hal_scale {
 };
 
 /* Device counts of a core value; saturation is ORed into *sat. */
-static inline int64_t hal_scale_counts(const struct hal_scale *s, mot_q32 value, uint32_t *sat)
+static inline int64_t STRAND_RT hal_scale_counts(const struct hal_scale *s, mot_q32 value, uint32_t *sat)
 {
 	return mot_add_sat(mot_acc_round(mot_acc_mul(value, s->per_unit), 64, sat), s->offset,
 			   sat);
 }
 
 /* Counts per second of a speed in core units per second. */
-static inline int64_t hal_scale_rate(const struct hal_scale *s, double units_per_s)
+static inline int64_t STRAND_RT hal_scale_rate(const struct hal_scale *s, double units_per_s)
 {
 	double c = units_per_s * s->per_unit_d;
 
@@ -50,7 +51,7 @@ static inline int64_t hal_scale_rate(const struct hal_scale *s, double units_per
 }
 
 /* A count difference (setpoint minus actual) in core units. */
-static inline double hal_scale_delta_units(const struct hal_scale *s, int64_t dcounts)
+static inline double STRAND_RT hal_scale_delta_units(const struct hal_scale *s, int64_t dcounts)
 {
 	return (double)dcounts / s->per_unit_d;
 }

@@ -14,6 +14,7 @@
 #include "motion/fix.h"
 #include "motion/timing.h"
 #include "scene_desc.h" /* struct sd_limits */
+#include "hal/rt.h"
 
 enum src_unit {
 	SRC_UNIT_TURNS,  /* angles: core turns, degrees in files */
@@ -57,7 +58,7 @@ static inline int src_select(struct play_source *s, const uint32_t *idx, uint32_
 	return s->ops->select(s, idx, n);
 }
 
-static inline void src_eval(struct play_source *s, mot_q32 frame, mot_q32 *out, uint32_t *sat)
+static inline void STRAND_RT src_eval(struct play_source *s, mot_q32 frame, mot_q32 *out, uint32_t *sat)
 {
 	s->ops->eval(s, frame, out, sat);
 }

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* source_scene.c - channels of an evaluated scene (see source_scene.h). */
 #include "source_scene.h"
+#include "hal/rt.h"
 
 #include <errno.h>
 #include <math.h>
@@ -65,7 +66,7 @@ static int ss_select(struct play_source *s, const uint32_t *idx, uint32_t n)
 	return 0;
 }
 
-static void ss_eval(struct play_source *s, mot_q32 frame, mot_q32 *out, uint32_t *sat)
+static void STRAND_RT ss_eval(struct play_source *s, mot_q32 frame, mot_q32 *out, uint32_t *sat)
 {
 	struct source_scene *ss = (struct source_scene *)s;
 	const struct mot_pose *p = &ss->pose;

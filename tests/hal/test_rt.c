@@ -172,7 +172,7 @@ static void test_rt_ops_in_rt(void **state)
 }
 
 /* The tests' allocation counter counts what the loop's thread allocates
- * once it said so (play.c's play_in_loop counts as well, until it does). */
+ * once it said so (play.c's rt_main does, around loop_run). */
 static void test_alloc_counter_keys_on_flag(void **state)
 {
 	uint64_t before;
