@@ -19,7 +19,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "axis.h" /* struct hal_fault */
+#include "fault.h"
 
 struct hal_dout;
 
