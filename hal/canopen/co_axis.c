@@ -21,8 +21,6 @@ struct co_axis {
 	struct co_frame rx[CO_AXIS_RX_BATCH];
 };
 
-static const struct hal_axis_ops co_axis_ops;
-
 static struct co_axis *axis_of(struct hal_axis *ax)
 {
 	return (struct co_axis *)ax; /* ax is the first member */
@@ -127,7 +125,7 @@ static void ca_set(struct hal_axis *ax, uint32_t ch, const struct hal_setpoint *
 	if (i < 0)
 		return;
 	co_master_stage(&a->m, (uint32_t)i,
-			a->m.node[i].cfg.mode == CO402_MODE_CSV ? sp->vel : sp->pos);
+			co_master_mode(&a->m, (uint32_t)i) == CO402_MODE_CSV ? sp->vel : sp->pos);
 }
 
 static int ca_commit(struct hal_axis *ax, int64_t tick)
@@ -262,5 +260,5 @@ struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
 
 struct co_master *co_axis_master(struct hal_axis *ax)
 {
-	return ax->ops == &co_axis_ops ? &axis_of(ax)->m : NULL;
+	return &axis_of(ax)->m;
 }

@@ -49,7 +49,7 @@ struct co_axis_cfg {
  * closed then too. */
 struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg);
 
-/* The master of a CANopen axis (tests, messages); NULL for another backend. */
+/* The master of an axis co_axis_new() made (tests, messages). */
 struct co_master *co_axis_master(struct hal_axis *ax);
 
 #endif /* CO_AXIS_H */
