@@ -180,6 +180,7 @@ static int make_sim_drive(struct rig *r, const struct rig_desc *d, uint32_t k, u
 	struct sim_drive_channel *ch;
 	uint32_t i, nch = 0;
 	double lf = sim_or(dd->sim.limit_factor, SIM_DRIVE_DEFAULT_LIMIT_FACTOR);
+	int rc;
 
 	for (i = 0; i < r->nout; i++)
 		if (r->out[i].dev == ax && r->out[i].ch + 1 > nch)
@@ -205,11 +206,10 @@ static int make_sim_drive(struct rig *r, const struct rig_desc *d, uint32_t k, u
 		c->velocity_mode = o->vel_mode;
 		c->initial = o->vel_mode ? 0 : hal_scale_counts(&o->scale, o->home, NULL);
 	}
-	r->sim_drive[ax] = sim_drive_new(dd->name, nch, tick_hz, ch);
+	rc = sim_drive_new(&r->sim_drive[ax], dd->name, nch, tick_hz, ch, err, size);
 	free(ch);
-	if (!r->sim_drive[ax])
-		return fail(err, size, -errno, "device '%s': simulated drive: %s", dd->name,
-			    strerror(errno));
+	if (rc)
+		return rc;
 	r->axes[ax] = sim_drive_axis(r->sim_drive[ax]);
 	return 0;
 }
@@ -380,11 +380,9 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 		}
 		/* queue: two camera-ready edges per frame in flight, and a few
 		 * scheduled by tests */
-		g = sim_gpio_new(d->devices[k].name, nt, ni, clk, 64);
-		if (!g) {
-			rc = fail(err, size, -ENOMEM, "out of memory");
+		rc = sim_gpio_new(&g, d->devices[k].name, nt, ni, clk, 64, err, size);
+		if (rc)
 			goto out;
-		}
 		dev_gpio[k] = (int)r->nsim_gpio;
 		r->sim_gpio[r->nsim_gpio++] = g;
 		dev_dout[k] = (int)r->ndouts;
@@ -404,6 +402,7 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 		int dev = find_device(d, td->device);
 		struct sim_camera_params cp;
 		struct sim_gpio *g;
+		char why[160];
 
 		if (dev < 0) {
 			rc = fail(err, size, -ENOENT, "triggers[%u] (%s): no device '%s' in devices:",
@@ -421,11 +420,10 @@ static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_
 						  SIM_CAMERA_DEFAULT_EXPOSURE_FRAC * frame_ns / 1e6) * 1e6);
 		cp.readout_ns = (int64_t)(sim_or(d->devices[dev].sim.readout_ms,
 						 SIM_CAMERA_DEFAULT_READOUT_FRAC * frame_ns / 1e6) * 1e6);
-		r->camera[i] = sim_camera_new(&cp, o->camera_cap ? o->camera_cap : 1 << 16,
-					      i == 0 ? o->camera_log : NULL);
-		if (!r->camera[i]) {
-			rc = fail(err, size, -errno, "triggers[%u] (%s): simulated camera: %s", i,
-				  td->name, strerror(errno));
+		rc = sim_camera_new(&r->camera[i], &cp, o->camera_cap ? o->camera_cap : 1 << 16,
+				    i == 0 ? o->camera_log : NULL, why, sizeof(why));
+		if (rc) {
+			fail(err, size, rc, "triggers[%u] (%s): %s", i, td->name, why);
 			goto out;
 		}
 		sim_camera_trigger(r->camera[i], g, nline);

@@ -46,13 +46,11 @@ static struct co_bus *simulated(struct rig *r, const struct rig_device_desc *dd,
 {
 	const struct rig_sim_desc *sd = &dd->sim;
 	double lf = sd->limit_factor > 0 ? sd->limit_factor : SIM_DRIVE_DEFAULT_LIMIT_FACTOR;
-	struct co_simbus *sb = co_simbus_new(clk, RIG_CO_SIM_QUEUE, 0);
+	struct co_simbus *sb;
 	uint32_t i, j;
 
-	if (!sb) {
-		snprintf(err, size, "out of memory");
+	if (co_simbus_new(&sb, clk, RIG_CO_SIM_QUEUE, 0, err, size))
 		return NULL;
-	}
 	for (i = 0, j = 0; i < r->nout && j < n; i++) {
 		const struct rig_out *o = &r->out[i];
 		double pu = fabs(o->scale.per_unit_d);
@@ -73,10 +71,8 @@ static struct co_bus *simulated(struct rig *r, const struct rig_device_desc *dd,
 		if (o->dev != ax)
 			continue;
 		c.initial = o->vel_mode ? 0 : (int32_t)hal_scale_counts(&o->scale, o->home, NULL);
-		if (!co_simbus_add(sb, &c, false)) {
+		if (co_simbus_add(NULL, sb, &c, false, err, size)) {
 			co_simbus_free(sb);
-			snprintf(err, size, "device '%s': simulated drive %u: %s", dd->name, c.node,
-				 strerror(errno));
 			return NULL;
 		}
 		j++;
@@ -135,21 +131,14 @@ int rig_canopen_make(struct rig *r, const struct rig_desc *d, uint32_t k, uint32
 			flt[i].id = ids[i];
 			flt[i].mask = 0x7ff;
 		}
-		ac.bus = co_socketcan_open(c->interface ? c->interface : "", flt, nf, why,
-					   sizeof(why));
-		if (!ac.bus) {
-			rc = -errno;
+		rc = co_socketcan_open(&ac.bus, c->interface ? c->interface : "", flt, nf, why,
+				       sizeof(why));
+		if (rc) {
 			snprintf(err, size, "device '%s': %s", dd->name, why);
 			return rc;
 		}
 	}
 	if (!ac.bus)
 		return -ENOMEM;
-	r->axes[ax] = co_axis_new(&ac);
-	if (!r->axes[ax]) {
-		rc = -errno;
-		snprintf(err, size, "device '%s': CANopen master: %s", dd->name, strerror(errno));
-		return rc;
-	}
-	return 0;
+	return co_axis_new(&r->axes[ax], &ac, err, size);
 }

@@ -16,6 +16,7 @@ int rig_modbus_open(struct rig *r, const struct rig_desc *d, uint32_t k, uint32_
 	int64_t *initial;
 	bool *velocity;
 	uint32_t i;
+	int rc;
 
 	for (i = 0; i < r->nout; i++)
 		if (r->out[i].dev == ax && r->out[i].ch + 1 > c.nch)
@@ -38,8 +39,8 @@ int rig_modbus_open(struct rig *r, const struct rig_desc *d, uint32_t k, uint32_
 	}
 	c.initial = initial;
 	c.velocity = velocity;
-	r->axes[ax] = hal_modbus_open(&c, err, size);
+	rc = hal_modbus_open(&r->axes[ax], &c, err, size);
 	free(initial);
 	free(velocity);
-	return r->axes[ax] ? 0 : -EINVAL;
+	return rc;
 }

@@ -238,8 +238,7 @@ int simdrive_can_main(int argc, char **argv)
 
 	if (rc >= 0)
 		return rc;
-	bus = co_socketcan_open(o.iface, NULL, 0, err, sizeof(err));
-	if (!bus) {
+	if (co_socketcan_open(&bus, o.iface, NULL, 0, err, sizeof(err))) {
 		fprintf(stderr, "strand-simdrive: %s\n", err);
 		return STRAND_EXIT_IO;
 	}
@@ -262,9 +261,8 @@ int simdrive_can_main(int argc, char **argv)
 	c.initial = (int32_t)o.initial;
 	c.send = send_frames;
 	c.ctx = bus;
-	s = co_slave_new(&c);
-	if (!s) {
-		fprintf(stderr, "strand-simdrive: %s\n", strerror(errno));
+	if (co_slave_new(&s, &c, err, sizeof(err))) {
+		fprintf(stderr, "strand-simdrive: %s\n", err);
 		rc = STRAND_EXIT_INTERNAL;
 		goto close_log;
 	}

@@ -3,6 +3,7 @@
 #include "co_axis.h"
 
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -222,12 +223,13 @@ static const struct hal_axis_ops co_axis_ops = {
 	.close = ca_close,
 };
 
-struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
+int co_axis_new(struct hal_axis **out, const struct co_axis_cfg *cfg, char *err, size_t errsize)
 {
 	struct co_master_cfg mc = cfg->master;
 	struct co_axis *a = calloc(1, sizeof(*a));
-	int rc;
+	int rc = -ENOMEM;
 
+	*out = NULL;
 	if (a) {
 		a->nodes = calloc(cfg->ndrives ? cfg->ndrives : 1, sizeof(*a->nodes));
 		a->cycle = calloc(cfg->ndrives + 1, sizeof(*a->cycle));
@@ -239,8 +241,7 @@ struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
 		}
 		free(a);
 		co_bus_close(cfg->bus);
-		errno = ENOMEM;
-		return NULL;
+		goto fail;
 	}
 	a->ax.ops = &co_axis_ops;
 	a->ax.name = cfg->name;
@@ -252,10 +253,13 @@ struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
 	rc = co_master_init(&a->m, &mc, cfg->drives, a->nodes, a->cycle, cfg->ndrives);
 	if (rc) {
 		ca_close(&a->ax);
-		errno = -rc;
-		return NULL;
+		goto fail;
 	}
-	return &a->ax;
+	*out = &a->ax;
+	return 0;
+fail:
+	snprintf(err, errsize, "device '%s': CANopen master: %s", cfg->name, strerror(-rc));
+	return rc;
 }
 
 struct co_master *co_axis_master(struct hal_axis *ax)
