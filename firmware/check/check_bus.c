@@ -15,7 +15,7 @@ static void modbus_line(FILE *out, const struct rig_device_desc *dd, uint32_t ti
 	const struct modbus_desc *m = dd->modbus;
 	uint32_t every = modbus_update_every(m, tick_hz);
 	int64_t w = 0, wr = 0;
-	char how[96];
+	char how[96], where[300];
 
 	if (modbus_update_ns(m, false, &w) || modbus_update_ns(m, true, &wr))
 		return;
@@ -24,11 +24,8 @@ static void modbus_line(FILE *out, const struct rig_device_desc *dd, uint32_t ti
 			 m->baud, m->parity, m->stop_bits, m->answer_ms);
 	else
 		snprintf(how, sizeof(how), "TCP, %g ms per answer assumed", m->answer_ms);
-	if (m->transport == MODBUS_RTU)
-		fprintf(out, "device '%s': modbus rtu %s unit %u", dd->name, m->serial, m->unit);
-	else
-		fprintf(out, "device '%s': modbus tcp %s:%u unit %u", dd->name, m->host, m->port,
-			m->unit);
+	modbus_where(where, sizeof(where), m);
+	fprintf(out, "device '%s': modbus %s", dd->name, where);
 	fprintf(out, ": an update takes %.3g ms", w / 1e6);
 	if (m->read_every && wr > w)
 		fprintf(out, ", %.3g ms with its reads", wr / 1e6);

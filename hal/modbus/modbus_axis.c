@@ -369,10 +369,7 @@ int hal_modbus_open(struct hal_axis **out, const struct modbus_cfg *c, char *err
 	m->d = d;
 	m->every = modbus_update_every(d, c->tick_hz);
 	m->rstatus = -1;
-	if (d->transport == MODBUS_TCP)
-		snprintf(m->where, sizeof(m->where), "tcp %s:%u unit %u", d->host, d->port, d->unit);
-	else
-		snprintf(m->where, sizeof(m->where), "rtu %s unit %u", d->serial, d->unit);
+	modbus_where(m->where, sizeof(m->where), d);
 	m->velocity = zalloc(nch, sizeof(bool), &ok);
 	m->initial = zalloc(nch, sizeof(int64_t), &ok);
 	m->staged = zalloc(nch, sizeof(int64_t), &ok);
