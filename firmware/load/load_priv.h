@@ -202,20 +202,4 @@ struct ld_rig_sections {
 };
 int ld_rig(struct ld *l, const struct ld_rig_sections *s);
 
-/* A Modbus device's modbus: section; then every output's axis against the
- * register maps (load_modbus.c). */
-int ld_modbus(struct ld *l, yaml_node_t *map, struct rig_device_desc *dev);
-int ld_modbus_outputs(struct ld *l, const struct rig_desc *r, yaml_node_t *outputs);
-
-/* load_canopen.c: a canopen device's canopen: section; an output on it
- * (node: into *node, its axis; mode: checked against channel c); every
- * bus's load and identifiers, once all outputs are read (at[k]: device k's
- * canopen: section, for the position). */
-struct chan;
-int ld_canopen_bus(struct ld *l, yaml_node_t *map, struct rig_canopen_desc *c);
-int ld_canopen_output(struct ld *l, yaml_node_t *map, yaml_node_t *axis_at, yaml_node_t *node_at,
-		      yaml_node_t *mode_at, const struct chan *c, struct rig_output_desc *o,
-		      long long *node);
-int ld_canopen_buses(struct ld *l, const struct rig_desc *r, yaml_node_t *const *at);
-
 #endif /* STRAND_LOAD_PRIV_H */

@@ -10,7 +10,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "hal/modbus/modbus_dev.h"
 #include "scene/timecode.h"
 
 /* Records the journal keeps mapped ahead of the loop: ten seconds of
@@ -413,8 +412,7 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 		if (L->limited[i])
 			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
 				p->rig.out[i].channel, (long long)L->limited[i]);
-	for (i = 0; i < p->rig.naxes; i++)
-		hal_modbus_report(p->rig.axes[i], f);
+	rig_report(&p->rig, f);
 	if (L->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",
 			(long long)L->status_dropped);

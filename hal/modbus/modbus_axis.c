@@ -449,8 +449,6 @@ void hal_modbus_report(struct hal_axis *ax, FILE *f)
 	struct modbus_drv *m = mb_of(ax);
 	struct modbus_stats s;
 
-	if (ax->ops != &modbus_ops) /* until the rig's drivers report */
-		return;
 	hal_modbus_stats(ax, &s);
 	fprintf(f, "  modbus '%s' (%s): %lld updates every %u tick%s, %lld written, %lld replaced "
 		"by a newer one, %lld held at rest, %lld reads; I/O thread %s\n", ax->name,
