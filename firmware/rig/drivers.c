@@ -17,6 +17,8 @@ const struct rig_driver *const rig_drivers[] = {
 	NULL,
 };
 
+const struct rig_driver *const rig_driver_twin = &rig_drv_sim;
+
 const struct rig_driver *rig_driver_find(const char *name)
 {
 	const struct rig_driver *const *d;

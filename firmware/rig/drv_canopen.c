@@ -197,19 +197,19 @@ static int co_validate(const struct rig_desc *d, uint32_t hz, struct rig_desc_er
 		load(d, k, hz, &l);
 		if (!co_load_fits(&l)) {
 			snprintf(e->msg, sizeof(e->msg),
-				 "canopen bus '%s': the worst case of a tick is %u bits (%u drive%s, "
-				 "bit stuffing) of the %u a tick holds at %u bit/s and %u ticks/s: "
-				 "%.0f%%, above %d%%; lower tick_hz, drive fewer outputs on this bus "
-				 "or raise the bitrate", d->devices[k].name, l.bits, l.drives,
-				 l.drives == 1 ? "" : "s", l.capacity, c->bitrate, hz,
-				 100.0 * l.bits / l.capacity, CO_LOAD_MAX_PERCENT);
+				 "canopen bus '%s': the worst case of a tick is %u bits (%u "
+				 "drive%s, bit stuffing) of the %u a tick holds at %u bit/s and "
+				 "%u ticks/s: %.0f%%, above %d%%; lower tick_hz, drive fewer "
+				 "outputs on this bus or raise the bitrate", d->devices[k].name,
+				 l.bits, l.drives, l.drives == 1 ? "" : "s", l.capacity,
+				 c->bitrate, hz, 100.0 * l.bits / l.capacity, CO_LOAD_MAX_PERCENT);
 			return -EINVAL;
 		}
 		if (co_interp_period(hz, &ip, &ex) < 0) {
 			snprintf(e->msg, sizeof(e->msg),
-				 "canopen bus '%s': tick_hz %u: a drive's interpolation period "
-				 "(0x60C2: 1 to 255 times a power of ten seconds) cannot say %.6g us "
-				 "within 0.1%%", d->devices[k].name, hz, 1e6 / hz);
+				 "canopen bus '%s': tick_hz %u: a drive's interpolation "
+				 "period (0x60C2: 1 to 255 times a power of ten seconds) cannot "
+				 "say %.6g us within 0.1%%", d->devices[k].name, hz, 1e6 / hz);
 			return -EINVAL;
 		}
 		for (i = 0; i < d->noutputs; i++) {
@@ -220,8 +220,9 @@ static int co_validate(const struct rig_desc *d, uint32_t hz, struct rig_desc_er
 			if (id == CO_ID_EMCY + n || id == co_tpdo_id(1, (uint8_t)n) ||
 			    id == co_rpdo_id(1, (uint8_t)n) || id == CO_ID_SDO_TX + n ||
 			    id == CO_ID_SDO_RX + n || id == CO_ID_HEARTBEAT + n) {
-				snprintf(e->msg, sizeof(e->msg), "canopen bus '%s': sync_id 0x%x is "
-					 "an identifier of node %u", d->devices[k].name, id, n);
+				snprintf(e->msg, sizeof(e->msg),
+					 "canopen bus '%s': sync_id 0x%x is an identifier of "
+					 "node %u", d->devices[k].name, id, n);
 				return -EINVAL;
 			}
 		}

@@ -52,14 +52,19 @@ static int plan(struct rig_make *m, uint32_t k, bool trig, uint32_t n, struct gp
 
 		if (!dev || strcmp(dev, dd->name))
 			continue;
-		if (trig)
-			pl->lines[j] = (struct hal_gpio_line){
-				.name = m->d->triggers[i].line_name, .offset = m->d->triggers[i].line,
-				.active_low = m->d->triggers[i].active_low };
-		else
-			pl->lines[j] = (struct hal_gpio_line){
-				.name = m->d->inputs[i].line_name, .offset = m->d->inputs[i].line,
-				.active_low = m->d->inputs[i].active_low };
+		if (trig) {
+			const struct rig_trigger_desc *t = &m->d->triggers[i];
+
+			pl->lines[j] = (struct hal_gpio_line){ .name = t->line_name,
+							       .offset = t->line,
+							       .active_low = t->active_low };
+		} else {
+			const struct rig_input_desc *in = &m->d->inputs[i];
+
+			pl->lines[j] = (struct hal_gpio_line){ .name = in->line_name,
+							       .offset = in->line,
+							       .active_low = in->active_low };
+		}
 		j++;
 	}
 	if (trig && dd->has_ready)

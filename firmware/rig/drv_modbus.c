@@ -380,9 +380,10 @@ static int mb_validate(const struct rig_desc *d, uint32_t tick_hz, struct rig_de
 				continue;
 			if (o->axis >= m->naxes) {
 				e->output = (int32_t)i;
-				snprintf(e->msg, sizeof(e->msg), "axis %u of Modbus device '%s': its "
-					 "register map (modbus: axes:) has %u ax%s", o->axis,
-					 dd->name, m->naxes, m->naxes == 1 ? "is" : "es");
+				snprintf(e->msg, sizeof(e->msg),
+					 "axis %u of Modbus device '%s': its register map "
+					 "(modbus: axes:) has %u ax%s", o->axis, dd->name,
+					 m->naxes, m->naxes == 1 ? "is" : "es");
 				return -EINVAL;
 			}
 		}

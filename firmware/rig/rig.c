@@ -13,7 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "drv_sim.h"
 #include "rig_driver.h"
 
 static int fail(char *err, size_t size, int code, const char *fmt, ...)
@@ -358,7 +357,7 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 			goto out;
 		}
 		/* under --sim every device is its simulated twin */
-		dv->drv = o->sim ? &rig_drv_sim : dv->desc->driver;
+		dv->drv = o->sim ? rig_driver_twin : dv->desc->driver;
 		if (dv->axis < 0)
 			continue;
 		if (!dv->drv->make_axes) {

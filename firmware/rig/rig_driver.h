@@ -113,6 +113,10 @@ struct rig_driver {
 /* The table, NULL-terminated, in the order `driver:` lists them (drivers.c). */
 extern const struct rig_driver *const rig_drivers[];
 
+/* The driver of every device's simulated twin: it makes every device under
+ * --sim (drv_sim.h). */
+extern const struct rig_driver *const rig_driver_twin;
+
 /* The driver called name, or NULL. */
 const struct rig_driver *rig_driver_find(const char *name);
 

@@ -25,7 +25,6 @@
 #include "hal/canopen/co_socketcan.h"
 #include "hal/clock.h"
 #include "sim/co_slave.h"
-#include "sim/sim_drive.h" /* the simulated twin's defaults */
 #include "simdrive.h"
 
 static const char usage[] =
@@ -93,12 +92,17 @@ struct can_opts {
 
 static int parse(struct can_opts *o, int argc, char **argv)
 {
+	static const struct rig_sim_desc none;
+	struct sim_drive_channel plant;
 	int opt;
 
+	/* the plant of a twin whose scene says nothing, as `strand play --sim`
+	 * makes it */
+	rig_sim_plant(&none, &plant);
 	o->name = "strand-simdrive";
-	o->bandwidth = SIM_DRIVE_DEFAULT_BANDWIDTH_HZ;
-	o->damping = SIM_DRIVE_DEFAULT_DAMPING;
-	o->feedforward = SIM_DRIVE_DEFAULT_FEEDFORWARD;
+	o->bandwidth = plant.bandwidth_hz;
+	o->damping = plant.damping;
+	o->feedforward = plant.feedforward;
 	o->fault = 0x2310;
 	while ((opt = getopt_long(argc, argv, "h", options, NULL)) != -1) {
 		double v = 0;
