@@ -120,6 +120,11 @@ static inline int ld_num(struct ld *l, const yaml_node_t *n, double *out)
 	return yml_num(&l->y, n, out);
 }
 
+static inline int ld_positive(struct ld *l, const yaml_node_t *n, double *out)
+{
+	return yml_positive(&l->y, n, out);
+}
+
 static inline int ld_int(struct ld *l, const yaml_node_t *n, long long min, long long max,
 			 long long *out)
 {

@@ -136,7 +136,7 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 
 	for (i = 0; !err && i < 6; i++)
 		if (v[i])
-			err = yml_positive(&l->y, v[i], out[i]);
+			err = ld_positive(l, v[i], out[i]);
 	if (!err && v[2] && s->feedforward > 1)
 		err = ld_fail(l, v[2], -EINVAL, "feedforward is a fraction, 0 to 1");
 	return err;
@@ -192,6 +192,7 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
 		yaml_node_t *map = ld_node(l, it[i]), *v[RL_KEYS_MAX], *dv[RL_KEYS_MAX];
+		struct rig_parse p = { .y = &l->y, .tick_hz = l->d->tick_hz, .map = map, .v = dv };
 		const struct rig_driver *drv = NULL;
 		uint32_t j;
 		int d, k;
@@ -214,7 +215,6 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 		 * driver reads its own, another's is refused */
 		for (j = 3; !err && j < rl->dk.n; j++) {
 			const struct rig_driver *o = rl->dk.owner[j];
-			struct rig_parse p = { &l->y, l->d->tick_hz, map, dv };
 			yaml_node_t *first;
 
 			if (j == rl->dk.ready) {
@@ -231,11 +231,8 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 				err = o->parse_device(&p, &dev[i]);
 		}
 		/* a driver without keys of its own reads its settings last */
-		if (!err && !drv->device_keys && drv->parse_device) {
-			struct rig_parse p = { &l->y, l->d->tick_hz, map, dv };
-
+		if (!err && !drv->device_keys && drv->parse_device)
 			err = drv->parse_device(&p, &dev[i]);
-		}
 		if (err)
 			return err;
 		dev[i].driver = drv;
@@ -283,7 +280,7 @@ static int output_axis(struct rl *rl, yaml_node_t *map, yaml_node_t *const *v,
 	const struct rig_driver *const *d;
 	struct ld *l = rl->l;
 	yaml_node_t *dv[RL_KEYS_MAX], *first;
-	struct rig_parse p = { &l->y, l->d->tick_hz, map, dv };
+	struct rig_parse p = { .y = &l->y, .tick_hz = l->d->tick_hz, .map = map, .v = dv };
 
 	for (d = rig_drivers; *d; d++)
 		if (*d != drv && (first = driver_values(&rl->ok, v, *d, dv)))
@@ -466,7 +463,7 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	t->device = rl->dev_names[dev];
 	t->pulse_ms = 1;
 	if (v[G_PULSE])
-		err = yml_positive(&l->y, v[G_PULSE], &t->pulse_ms);
+		err = ld_positive(l, v[G_PULSE], &t->pulse_ms);
 	if (!err && v[G_LOW])
 		err = ld_bool(l, v[G_LOW], &t->active_low);
 	if (!err && v[G_OFF])

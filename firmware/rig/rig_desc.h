@@ -131,11 +131,11 @@ struct rig_desc {
 };
 
 /* ---- the rules (rig_desc.c) ------------------------------------------------
- * Each: 0, or a negative errno with the reason in msg, which names neither
- * the file's position nor the entry (the loader puts it at the key it
- * names, rig_build() prefixes the entry). The loader applies each as soon
- * as the keys it reads are read, so that a file's first mistake is the one
- * reported. */
+ * [init]. Each: 0, or a negative errno with the reason in msg, which names
+ * neither the file's position nor the entry (the loader puts it at the key
+ * it names, rig_build() prefixes the entry). The loader applies each as
+ * soon as the keys it reads are read, so that a file's first mistake is the
+ * one reported. */
 
 /* counts_per_unit: non-zero and below 2^31 counts per turn (turns: the
  * channel is an angle) or per unit. -ERANGE */
