@@ -104,14 +104,17 @@ int main(void)
 	uint32_t i;
 
 	hal_clock_init(&clk, true);
-	sb = co_simbus_new(&clk, 1024, 0);
+	if (co_simbus_new(&sb, &clk, 1024, 0, NULL, 0)) {
+		fprintf(stderr, "canopen_bench: out of memory\n");
+		return 1;
+	}
 	for (i = 0; i < NDRIVES; i++) {
 		struct co_slave_cfg sc = {
 			.node = (uint8_t)(i + 1), .name = "bench",
 			.model = { .bandwidth_hz = 40, .damping = 1, .feedforward = 0.9 },
 		};
 
-		co_simbus_add(sb, &sc, false);
+		co_simbus_add(NULL, sb, &sc, false, NULL, 0);
 		drv[i] = (struct co_drive_cfg){ .node = (uint8_t)(i + 1), .mode = CO402_MODE_CSP,
 						.quick_stop_dec = 100000 };
 	}
@@ -125,8 +128,7 @@ int main(void)
 	ac.ndrives = NDRIVES;
 	ac.bus = &tap.bus;
 	ac.clk = &clk;
-	ax = co_axis_new(&ac);
-	if (!ax || hal_axis_start(ax)) {
+	if (co_axis_new(&ax, &ac, NULL, 0) || hal_axis_start(ax)) {
 		fprintf(stderr, "canopen_bench: the master did not start\n");
 		return 1;
 	}

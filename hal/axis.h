@@ -32,9 +32,9 @@
  * actual().
  *
  * Errors are negative errno codes. A fault is latched by the backend and
- * described by struct hal_fault with a static cause string; the message that
- * names the device and the channel is built at the edge (the CLI), never in
- * the loop.
+ * described by struct hal_fault (fault.h) with a static cause string; the
+ * message that names the device and the channel is built at the edge (the
+ * CLI), never in the loop.
  */
 #ifndef HAL_AXIS_H
 #define HAL_AXIS_H
@@ -42,6 +42,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "fault.h"
 #include "rt.h" /* STRAND_RT */
 
 /* One channel's setpoint for one tick, in device counts. pos is the target
@@ -51,14 +52,6 @@
 struct hal_setpoint {
 	int64_t pos;
 	int64_t vel;
-};
-
-/* A latched fault. */
-struct hal_fault {
-	int code;          /* negative errno: -EIO drive fault, -ETIMEDOUT no answer, ... */
-	int32_t channel;   /* -1: the device as a whole */
-	const char *cause; /* static text: "overcurrent", "heartbeat lost", ... */
-	uint32_t detail;   /* backend-specific number: register, EMCY code; 0 if none */
 };
 
 struct hal_axis;

@@ -19,8 +19,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "axis.h" /* struct hal_fault */
-#include "rt.h"   /* STRAND_RT */
+#include "fault.h"
+#include "rt.h" /* STRAND_RT */
 
 struct hal_edge {
 	uint32_t line;

@@ -3,6 +3,7 @@
 #include "co_simbus.h"
 
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -202,29 +203,34 @@ static const struct co_bus_ops simbus_ops = {
 
 /* ---- set-up ---- */
 
-struct co_simbus *co_simbus_new(struct hal_clock *clk, uint32_t queue, uint64_t log_cap)
+int co_simbus_new(struct co_simbus **out, struct hal_clock *clk, uint32_t queue,
+		  uint64_t log_cap, char *err, size_t errsize)
 {
 	struct co_simbus *b = calloc(1, sizeof(*b));
 
 	STRAND_ASSERT_NOT_RT();
-	if (!b)
-		return NULL;
+	*out = NULL;
+	if (b) {
+		b->qcap = queue ? queue : 1;
+		b->q = calloc(b->qcap, sizeof(*b->q));
+		b->log = log_cap ? calloc(log_cap, sizeof(*b->log)) : NULL;
+	}
+	if (!b || !b->q || (log_cap && !b->log)) {
+		if (b) {
+			free(b->q);
+			free(b->log);
+		}
+		free(b);
+		snprintf(err, errsize, "simulated CAN bus: %s", strerror(ENOMEM));
+		return -ENOMEM;
+	}
 	b->bus.ops = &simbus_ops;
 	b->bus.name = "sim";
 	b->clk = clk;
-	b->qcap = queue ? queue : 1;
-	b->q = calloc(b->qcap, sizeof(*b->q));
 	b->log_cap = log_cap;
-	b->log = log_cap ? calloc(log_cap, sizeof(*b->log)) : NULL;
-	if (!b->q || (log_cap && !b->log)) {
-		free(b->q);
-		free(b->log);
-		free(b);
-		errno = ENOMEM;
-		return NULL;
-	}
 	b->bus_open = true;
-	return b;
+	*out = b;
+	return 0;
 }
 
 void co_simbus_free(struct co_simbus *b)
@@ -237,24 +243,29 @@ void co_simbus_free(struct co_simbus *b)
 		destroy(b);
 }
 
-struct co_slave *co_simbus_add(struct co_simbus *b, const struct co_slave_cfg *cfg, bool off)
+int co_simbus_add(struct co_slave **out, struct co_simbus *b, const struct co_slave_cfg *cfg,
+		  bool off, char *err, size_t errsize)
 {
 	struct co_slave_cfg c = *cfg;
 	struct port *p;
+	int rc;
 
 	STRAND_ASSERT_NOT_RT();
+	if (out)
+		*out = NULL;
 	if (b->nslaves == CO_NODE_MAX || co_simbus_node(b, cfg->node)) {
-		errno = EINVAL;
-		return NULL;
+		snprintf(err, errsize, "device '%s': simulated drive %u: %s",
+			 cfg->name ? cfg->name : "", cfg->node, strerror(EINVAL));
+		return -EINVAL;
 	}
 	p = &b->port[b->nslaves];
 	c.send = slave_send;
 	c.ctx = p;
 	p->b = b;
 	p->node = cfg->node;
-	p->s = co_slave_new(&c);
-	if (!p->s)
-		return NULL;
+	rc = co_slave_new(&p->s, &c, err, errsize);
+	if (rc)
+		return rc;
 	b->nslaves++;
 	p->next = INT64_MAX;
 	if (!off) {
@@ -263,7 +274,9 @@ struct co_slave *co_simbus_add(struct co_simbus *b, const struct co_slave_cfg *c
 		co_slave_power_on(p->s, now);
 		p->next = co_slave_poll(p->s, now);
 	}
-	return p->s;
+	if (out)
+		*out = p->s;
+	return 0;
 }
 
 uint32_t co_simbus_count(const struct co_simbus *b)

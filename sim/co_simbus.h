@@ -26,6 +26,7 @@
 #define CO_SIMBUS_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "co_slave.h"
@@ -38,16 +39,23 @@ struct co_simbus_rec {
 	int16_t from;       /* -1: the master, else the drive's node-ID */
 };
 
+struct co_simbus;
+
 /* A bus whose master can have up to queue frames waiting, logging up to
- * log_cap frames (0: no log). NULL with errno. */
-struct co_simbus *co_simbus_new(struct hal_clock *clk, uint32_t queue, uint64_t log_cap);
+ * log_cap frames (0: no log), into *out. 0, or -ENOMEM with a message in
+ * err (err may be NULL when errsize is 0). */
+int co_simbus_new(struct co_simbus **out, struct hal_clock *clk, uint32_t queue,
+		  uint64_t log_cap, char *err, size_t errsize);
 /* Free the bus and its drives, unless the master's transport still uses
  * it: then the last of co_simbus_free and the transport's close does. */
 void co_simbus_free(struct co_simbus *b);
 
 /* Add a drive (its send and ctx are the bus's own); powered on at once
- * unless off. Returns it, or NULL with errno. */
-struct co_slave *co_simbus_add(struct co_simbus *b, const struct co_slave_cfg *cfg, bool off);
+ * unless off. 0 and the drive in *out (when out is not NULL), or a
+ * negative errno (-EINVAL: the bus is full or has the node-ID already)
+ * with a message in err naming the device and the node. */
+int co_simbus_add(struct co_slave **out, struct co_simbus *b, const struct co_slave_cfg *cfg,
+		  bool off, char *err, size_t errsize);
 uint32_t co_simbus_count(const struct co_simbus *b);
 struct co_slave *co_simbus_slave(struct co_simbus *b, uint32_t i);
 /* The drive with a node-ID, or NULL. */

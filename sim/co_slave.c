@@ -7,6 +7,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -77,8 +78,8 @@ static __attribute__((noinline)) bool plant_make(struct co_slave *s, uint32_t hz
 		hal_axis_close(plant_axis(s));
 	ch.initial = s->actual_pos;
 	ch.velocity_mode = vel;
-	s->plant = hz ? sim_drive_new(s->cfg.name, 1, hz, &ch) : NULL;
-	if (!s->plant)
+	s->plant = NULL;
+	if (!hz || sim_drive_new(&s->plant, s->cfg.name, 1, hz, &ch, NULL, 0))
 		return false;
 	s->plant_hz = hz;
 	s->plant_vel = vel;
@@ -407,20 +408,22 @@ void STRAND_RT co_slave_heartbeat_changed(struct co_slave *s, int64_t now)
 
 /* ---- the interface ---- */
 
-struct co_slave *co_slave_new(const struct co_slave_cfg *cfg)
+int co_slave_new(struct co_slave **out, const struct co_slave_cfg *cfg, char *err,
+		 size_t errsize)
 {
 	const struct sim_drive_channel *m = &cfg->model;
 	struct co_slave *s;
+	int rc = -EINVAL;
 
 	STRAND_ASSERT_NOT_RT();
+	*out = NULL;
 	if (cfg->node < 1 || cfg->node > CO_NODE_MAX || !cfg->send || !(m->bandwidth_hz > 0) ||
-	    !(m->damping > 0) || m->feedforward < 0 || m->feedforward > 1) {
-		errno = EINVAL;
-		return NULL;
-	}
+	    !(m->damping > 0) || m->feedforward < 0 || m->feedforward > 1)
+		goto fail;
+	rc = -ENOMEM;
 	s = calloc(1, sizeof(*s));
 	if (!s)
-		return NULL;
+		goto fail;
 	s->cfg = *cfg;
 	s->actual_pos = cfg->initial;
 	co_slave_od_defaults(s, true);
@@ -428,7 +431,12 @@ struct co_slave *co_slave_new(const struct co_slave_cfg *cfg)
 	s->next_hb = INT64_MAX;
 	s->inject_at = INT64_MAX;
 	update_sw(s);
-	return s;
+	*out = s;
+	return 0;
+fail:
+	snprintf(err, errsize, "device '%s': simulated drive %u: %s", cfg->name ? cfg->name : "",
+		 cfg->node, strerror(-rc));
+	return rc;
 }
 
 void co_slave_free(struct co_slave *s)

@@ -34,6 +34,7 @@
 #define CO_SLAVE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "hal/canopen/co_402.h"
@@ -73,9 +74,13 @@ struct co_slave_watch {
 	struct co_slave_transition log[CO_SLAVE_LOG];
 };
 
-/* [init] A drive, powered off. NULL with errno on a bad parameter or out
- * of memory. */
-struct co_slave *co_slave_new(const struct co_slave_cfg *cfg);
+struct co_slave;
+
+/* [init] A drive, powered off, into *out. 0, or a negative errno (-EINVAL
+ * a bad parameter, -ENOMEM) with a message in err naming the device and
+ * the node; err may be NULL when errsize is 0. */
+int co_slave_new(struct co_slave **out, const struct co_slave_cfg *cfg, char *err,
+		 size_t errsize);
 void co_slave_free(struct co_slave *s);
 
 /* Power on: its boot-up message, then pre-operational. */

@@ -6,6 +6,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <modbus.h>
 #include <netinet/in.h>
 #include <stdarg.h>
@@ -300,10 +301,15 @@ static int serve_tcp(struct mbs *s)
 		return fail(s, -errno, "listen on %s:%s: %s", host, port, modbus_strerror(errno));
 	getsockname(lfd, (struct sockaddr *)&sa, &salen);
 	if (!s->c->quiet) {
-		printf("strand-simdrive: '%s': modbus tcp %s:%u unit %u, serving\n",
-		       s->c->name, host,
-		       ntohs(sa.ss_family == AF_INET6 ? ((struct sockaddr_in6 *)&sa)->sin6_port :
-			     ((struct sockaddr_in *)&sa)->sin_port), d->unit);
+		/* where it listens: the map's unit at the address bound */
+		struct modbus_desc at = *d;
+		char where[320];
+
+		at.host = host;
+		at.port = ntohs(sa.ss_family == AF_INET6 ? ((struct sockaddr_in6 *)&sa)->sin6_port :
+				((struct sockaddr_in *)&sa)->sin_port);
+		modbus_where(where, sizeof(where), &at);
+		printf("strand-simdrive: '%s': modbus %s, serving\n", s->c->name, where);
 		fflush(stdout);
 	}
 	FD_ZERO(&all);
@@ -382,8 +388,15 @@ static int serve_rtu(struct mbs *s)
 	modbus_set_slave(s->ctx, (int)d->unit);
 	modbus_set_socket(s->ctx, master);
 	if (!s->c->quiet) {
-		printf("strand-simdrive: '%s': modbus rtu %s (%s) %u baud unit %u, serving\n",
-		       s->c->name, link, slave, d->baud, d->unit);
+		/* where it serves: the link, the pseudo-terminal behind it and
+		 * the line's rate, as the port of the map's unit */
+		struct modbus_desc at = *d;
+		char port[PATH_MAX + 64], where[PATH_MAX + 96];
+
+		snprintf(port, sizeof(port), "%s (%s) %u baud", link, slave, d->baud);
+		at.serial = port;
+		modbus_where(where, sizeof(where), &at);
+		printf("strand-simdrive: '%s': modbus %s, serving\n", s->c->name, where);
 		fflush(stdout);
 	}
 	while (!*s->c->stop) {

@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
@@ -62,16 +63,17 @@ static void STRAND_RT on_edge(void *ctx, const struct sim_gpio_edge *e)
 		c->on_exposure(c->ctx, &x);
 }
 
-struct sim_camera *sim_camera_new(const struct sim_camera_params *p, uint64_t cap,
-				  const char *log_path)
+int sim_camera_new(struct sim_camera **out, const struct sim_camera_params *p, uint64_t cap,
+		   const char *log_path, char *err, size_t errsize)
 {
 	struct sim_camera *c = calloc(1, sizeof(*c));
 	size_t bytes = sizeof(struct sim_camera_log) + cap * sizeof(struct sim_exposure);
-	int fd, err;
+	int fd, rc = -ENOMEM;
 
 	STRAND_ASSERT_NOT_RT();
+	*out = NULL;
 	if (!c)
-		return NULL;
+		goto fail;
 	c->p = *p;
 	c->busy_until_ns = INT64_MIN;
 	c->mem = calloc(1, bytes);
@@ -80,33 +82,34 @@ struct sim_camera *sim_camera_new(const struct sim_camera_params *p, uint64_t ca
 	c->mem->capacity = cap;
 	if (log_path) {
 		fd = open(log_path, O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-		if (fd < 0)
+		if (fd < 0) {
+			rc = -errno;
 			goto fail;
+		}
 		if (ftruncate(fd, (off_t)bytes)) {
-			err = errno;
+			rc = -errno;
 			close(fd);
-			errno = err;
 			goto fail;
 		}
 		c->log = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-		err = errno;
+		rc = -errno;
 		close(fd);
 		if (c->log == MAP_FAILED) {
 			c->log = NULL;
-			errno = err;
 			goto fail;
 		}
 		c->log_bytes = bytes;
 		memcpy(c->log->magic, "STRANDC2", 8);
 		c->log->capacity = cap;
 	}
-	return c;
+	*out = c;
+	return 0;
 fail:
-	err = errno;
-	free(c->mem);
+	snprintf(err, errsize, "simulated camera: %s", strerror(-rc));
+	if (c)
+		free(c->mem);
 	free(c);
-	errno = err;
-	return NULL;
+	return rc;
 }
 
 void sim_camera_free(struct sim_camera *c)

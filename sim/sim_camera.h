@@ -17,6 +17,7 @@
 #define SIM_CAMERA_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "sim_gpio.h"
@@ -46,13 +47,16 @@ struct sim_camera_log {
 	struct sim_exposure e[];
 };
 
+struct sim_camera;
+
 /*
- * [init] A camera keeping up to cap exposures in memory (all are counted);
- * log_path, when non-NULL, a file created to log up to cap trigger edges.
- * NULL with errno on failure.
+ * [init] A camera keeping up to cap exposures in memory (all are counted),
+ * into *out; log_path, when non-NULL, a file created to log up to cap
+ * trigger edges. 0, or a negative errno with a message in err ("simulated
+ * camera: ..."; the caller names the trigger it stands on).
  */
-struct sim_camera *sim_camera_new(const struct sim_camera_params *p, uint64_t cap,
-				  const char *log_path);
+int sim_camera_new(struct sim_camera **out, const struct sim_camera_params *p, uint64_t cap,
+		   const char *log_path, char *err, size_t errsize);
 void sim_camera_free(struct sim_camera *c);
 
 /* [init] Wire the trigger input to output line `line` of g. */

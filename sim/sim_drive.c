@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -225,27 +226,33 @@ static const struct hal_axis_ops sim_drive_ops = {
 	.close = sd_close,
 };
 
-struct sim_drive *sim_drive_new(const char *name, uint32_t nch, uint32_t tick_hz,
-				const struct sim_drive_channel *ch)
+int sim_drive_new(struct sim_drive **out, const char *name, uint32_t nch, uint32_t tick_hz,
+		  const struct sim_drive_channel *ch, char *err, size_t errsize)
 {
 	struct sim_drive *d;
 	double wmax = 0;
 	uint32_t i;
 
 	STRAND_ASSERT_NOT_RT();
+	*out = NULL;
 	if (!nch || !tick_hz) {
-		errno = EINVAL;
-		return NULL;
+		snprintf(err, errsize, "device '%s': simulated drive: %u channels at %u Hz", name,
+			 nch, tick_hz);
+		return -EINVAL;
 	}
 	for (i = 0; i < nch; i++)
 		if (!(ch[i].bandwidth_hz > 0) || !(ch[i].damping > 0) || ch[i].feedforward < 0 ||
 		    ch[i].feedforward > 1 || ch[i].vel_max < 0 || ch[i].acc_max < 0) {
-			errno = EINVAL;
-			return NULL;
+			snprintf(err, errsize, "device '%s': simulated drive: channel %u: bandwidth "
+				 "and damping above zero, feedforward 0 to 1, limits not negative",
+				 name, i);
+			return -EINVAL;
 		}
 	d = calloc(1, sizeof(*d) + nch * sizeof(d->ch[0]));
-	if (!d)
-		return NULL;
+	if (!d) {
+		snprintf(err, errsize, "device '%s': simulated drive: %s", name, strerror(ENOMEM));
+		return -ENOMEM;
+	}
 	d->ax.ops = &sim_drive_ops;
 	d->ax.name = name;
 	d->ax.nch = nch;
@@ -267,7 +274,8 @@ struct sim_drive *sim_drive_new(const char *name, uint32_t nch, uint32_t tick_hz
 	d->nsub = (uint32_t)ceil(wmax * d->dt / 0.05);
 	if (d->nsub < 1)
 		d->nsub = 1;
-	return d;
+	*out = d;
+	return 0;
 }
 
 struct hal_axis STRAND_RT *sim_drive_axis(struct sim_drive *d)

@@ -29,6 +29,7 @@
 #define SIM_DRIVE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "hal/axis.h"
@@ -71,14 +72,16 @@ struct sim_drive_watch {
 	bool powered;
 };
 
+struct sim_drive;
+
 /*
- * [init] A drive with nch channels at tick_hz. ch[] gives each channel's
- * model; name is kept (not copied). trace, when non-NULL, receives each
- * commit's targets: trace[(tick - first traced tick) * nch + c], up to
- * trace_ticks ticks. NULL on a bad parameter or out of memory (errno set).
+ * [init] A drive with nch channels at tick_hz into *out. ch[] gives each
+ * channel's model; name is kept (not copied). 0, or a negative errno
+ * (-EINVAL a bad parameter, -ENOMEM) with a message in err naming the
+ * device; err may be NULL when errsize is 0.
  */
-struct sim_drive *sim_drive_new(const char *name, uint32_t nch, uint32_t tick_hz,
-				const struct sim_drive_channel *ch);
+int sim_drive_new(struct sim_drive **out, const char *name, uint32_t nch, uint32_t tick_hz,
+		  const struct sim_drive_channel *ch, char *err, size_t errsize);
 
 /* The HAL view of the drive. */
 struct hal_axis *sim_drive_axis(struct sim_drive *d);

@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -222,22 +223,23 @@ static const struct hal_din_ops sim_din_ops = {
 	.close = gi_close,
 };
 
-struct sim_gpio *sim_gpio_new(const char *name, uint32_t nout, uint32_t nin, struct hal_clock *clk,
-			      uint32_t queue_cap)
+int sim_gpio_new(struct sim_gpio **out, const char *name, uint32_t nout, uint32_t nin,
+		 struct hal_clock *clk, uint32_t queue_cap, char *err, size_t errsize)
 {
 	struct sim_gpio *g = calloc(1, sizeof(*g));
 
 	STRAND_ASSERT_NOT_RT();
-	if (!g)
-		return NULL;
-	g->out = calloc(nout ? nout : 1, sizeof(*g->out));
-	g->in = calloc(nin ? nin : 1, sizeof(*g->in));
-	g->qcap = queue_cap ? queue_cap : 16;
-	g->q = calloc(g->qcap, sizeof(*g->q));
-	if (!g->out || !g->in || !g->q) {
+	*out = NULL;
+	if (g) {
+		g->out = calloc(nout ? nout : 1, sizeof(*g->out));
+		g->in = calloc(nin ? nin : 1, sizeof(*g->in));
+		g->qcap = queue_cap ? queue_cap : 16;
+		g->q = calloc(g->qcap, sizeof(*g->q));
+	}
+	if (!g || !g->out || !g->in || !g->q) {
 		sim_gpio_free(g);
-		errno = ENOMEM;
-		return NULL;
+		snprintf(err, errsize, "device '%s': simulated GPIO: %s", name, strerror(ENOMEM));
+		return -ENOMEM;
 	}
 	hal_ring_init(&g->inject, g->inject_buf, INJECT_CAP, sizeof(g->inject_buf[0]));
 	g->dout.ops = &sim_dout_ops;
@@ -247,7 +249,8 @@ struct sim_gpio *sim_gpio_new(const char *name, uint32_t nout, uint32_t nin, str
 	g->din.name = name;
 	g->din.nlines = nin;
 	g->clk = clk;
-	return g;
+	*out = g;
+	return 0;
 }
 
 void sim_gpio_free(struct sim_gpio *g)

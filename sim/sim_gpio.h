@@ -17,6 +17,7 @@
 #define SIM_GPIO_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "hal/clock.h"
@@ -34,13 +35,16 @@ struct sim_gpio_edge {
 
 typedef void (*sim_gpio_listener)(void *ctx, const struct sim_gpio_edge *e);
 
+struct sim_gpio;
+
 /*
- * [init] A chip with nout output and nin input lines, timestamping with clk.
- * queue_cap bounds the input edges scheduled ahead at any one time (the
- * camera needs one per frame in flight). NULL with errno on failure.
+ * [init] A chip with nout output and nin input lines, timestamping with clk,
+ * into *out. queue_cap bounds the input edges scheduled ahead at any one
+ * time (the camera needs one per frame in flight). 0, or -ENOMEM with a
+ * message in err naming the device.
  */
-struct sim_gpio *sim_gpio_new(const char *name, uint32_t nout, uint32_t nin, struct hal_clock *clk,
-			      uint32_t queue_cap);
+int sim_gpio_new(struct sim_gpio **out, const char *name, uint32_t nout, uint32_t nin,
+		 struct hal_clock *clk, uint32_t queue_cap, char *err, size_t errsize);
 void sim_gpio_free(struct sim_gpio *g);
 
 /* The HAL views; closing either one is a no-op, sim_gpio_free releases. */

@@ -45,13 +45,11 @@ void cu_make(struct cu_rig *r)
 {
 	uint32_t i;
 
-	r->sb = co_simbus_new(&r->clk, 1024, 1 << 20);
-	assert_non_null(r->sb);
+	assert_int_equal(co_simbus_new(&r->sb, &r->clk, 1024, 1 << 20, NULL, 0), 0);
 	for (i = 0; i < r->n; i++)
-		assert_non_null(co_simbus_add(r->sb, &r->slave[i], false));
+		assert_int_equal(co_simbus_add(NULL, r->sb, &r->slave[i], false, NULL, 0), 0);
 	r->cfg.bus = co_simbus_bus(r->sb);
-	r->ax = co_axis_new(&r->cfg);
-	assert_non_null(r->ax);
+	assert_int_equal(co_axis_new(&r->ax, &r->cfg, NULL, 0), 0);
 	r->m = co_axis_master(r->ax);
 	assert_non_null(r->m);
 }

@@ -116,11 +116,11 @@ void pu_rig_init(struct pu_rig *r, const struct pu_source *ps, uint32_t ntrig, u
 
 	memset(r, 0, sizeof(*r));
 	r->dev[0].name = "arm";
-	r->dev[0].driver = RIG_DRIVER_SIM;
+	r->dev[0].driver = &rig_drv_sim;
 	r->dev[1].name = "io";
-	r->dev[1].driver = RIG_DRIVER_SIM;
+	r->dev[1].driver = &rig_drv_sim;
 	r->dev[2].name = "arm2";
-	r->dev[2].driver = RIG_DRIVER_SIM;
+	r->dev[2].driver = &rig_drv_sim;
 	for (i = 0; i < ps->nch; i++) {
 		struct rig_output_desc *o = &r->out[i];
 
@@ -332,7 +332,7 @@ int pu_finish(struct play *p, bool check_missed)
 	for (i = 0; i < p->rig.nout; i++) {
 		const struct rig_out *ro = &p->rig.out[i];
 		const struct sim_drive_watch *w =
-			sim_drive_watch(p->rig.sim_drive[ro->dev], ro->ch);
+			sim_drive_watch(sim_drive_of(p->rig.axes[ro->dev]), ro->ch);
 		double pu = fabs(ro->scale.per_unit_d);
 
 		/* counts are integers: allow a count per tick of rounding */
@@ -343,7 +343,7 @@ int pu_finish(struct play *p, bool check_missed)
 				 ro->amax * pu);
 	}
 	for (i = 0; check_missed && i < p->rig.ntrig; i++)
-		assert_int_equal(sim_camera_missed(p->rig.camera[i]), 0);
+		assert_int_equal(sim_camera_missed(rig_sim_camera(&p->rig, i)), 0);
 	return code;
 }
 

@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "play/play.h"
+#include "rig/drv_sim.h"
 #include "rig/rig_desc.h"
 #include "scene/source.h"
 

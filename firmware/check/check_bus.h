@@ -8,7 +8,8 @@
 
 #include "rig/rig_desc.h"
 
-/* One line per bus device: an update's time on the bus, the rate reached. */
+/* Each device's lines by its driver: a bus device's update time on the bus,
+ * the rate reached, the load of a tick. */
 void check_buses(FILE *out, const struct rig_desc *rig, uint32_t tick_hz);
 
 #endif /* STRAND_CHECK_BUS_H */

@@ -147,10 +147,10 @@ static int parse_doc(struct ld *l, yaml_parser_t *p, yaml_document_t *doc)
 		return ld_fail_at(l, m, -EINVAL, "a scene file holds one YAML document");
 	}
 	yaml_document_delete(&extra);
-	l->doc = doc;
+	l->y.doc = doc;
 	err = sections(l, root);
 	yaml_document_delete(doc);
-	l->doc = NULL;
+	l->y.doc = NULL;
 	return err;
 }
 
@@ -176,11 +176,11 @@ int scene_file_parse(struct scene_file *sf, const char *path, const char *buf, s
 	}
 	mk = pool_alloc(&sf->pool, sizeof(*mk));
 	memset(&l, 0, sizeof(l));
+	ld_init(&l, &sf->pool);
 	l.sf = sf;
 	l.d = &d;
 	l.mk = mk;
 	l.err = err;
-	l.pool = &sf->pool;
 	if (!mk) {
 		err->code = -ENOMEM;
 		snprintf(err->msg, sizeof(err->msg), "out of memory");

@@ -21,9 +21,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "pool.h"
 #include "rig/rig_desc.h"
 #include "scene/scene_desc.h"
+#include "yaml/pool.h"
 
 /* Largest scene file the loader reads. */
 #define LOAD_MAX_BYTES (16u << 20)

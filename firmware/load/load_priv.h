@@ -2,8 +2,9 @@
 /*
  * load_priv.h - what the parts of the scene file loader share: the walk
  * state, the positions kept for the build's errors, and the typed readers of
- * YAML nodes that report a wrong type, a missing field or an unknown key
- * with its position. Not a public interface (see load.h).
+ * YAML nodes (yaml/yml.h, under the loader's names) that report a wrong
+ * type, a missing field or an unknown key with its position. Not a public
+ * interface (see load.h).
  */
 #ifndef STRAND_LOAD_PRIV_H
 #define STRAND_LOAD_PRIV_H
@@ -11,6 +12,7 @@
 #include <yaml.h>
 
 #include "load.h"
+#include "yaml/yml.h"
 
 /* Positions of one curve: its strand's mapping and each key (parallel to
  * the sd_curve's keys). */
@@ -37,7 +39,7 @@ struct sf_marks {
 
 /* The walk: one per parse. */
 struct ld {
-	yaml_document_t *doc;
+	struct yml y;              /* first: the readers' walk (document, pool, errors) */
 	struct scene_file *sf;
 	struct scene_desc *d;
 	struct sf_marks *mk;
@@ -54,6 +56,9 @@ int ld_find_node(const struct ld *l, const char *name, size_t len);
 
 /* ---- errors (load_yaml.c) ---------------------------------------------- */
 
+/* The readers' errors go where ld_fail's do; pool is the scene file's. */
+void ld_init(struct ld *l, struct pool *pool);
+
 struct ld_mark ld_mark_of(const yaml_node_t *n);
 
 /* Record the error (the first one only: later ones are consequences) and
@@ -64,38 +69,6 @@ int ld_fail(struct ld *l, const yaml_node_t *at, int code, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
 int ld_nomem(struct ld *l);
 
-/* "a mapping", "a sequence", "'text'", "nothing": what a node is, for a
- * wrong-type message. */
-const char *ld_describe(const yaml_node_t *n, char *buf, size_t size);
-
-/* The valid name closest to `word` by edit distance, or NULL when none is
- * close enough to be a likely typo. */
-const char *ld_suggest(const char *word, const char *const *names);
-
-/* ---- typed readers (load_yaml.c) ----------------------------------------- */
-
-yaml_node_t *ld_node(struct ld *l, int index);
-
-/*
- * Check that n is a mapping whose keys are all in `names` (NULL-terminated),
- * each at most once, and store each key's value node in vals[] at the
- * name's index (NULL when absent). `what` names the mapping in messages
- * ("node", "key", ...).
- */
-int ld_map(struct ld *l, yaml_node_t *n, const char *what, const char *const *names,
-	   yaml_node_t **vals);
-
-/* "missing field 'name' in <what>" at the mapping unless v is set. */
-int ld_require(struct ld *l, const yaml_node_t *map, const char *what, const yaml_node_t *v,
-	       const char *name);
-
-/* A sequence: its item count and items (document indices). */
-int ld_seq(struct ld *l, yaml_node_t *n, const char *what, yaml_node_item_t **items,
-	   size_t *count);
-
-/* A finite number in plain YAML notation (no quotes, no .inf/.nan). */
-int ld_num(struct ld *l, const yaml_node_t *n, double *out);
-
 /*
  * A number that must fit the core once multiplied by `scale` (1/360 for
  * degrees): |v * scale| < 2^30, as sd_to_q32() will check. `unit` names it
@@ -103,30 +76,85 @@ int ld_num(struct ld *l, const yaml_node_t *n, double *out);
  */
 int ld_q32(struct ld *l, const yaml_node_t *n, double scale, const char *unit, double *out);
 
-/* A whole number in [min, max]. */
-int ld_int(struct ld *l, const yaml_node_t *n, long long min, long long max, long long *out);
-
 /* A sequence of exactly `count` numbers, each checked like ld_q32. */
 int ld_vec(struct ld *l, yaml_node_t *n, size_t count, double scale, const char *unit,
 	   double *out);
 
-/* A scalar's text, copied into the pool. */
-int ld_str(struct ld *l, const yaml_node_t *n, const char **out);
+/* ---- the readers of yml.h, on the loader's walk ------------------------------ */
 
-/* A scalar that must be one of `names` (NULL-terminated): its index. */
-int ld_enum(struct ld *l, const yaml_node_t *n, const char *what, const char *const *names,
-	    int *out);
+static inline const char *ld_describe(const yaml_node_t *n, char *buf, size_t size)
+{
+	return yml_describe(n, buf, size);
+}
 
-/* true or false. */
-int ld_bool(struct ld *l, const yaml_node_t *n, bool *out);
+static inline const char *ld_suggest(const char *word, const char *const *names)
+{
+	return yml_suggest(word, names);
+}
+
+static inline yaml_node_t *ld_node(struct ld *l, int index)
+{
+	return yml_node(&l->y, index);
+}
+
+static inline int ld_map(struct ld *l, yaml_node_t *n, const char *what,
+			 const char *const *names, yaml_node_t **vals)
+{
+	return yml_map(&l->y, n, what, names, vals);
+}
+
+static inline int ld_require(struct ld *l, const yaml_node_t *map, const char *what,
+			     const yaml_node_t *v, const char *name)
+{
+	return yml_require(&l->y, map, what, v, name);
+}
+
+static inline int ld_seq(struct ld *l, yaml_node_t *n, const char *what,
+			 yaml_node_item_t **items, size_t *count)
+{
+	return yml_seq(&l->y, n, what, items, count);
+}
+
+static inline int ld_num(struct ld *l, const yaml_node_t *n, double *out)
+{
+	return yml_num(&l->y, n, out);
+}
+
+static inline int ld_positive(struct ld *l, const yaml_node_t *n, double *out)
+{
+	return yml_positive(&l->y, n, out);
+}
+
+static inline int ld_int(struct ld *l, const yaml_node_t *n, long long min, long long max,
+			 long long *out)
+{
+	return yml_int(&l->y, n, min, max, out);
+}
+
+static inline int ld_str(struct ld *l, const yaml_node_t *n, const char **out)
+{
+	return yml_str(&l->y, n, out);
+}
+
+static inline int ld_enum(struct ld *l, const yaml_node_t *n, const char *what,
+			  const char *const *names, int *out)
+{
+	return yml_enum(&l->y, n, what, names, out);
+}
+
+static inline int ld_bool(struct ld *l, const yaml_node_t *n, bool *out)
+{
+	return yml_bool(&l->y, n, out);
+}
+
+static inline int ld_name(struct ld *l, const yaml_node_t *n, const char **out)
+{
+	return yml_name(&l->y, n, out);
+}
 
 /* A `limits:` mapping (min, max, velocity, acceleration) in degrees or in
  * scene units (load_node.c). */
 int ld_limits(struct ld *l, yaml_node_t *n, bool degrees, struct sd_limits *lim);
-
-/* A channel name: letters, digits, '_' and '-', starting with a letter or
- * '_' (no '.': channels are `<name>.x`). */
-int ld_name(struct ld *l, const yaml_node_t *n, const char **out);
 
 /* ---- the parts of a scene file ---------------------------------------------- */
 
@@ -178,21 +206,5 @@ struct ld_rig_sections {
 	yaml_node_t *devices, *outputs, *triggers, *inputs;
 };
 int ld_rig(struct ld *l, const struct ld_rig_sections *s);
-
-/* A Modbus device's modbus: section; then every output's axis against the
- * register maps (load_modbus.c). */
-int ld_modbus(struct ld *l, yaml_node_t *map, struct rig_device_desc *dev);
-int ld_modbus_outputs(struct ld *l, const struct rig_desc *r, yaml_node_t *outputs);
-
-/* load_canopen.c: a canopen device's canopen: section; an output on it
- * (node: into *node, its axis; mode: checked against channel c); every
- * bus's load and identifiers, once all outputs are read (at[k]: device k's
- * canopen: section, for the position). */
-struct chan;
-int ld_canopen_bus(struct ld *l, yaml_node_t *map, struct rig_canopen_desc *c);
-int ld_canopen_output(struct ld *l, yaml_node_t *map, yaml_node_t *axis_at, yaml_node_t *node_at,
-		      yaml_node_t *mode_at, const struct chan *c, struct rig_output_desc *o,
-		      long long *node);
-int ld_canopen_buses(struct ld *l, const struct rig_desc *r, yaml_node_t *const *at);
 
 #endif /* STRAND_LOAD_PRIV_H */

@@ -5,7 +5,10 @@
  * player would otherwise refuse at start is reported here, at its place in
  * the file: an unknown device or channel (with the closest name), an axis
  * or line used twice, an output without speed and acceleration limits, a
- * trigger pulse that would overlap the next frame's.
+ * trigger pulse that would overlap the next frame's, by the rules of
+ * rig_desc.c. A device's driver reads its own settings, and those of an
+ * output on it, and checks the whole rig once every output is read
+ * (rig_driver.h); this file never tests which driver a device has.
  */
 #include "load_priv.h"
 
@@ -14,7 +17,22 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "rig/rig_driver.h"
 #include "scene/channel.h"
+
+/* Keys of a mapping at most, drivers at most. */
+#define RL_KEYS_MAX 48
+#define RL_DRIVERS_MAX 16
+
+/* The keys of a device's or an output's mapping: the loader's own, then the
+ * drivers' settings; owner[i] is the driver of key[i], NULL for the
+ * loader's. A driver's keys are consecutive. */
+struct rl_keys {
+	const char *key[RL_KEYS_MAX + 1];
+	const struct rig_driver *owner[RL_KEYS_MAX];
+	uint32_t n;
+	uint32_t ready;   /* a device's: the index of ready: */
+};
 
 /* What the rig sections need while they are read. */
 struct rl {
@@ -23,9 +41,59 @@ struct rl {
 	struct chan_list ch;
 	const char **chan_names; /* NULL-terminated, for suggestions */
 	const char **dev_names;
-	struct ld_mark *dev_at;
-	yaml_node_t **co_at; /* each device's canopen: mapping, or NULL */
+	yaml_node_t **dev_map;   /* each device's mapping */
+	yaml_node_item_t *out_it; /* the outputs' items */
+	struct rl_keys dk, ok;   /* a device's keys, an output's */
+	const char *drv_names[RL_DRIVERS_MAX + 1];
+	struct mot_timing t;     /* the scene's, for the triggers */
 };
+
+static void keys_add(struct rl_keys *k, const char *const *names, const struct rig_driver *owner)
+{
+	for (; names && *names && k->n < RL_KEYS_MAX; names++) {
+		k->owner[k->n] = owner;
+		k->key[k->n++] = *names;
+	}
+	k->key[k->n] = NULL;
+}
+
+/* A device's keys: name, driver, sim, then the drivers' settings; those of
+ * a driver of lines before ready: (the rig-ready line is one of its
+ * lines), the others' after it. */
+static void device_keys(struct rl *rl)
+{
+	static const char *const head[] = { "name", "driver", "sim", NULL };
+	static const char *const ready[] = { "ready", NULL };
+	const struct rig_driver *const *d;
+	struct rl_keys *k = &rl->dk;
+
+	k->n = 0;
+	keys_add(k, head, NULL);
+	for (d = rig_drivers; *d; d++)
+		if ((*d)->make_lines)
+			keys_add(k, (*d)->device_keys, *d);
+	k->ready = k->n;
+	keys_add(k, ready, NULL);
+	for (d = rig_drivers; *d; d++)
+		if (!(*d)->make_lines)
+			keys_add(k, (*d)->device_keys, *d);
+}
+
+/* The values of driver drv's keys among v[] into dv[], in its order;
+ * returns the first one present, or NULL. */
+static yaml_node_t *driver_values(const struct rl_keys *k, yaml_node_t *const *v,
+				  const struct rig_driver *drv, yaml_node_t **dv)
+{
+	yaml_node_t *first = NULL;
+	uint32_t i, j = 0;
+
+	for (i = 0; i < k->n; i++)
+		if (k->owner[i] == drv) {
+			dv[j++] = v[i];
+			first = first ? first : v[i];
+		}
+	return first;
+}
 
 static int find(const char *const *names, const char *name)
 {
@@ -57,15 +125,6 @@ static int lookup(struct rl *rl, yaml_node_t *n, const char *what, const char *c
 	return ld_fail(rl->l, n, -EINVAL, "unknown %s '%s' (not in %s)", what, name, section);
 }
 
-static int positive(struct ld *l, yaml_node_t *n, double *out)
-{
-	int err = ld_num(l, n, out);
-
-	if (!err && !(*out > 0))
-		err = ld_fail(l, n, -EINVAL, "must be above zero");
-	return err;
-}
-
 static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 {
 	static const char *const keys[] = { "bandwidth", "damping", "feedforward",
@@ -77,7 +136,7 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 
 	for (i = 0; !err && i < 6; i++)
 		if (v[i])
-			err = positive(l, v[i], out[i]);
+			err = ld_positive(l, v[i], out[i]);
 	if (!err && v[2] && s->feedforward > 1)
 		err = ld_fail(l, v[2], -EINVAL, "feedforward is a fraction, 0 to 1");
 	return err;
@@ -118,9 +177,6 @@ static int ready_output(struct ld *l, yaml_node_t *map, struct rig_device_desc *
 
 static int devices(struct rl *rl, yaml_node_t *seq)
 {
-	static const char *const keys[] = { "name", "driver", "sim", "chip", "ready", "modbus",
-					    "canopen", NULL };
-	static const char *const drivers[] = { "sim", "modbus", "gpio", "canopen", NULL };
 	struct ld *l = rl->l;
 	struct rig_device_desc *dev;
 	yaml_node_item_t *it;
@@ -131,14 +187,18 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 		return err;
 	dev = pool_array(l->pool, count ? count : 1, sizeof(*dev));
 	rl->dev_names = pool_array(l->pool, count + 1, sizeof(*rl->dev_names));
-	rl->co_at = pool_array(l->pool, count ? count : 1, sizeof(*rl->co_at));
-	if (!dev || !rl->dev_names || !rl->co_at)
+	rl->dev_map = pool_array(l->pool, count ? count : 1, sizeof(*rl->dev_map));
+	if (!dev || !rl->dev_names || !rl->dev_map)
 		return ld_nomem(l);
 	for (i = 0; i < count; i++) {
-		yaml_node_t *map = ld_node(l, it[i]), *v[7];
-		int drv, k;
+		yaml_node_t *map = ld_node(l, it[i]), *v[RL_KEYS_MAX], *dv[RL_KEYS_MAX];
+		struct rig_parse p = { .y = &l->y, .tick_hz = l->d->tick_hz, .map = map, .v = dv };
+		const struct rig_driver *drv = NULL;
+		uint32_t j;
+		int d, k;
 
-		err = ld_map(l, map, "device", keys, v);
+		rl->dev_map[i] = map;
+		err = ld_map(l, map, "device", rl->dk.key, v);
 		if (!err)
 			err = ld_require(l, map, "device", v[0], "name");
 		if (!err)
@@ -146,32 +206,36 @@ static int devices(struct rl *rl, yaml_node_t *seq)
 		if (!err)
 			err = ld_name(l, v[0], &dev[i].name);
 		if (!err)
-			err = ld_enum(l, v[1], "driver", drivers, &drv);
+			err = ld_enum(l, v[1], "driver", rl->drv_names, &d);
 		if (!err && v[2])
 			err = sim_params(l, v[2], &dev[i].sim);
-		if (!err && v[3] && drv != RIG_DRIVER_GPIO)
-			err = ld_fail(l, v[3], -EINVAL, "chip: is for a device with driver gpio");
-		if (!err && v[3])
-			err = ld_str(l, v[3], &dev[i].chip);
-		if (!err && v[4])
-			err = ready_output(l, v[4], &dev[i]);
-		if (!err && (drv == RIG_DRIVER_CANOPEN) != !!v[6])
-			err = ld_fail(l, v[6] ? v[6] : map, -EINVAL, v[6] ?
-				      "a canopen: section belongs to a device of driver canopen" :
-				      "a device of driver canopen needs its canopen: section");
-		if (!err && v[6])
-			err = ld_canopen_bus(l, v[6], &dev[i].canopen);
+		if (!err)
+			drv = rig_drivers[d];
+		/* the drivers' settings and ready:, in the keys' order: a
+		 * driver reads its own, another's is refused */
+		for (j = 3; !err && j < rl->dk.n; j++) {
+			const struct rig_driver *o = rl->dk.owner[j];
+			yaml_node_t *first;
+
+			if (j == rl->dk.ready) {
+				if (v[j])
+					err = ready_output(l, v[j], &dev[i]);
+				continue;
+			}
+			if (!o || rl->dk.owner[j - 1] == o)
+				continue; /* a driver once, at its first key */
+			first = driver_values(&rl->dk, v, o, dv);
+			if (o != drv && first)
+				err = ld_fail(l, first, -EINVAL, "%s", o->device_foreign);
+			else if (o == drv && o->parse_device)
+				err = o->parse_device(&p, &dev[i]);
+		}
+		/* a driver without keys of its own reads its settings last */
+		if (!err && !drv->device_keys && drv->parse_device)
+			err = drv->parse_device(&p, &dev[i]);
 		if (err)
 			return err;
-		rl->co_at[i] = v[6];
-		dev[i].driver = (enum rig_driver)drv;
-		/* a Modbus device's bus and register map (load_modbus.c) */
-		if ((dev[i].driver == RIG_DRIVER_MODBUS) != !!v[5])
-			return ld_fail(l, v[5] ? v[5] : map, -EINVAL, v[5] ?
-				       "a modbus: section belongs to a device of driver modbus" :
-				       "a device of driver modbus needs its modbus: section");
-		if (v[5] && (err = ld_modbus(l, v[5], &dev[i])))
-			return err;
+		dev[i].driver = drv;
 		k = find(rl->dev_names, dev[i].name);
 		if (k >= 0)
 			return ld_fail(l, v[0], -EINVAL, "device '%s' is already listed (line %u)",
@@ -191,24 +255,60 @@ static bool is_angle(const struct rl *rl, const struct chan *c)
 	return c->kind == CHAN_CAMERA && c->comp >= 3;
 }
 
+/* An output's keys: the loader's, then the drivers' (in the table's order). */
+enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME, O_N };
+
+static void output_keys(struct rl *rl)
+{
+	static const char *const own[] = { "channel", "device", "axis", "counts_per_unit",
+					   "offset", "limits", "ferror", "min_ferror",
+					   "in_position", "home", NULL };
+	const struct rig_driver *const *d;
+
+	rl->ok.n = 0;
+	keys_add(&rl->ok, own, NULL);
+	for (d = rig_drivers; *d; d++)
+		keys_add(&rl->ok, (*d)->output_keys, *d);
+}
+
+/* The axis of output o on its device: axis:, or what its driver reads;
+ * another driver's keys are refused. */
+static int output_axis(struct rl *rl, yaml_node_t *map, yaml_node_t *const *v,
+		       const struct chan *c, const struct rig_driver *drv,
+		       struct rig_output_desc *o, long long *axis, yaml_node_t **at)
+{
+	const struct rig_driver *const *d;
+	struct ld *l = rl->l;
+	yaml_node_t *dv[RL_KEYS_MAX], *first;
+	struct rig_parse p = { .y = &l->y, .tick_hz = l->d->tick_hz, .map = map, .v = dv };
+
+	for (d = rig_drivers; *d; d++)
+		if (*d != drv && (first = driver_values(&rl->ok, v, *d, dv)))
+			return ld_fail(l, first, -EINVAL, "%s; '%s' is not one",
+				       (*d)->output_foreign, o->device);
+	*at = v[O_AXIS];
+	if (drv->parse_output) {
+		driver_values(&rl->ok, v, drv, dv);
+		return drv->parse_output(&p, v[O_AXIS], c, o, axis, at);
+	}
+	return v[O_AXIS] ? ld_int(l, v[O_AXIS], 0, 1023, axis) : 0;
+}
+
 static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output_desc *o,
 		  const yaml_node_item_t *it)
 {
-	static const char *const keys[] = { "channel", "device", "axis", "counts_per_unit",
-					    "offset", "limits", "ferror", "min_ferror",
-					    "in_position", "home", "node", "mode", NULL };
-	enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME,
-	       O_NODE, O_MODE, O_N };
 	struct ld *l = rl->l;
-	yaml_node_t *v[O_N];
+	yaml_node_t *v[RL_KEYS_MAX], *axis_at = NULL;
+	const struct rig_driver *drv;
 	const struct chan *c;
-	double scale, *num[4] = { &o->ferror, &o->min_ferror, &o->in_position, &o->home };
+	double *num[4] = { &o->ferror, &o->min_ferror, &o->in_position, &o->home };
+	char msg[256];
 	long long axis;
 	int err, ch, dev, k;
 	uint32_t j, used = 0;
-	bool deg;
+	bool deg, at_min;
 
-	err = ld_map(l, map, "output", keys, v);
+	err = ld_map(l, map, "output", rl->ok.key, v);
 	if (!err)
 		err = ld_require(l, map, "output", v[O_CH], "channel");
 	if (!err)
@@ -223,41 +323,33 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 		return err;
 	c = &rl->ch.c[ch];
 	deg = is_angle(rl, c);
+	drv = rl->r->devices[dev].driver;
 	o->channel = rl->chan_names[ch];
 	o->device = rl->dev_names[dev];
 	for (j = 0; j < i; j++)
 		used += !strcmp(rl->r->outputs[j].device, o->device);
 	axis = used; /* by default the next axis of the device */
-	if (rl->r->devices[dev].driver == RIG_DRIVER_CANOPEN)
-		err = ld_canopen_output(l, map, v[O_AXIS], v[O_NODE], v[O_MODE], c, o, &axis);
-	else if (v[O_NODE] || v[O_MODE])
-		err = ld_fail(l, v[O_NODE] ? v[O_NODE] : v[O_MODE], -EINVAL,
-			      "node: and mode: place an output on a canopen device; '%s' is not one",
-			      o->device);
-	else if (v[O_AXIS])
-		err = ld_int(l, v[O_AXIS], 0, 1023, &axis);
+	err = output_axis(rl, map, v, c, drv, o, &axis, &axis_at);
 	if (err)
 		return err;
 	o->axis = (uint32_t)axis;
 	for (j = 0; j < i; j++)
 		if (!strcmp(rl->r->outputs[j].device, o->device) && rl->r->outputs[j].axis == o->axis)
-			return ld_fail(l, v[O_NODE] ? v[O_NODE] : v[O_AXIS] ? v[O_AXIS] : map,
-				       -EINVAL, "%s %u of device '%s' already drives '%s' (line %u)",
-				       v[O_NODE] ? "node" : "axis", o->axis, o->device,
+			return ld_fail(l, axis_at ? axis_at : map, -EINVAL,
+				       "%s %u of device '%s' already drives '%s' (line %u)",
+				       drv->axis_name ? drv->axis_name : "axis", o->axis, o->device,
 				       rl->r->outputs[j].channel,
 				       (unsigned)ld_mark_of(ld_node(l, it[j])).line);
 	err = ld_num(l, v[O_CPU], &o->counts_per_unit);
 	if (err)
 		return err;
-	scale = fabs(o->counts_per_unit) * (deg ? 360 : 1);
-	if (o->counts_per_unit == 0 || scale >= 2147483648.0)
-		return ld_fail(l, v[O_CPU], -ERANGE,
-			       "counts_per_unit must be non-zero and below 2^31 counts per %s",
-			       deg ? "turn" : "unit");
+	err = rig_output_check_scale(o, deg, msg, sizeof(msg));
+	if (err)
+		return ld_fail(l, v[O_CPU], err, "%s", msg);
 	if (v[O_OFF])
 		err = ld_num(l, v[O_OFF], &o->offset);
-	if (!err && v[O_OFF] && fabs(o->offset) > 9e18)
-		err = ld_fail(l, v[O_OFF], -ERANGE, "offset out of range");
+	if (!err && v[O_OFF] && (err = rig_output_check_offset(o, msg, sizeof(msg))))
+		err = ld_fail(l, v[O_OFF], err, "%s", msg);
 	if (!err && v[O_LIM])
 		err = ld_limits(l, v[O_LIM], deg, &o->limits);
 	for (k = 0; !err && k < 4; k++)
@@ -267,29 +359,16 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 					     deg ? "degrees" : "scene units", num[k]);
 	if (err)
 		return err;
-	if (o->ferror < 0 || o->min_ferror < 0 || o->in_position < 0)
-		return ld_fail(l, map, -EINVAL, "ferror, min_ferror and in_position cannot be negative");
-	if (o->ferror > 0 && o->min_ferror > o->ferror)
-		return ld_fail(l, v[O_MINFE], -EINVAL, "min_ferror %.10g is above ferror %.10g",
-			       o->min_ferror, o->ferror);
+	err = rig_output_check_ferror(o, &at_min, msg, sizeof(msg));
+	if (err)
+		return ld_fail(l, at_min ? v[O_MINFE] : map, err, "%s", msg);
 	/* moves and stops are planned with these: the output's, else its node's */
-	if (c->kind == CHAN_VALUE) {
-		const struct sd_limits *n = &l->d->nodes[c->index].limits;
-
-		if (!o->limits.has_vel && n->has_vel) {
-			o->limits.has_vel = true;
-			o->limits.vel = n->vel;
-		}
-		if (!o->limits.has_acc && n->has_acc) {
-			o->limits.has_acc = true;
-			o->limits.acc = n->acc;
-		}
-	}
-	if (!o->limits.has_vel || !o->limits.has_acc)
-		return ld_fail(l, map, -EINVAL,
-			       "output '%s' needs velocity and acceleration limits (here%s): the "
-			       "pre-roll, the moves and every stop are planned with them",
-			       o->channel, c->kind == CHAN_VALUE ? " or on its node" : "");
+	rig_output_limits(&o->limits, c->kind == CHAN_VALUE ? &l->d->nodes[c->index].limits : NULL,
+			  &o->limits);
+	err = rig_output_check_limits(o->channel, &o->limits, c->kind == CHAN_VALUE, msg,
+				      sizeof(msg));
+	if (err)
+		return ld_fail(l, map, err, "%s", msg);
 	return 0;
 }
 
@@ -307,6 +386,7 @@ static int outputs(struct rl *rl, yaml_node_t *seq)
 	if (!out)
 		return ld_nomem(l);
 	rl->r->outputs = out;
+	rl->out_it = it;
 	for (i = 0; i < count; i++) {
 		err = output(rl, ld_node(l, it[i]), (uint32_t)i, &out[i], it);
 		if (err)
@@ -359,9 +439,10 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 					    "offset_ms", NULL };
 	enum { G_NAME, G_DEV, G_LINE, G_PULSE, G_LOW, G_OFF, G_N };
 	struct ld *l = rl->l;
-	const struct scene_desc *d = l->d;
 	yaml_node_t *v[G_N];
-	double frame_ms = 1000.0 * d->rate_den / d->rate_num, tick_ms = 1000.0 / d->tick_hz;
+	int64_t width, offset;
+	char msg[256];
+	bool at_offset;
 	int err, dev;
 
 	err = ld_map(l, map, "trigger", keys, v);
@@ -382,7 +463,7 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	t->device = rl->dev_names[dev];
 	t->pulse_ms = 1;
 	if (v[G_PULSE])
-		err = positive(l, v[G_PULSE], &t->pulse_ms);
+		err = ld_positive(l, v[G_PULSE], &t->pulse_ms);
 	if (!err && v[G_LOW])
 		err = ld_bool(l, v[G_LOW], &t->active_low);
 	if (!err && v[G_OFF])
@@ -391,15 +472,12 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 		err = line_free(rl, v[G_LINE], t->device, t->line, t->line_name);
 	if (err)
 		return err;
-	/* the player's rule (rig.c): whole ticks, at least one, ending before
-	 * the next frame's edge; an offset of less than a frame */
-	if (fmax(ceil(t->pulse_ms / tick_ms - 1e-9), 1) >= floor(frame_ms / tick_ms + 1e-9))
-		return ld_fail(l, v[G_PULSE] ? v[G_PULSE] : map, -EINVAL,
-			       "a %.10g ms pulse does not end before the next frame's (frames are "
-			       "%.6g ms apart, ticks %.6g ms)", t->pulse_ms, frame_ms, tick_ms);
-	if (fabs(t->offset_ms) >= frame_ms)
-		return ld_fail(l, v[G_OFF], -EINVAL, "offset %.10g ms is a frame (%.6g ms) or more",
-			       t->offset_ms, frame_ms);
+	/* the player's rules (rig_desc.c): whole ticks, at least one, ending
+	 * before the next frame's edge; an offset of less than a frame */
+	err = rig_trigger_check(t, &rl->t, &width, &offset, &at_offset, msg, sizeof(msg));
+	if (err)
+		return ld_fail(l, at_offset ? v[G_OFF] : v[G_PULSE] ? v[G_PULSE] : map, err, "%s",
+			       msg);
 	return 0;
 }
 
@@ -477,6 +555,25 @@ static int lines(struct rl *rl, yaml_node_t *seq, bool trig)
 	return 0;
 }
 
+/* The drivers' checks of the whole rig, at the place they name. */
+static int validate(struct rl *rl)
+{
+	struct ld *l = rl->l;
+	struct rig_desc_err e;
+	yaml_node_t *at = NULL;
+	int err = rig_desc_validate(rl->r, l->d->tick_hz, &e);
+
+	if (!err)
+		return 0;
+	if (e.output >= 0)
+		at = ld_node(l, rl->out_it[e.output]);
+	else if (e.device >= 0)
+		at = e.key ? yml_value(&l->y, rl->dev_map[e.device], e.key) : NULL;
+	if (!at && e.device >= 0)
+		at = rl->dev_map[e.device];
+	return ld_fail(l, at, err, "%s", e.msg);
+}
+
 int ld_rig(struct ld *l, const struct ld_rig_sections *s)
 {
 	struct rl rl = { .l = l, .r = &l->sf->rig };
@@ -488,6 +585,12 @@ int ld_rig(struct ld *l, const struct ld_rig_sections *s)
 	if (!s->devices)
 		return ld_fail(l, s->outputs ? s->outputs : s->triggers ? s->triggers : s->inputs,
 			       -EINVAL, "a rig needs its devices: section first");
+	for (i = 0; rig_drivers[i] && i < RL_DRIVERS_MAX; i++)
+		rl.drv_names[i] = rig_drivers[i]->name;
+	device_keys(&rl);
+	output_keys(&rl);
+	/* ld_timing has checked what mot_timing_init checks */
+	mot_timing_init(&rl.t, l->d->rate_num, l->d->rate_den, l->d->tick_hz);
 	if (chan_list_make(&rl.ch, l->d))
 		return ld_nomem(l);
 	rl.chan_names = pool_array(l->pool, rl.ch.n + 1, sizeof(*rl.chan_names));
@@ -502,9 +605,7 @@ int ld_rig(struct ld *l, const struct ld_rig_sections *s)
 	if (!err && s->outputs)
 		err = outputs(&rl, s->outputs);
 	if (!err)
-		err = ld_modbus_outputs(l, rl.r, s->outputs);
-	if (!err)
-		err = ld_canopen_buses(l, rl.r, rl.co_at);
+		err = validate(&rl);
 	if (!err && s->triggers)
 		err = lines(&rl, s->triggers, true);
 	if (!err && s->inputs)

@@ -10,7 +10,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "hal/modbus/modbus_dev.h"
 #include "hal/rt.h"
 #include "scene/timecode.h"
 
@@ -419,8 +418,7 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 		if (res->limited[i])
 			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
 				p->rig.out[i].channel, (long long)res->limited[i]);
-	for (i = 0; i < p->rig.naxes; i++)
-		hal_modbus_report(p->rig.axes[i], f);
+	rig_report(&p->rig, f);
 	if (res->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",
 			(long long)res->status_dropped);

@@ -1,5 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* rig.c - building and starting a rig (see rig.h). */
+/*
+ * rig.c - building and starting a rig (see rig.h): what every device has in
+ * common, the outputs' scales and limits, the lines' places; each device
+ * itself is its driver's (rig_driver.h).
+ */
 #include "rig.h"
 
 #include <errno.h>
@@ -9,19 +13,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rig_canopen.h"
-#include "rig_modbus.h"
-#include "sim/co_simbus.h"
-#include "sim/sim_camera.h"
-#include "sim/sim_drive.h"
-#include "sim/sim_gpio.h"
+#include "rig_driver.h"
+#include "hal/rt.h"
 
-static const char *const driver_name[] = {
-	[RIG_DRIVER_SIM] = "sim",
-	[RIG_DRIVER_MODBUS] = "modbus",
-	[RIG_DRIVER_GPIO] = "gpio",
-	[RIG_DRIVER_CANOPEN] = "canopen",
-};
+static int fail(char *err, size_t size, int code, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
 
 static int fail(char *err, size_t size, int code, const char *fmt, ...)
 {
@@ -65,51 +61,85 @@ static int find_device(const struct rig_desc *d, const char *name)
 	return -1;
 }
 
-static double sim_or(double v, double dflt)
+int rig_device(const struct rig *r, const char *name)
 {
-	return v > 0 ? v : dflt;
+	uint32_t k;
+
+	for (k = 0; k < r->ndev; k++)
+		if (name && !strcmp(r->dev[k].desc->name, name))
+			return (int)k;
+	return -1;
 }
 
-/* Limits of output i: the output's where set, else the scene's. */
-static int out_limits(struct rig_out *o, const struct rig_output_desc *od,
-		      const struct src_channel *sc, uint32_t i, char *err, size_t size)
+uint32_t rig_axis_channels(const struct rig *r, uint32_t ax)
 {
-	const struct sd_limits *a = &od->limits, *b = &sc->limits;
+	uint32_t i, n = 0;
 
-	o->min = a->has_min ? to_core(o->unit, a->min) :
-		 b->has_min ? to_core(o->unit, b->min) : -INFINITY;
-	o->max = a->has_max ? to_core(o->unit, a->max) :
-		 b->has_max ? to_core(o->unit, b->max) : INFINITY;
-	o->vmax = a->has_vel ? to_core(o->unit, a->vel) : b->has_vel ? to_core(o->unit, b->vel) : 0;
-	o->amax = a->has_acc ? to_core(o->unit, a->acc) : b->has_acc ? to_core(o->unit, b->acc) : 0;
-	if (!(o->vmax > 0) || !isfinite(o->vmax))
-		return fail(err, size, -EINVAL,
-			    "outputs[%u] (%s): needs a velocity limit (on the output or its node): "
-			    "pre-roll, moves and stops are planned with it", i, od->channel);
-	if (!(o->amax > 0) || !isfinite(o->amax))
-		return fail(err, size, -EINVAL,
-			    "outputs[%u] (%s): needs an acceleration limit (on the output or its "
-			    "node): pre-roll, moves and stops are planned with it", i, od->channel);
-	if (o->min > o->max)
-		return fail(err, size, -EINVAL, "outputs[%u] (%s): limits min > max", i,
-			    od->channel);
+	for (i = 0; i < r->nout; i++)
+		if (r->out[i].dev == ax && r->out[i].ch + 1 > n)
+			n = r->out[i].ch + 1;
+	return n;
+}
+
+int64_t rig_out_initial(const struct rig_out *o)
+{
+	return o->vel_mode ? 0 : hal_scale_counts(&o->scale, o->home, NULL);
+}
+
+/* Output i from its description: the rules of rig_desc.c, then the scale
+ * and the limits in core units. */
+static int make_output(struct rig_out *o, const struct rig_output_desc *od,
+		       const struct src_channel *sc, uint32_t i, char *err, size_t size)
+{
+	struct sd_limits lim;
+	double per_unit;
+	char msg[256];
+	bool at_min;
+	int rc;
+
+	o->unit = sc->unit;
+	o->vel_mode = sc->unit == SRC_UNIT_RPM;
+	rig_output_limits(&od->limits, &sc->limits, &lim);
+	rc = rig_output_check_scale(od, sc->unit == SRC_UNIT_TURNS, msg, sizeof(msg));
+	if (!rc)
+		rc = rig_output_check_offset(od, msg, sizeof(msg));
+	if (!rc)
+		rc = rig_output_check_ferror(od, &at_min, msg, sizeof(msg));
+	if (!rc)
+		rc = rig_output_check_limits(od->channel, &lim, true, msg, sizeof(msg));
+	if (rc)
+		return fail(err, size, rc, "outputs[%u] (%s): %s", i, od->channel, msg);
+	o->min = lim.has_min ? to_core(o->unit, lim.min) : -INFINITY;
+	o->max = lim.has_max ? to_core(o->unit, lim.max) : INFINITY;
+	o->vmax = to_core(o->unit, lim.vel);
+	o->amax = to_core(o->unit, lim.acc);
+	per_unit = od->counts_per_unit * (sc->unit == SRC_UNIT_TURNS ? 360.0 : 1.0);
+	o->scale.per_unit = (mot_q32)llround(per_unit * 4294967296.0);
+	o->scale.per_unit_d = (double)o->scale.per_unit / 4294967296.0;
+	o->scale.offset = llround(od->offset);
+	o->ferror = to_core(o->unit, od->ferror);
+	o->min_ferror = to_core(o->unit, od->min_ferror);
+	/* in position: half the bound at rest, or four counts */
+	o->in_position = od->in_position > 0 ? to_core(o->unit, od->in_position) :
+			 o->min_ferror > 0 ? o->min_ferror / 2 :
+			 4.0 / fabs(o->scale.per_unit_d);
+	o->home = (mot_q32)llround(to_core(o->unit, od->home) * 4294967296.0);
 	return 0;
 }
 
 static int build_outputs(struct rig *r, const struct rig_desc *d, struct play_source *src,
-			 const int *dev_axis, char *err, size_t size)
+			 char *err, size_t size)
 {
 	uint32_t i, *sel;
-	int rc;
+	int rc = 0;
 
 	sel = calloc(d->noutputs ? d->noutputs : 1, sizeof(*sel));
 	if (!sel)
 		return fail(err, size, -ENOMEM, "out of memory");
-	for (i = 0; i < d->noutputs; i++) {
+	for (i = 0; !rc && i < d->noutputs; i++) {
 		const struct rig_output_desc *od = &d->outputs[i];
 		struct rig_out *o = &r->out[i];
 		struct src_channel sc;
-		double per_unit;
 		int dev = find_device(d, od->device), idx;
 
 		memset(&sc, 0, sizeof(sc));
@@ -117,130 +147,105 @@ static int build_outputs(struct rig *r, const struct rig_desc *d, struct play_so
 		if (idx < 0) {
 			rc = fail(err, size, -ENOENT, "outputs[%u]: no channel '%s' in scene '%s'", i,
 				  od->channel, src->name);
-			goto out;
+			break;
 		}
 		if (dev < 0) {
 			rc = fail(err, size, -ENOENT, "outputs[%u] (%s): no device '%s' in devices:",
 				  i, od->channel, od->device ? od->device : "");
-			goto out;
+			break;
 		}
 		o->channel = od->channel;
 		o->src = (uint32_t)idx;
 		sel[i] = (uint32_t)idx;
-		o->dev = (uint32_t)dev_axis[dev];
+		o->dev = (uint32_t)r->dev[dev].axis;
 		o->ch = od->axis;
-		o->unit = sc.unit;
-		o->vel_mode = sc.unit == SRC_UNIT_RPM;
-		rc = out_limits(o, od, &sc, i, err, size);
-		if (rc)
-			goto out;
-		per_unit = od->counts_per_unit * (sc.unit == SRC_UNIT_TURNS ? 360.0 : 1.0);
-		if (!isfinite(per_unit) || per_unit == 0 || fabs(per_unit) >= 2147483648.0) {
-			rc = fail(err, size, -ERANGE,
-				  "outputs[%u] (%s): counts_per_unit %g: must be non-zero and below "
-				  "2^31 counts per %s", i, od->channel, od->counts_per_unit,
-				  sc.unit == SRC_UNIT_TURNS ? "turn" : "unit");
-			goto out;
-		}
-		if (!isfinite(od->offset) || fabs(od->offset) > 9e18) {
-			rc = fail(err, size, -ERANGE, "outputs[%u] (%s): offset out of range", i,
-				  od->channel);
-			goto out;
-		}
-		o->scale.per_unit = (mot_q32)llround(per_unit * 4294967296.0);
-		o->scale.per_unit_d = (double)o->scale.per_unit / 4294967296.0;
-		o->scale.offset = llround(od->offset);
-		o->ferror = to_core(o->unit, od->ferror);
-		o->min_ferror = to_core(o->unit, od->min_ferror);
-		if (o->ferror < 0 || o->min_ferror < 0 || (o->ferror && o->min_ferror > o->ferror)) {
-			rc = fail(err, size, -EINVAL,
-				  "outputs[%u] (%s): need 0 <= min_ferror <= ferror", i, od->channel);
-			goto out;
-		}
-		/* in position: half the bound at rest, or four counts */
-		o->in_position = od->in_position > 0 ? to_core(o->unit, od->in_position) :
-				 o->min_ferror > 0 ? o->min_ferror / 2 :
-				 4.0 / fabs(o->scale.per_unit_d);
-		o->home = (mot_q32)llround(to_core(o->unit, od->home) * 4294967296.0);
+		rc = make_output(o, od, &sc, i, err, size);
 	}
-	rc = src_select(src, sel, d->noutputs);
-	if (rc)
-		rc = fail(err, size, rc, "scene '%s': cannot evaluate the outputs' channels",
-			  src->name);
-out:
+	if (!rc) {
+		rc = src_select(src, sel, d->noutputs);
+		if (rc)
+			rc = fail(err, size, rc, "scene '%s': cannot evaluate the outputs' channels",
+				  src->name);
+	}
 	free(sel);
 	return rc;
 }
 
-/* The simulated drive standing in for device k: one channel per axis used. */
-static int make_sim_drive(struct rig *r, const struct rig_desc *d, uint32_t k, uint32_t ax,
-			  uint32_t tick_hz, char *err, size_t size)
+int rig_bind(struct rig *r, const struct rig_desc *d, struct play_source *src, char *err,
+	     size_t errsize)
 {
-	const struct rig_device_desc *dd = &d->devices[k];
-	struct sim_drive_channel *ch;
-	uint32_t i, nch = 0;
-	double lf = sim_or(dd->sim.limit_factor, SIM_DRIVE_DEFAULT_LIMIT_FACTOR);
+	size_t nd = d->ndevices ? d->ndevices : 1;
+	uint32_t i, k;
+	int rc;
 
-	for (i = 0; i < r->nout; i++)
-		if (r->out[i].dev == ax && r->out[i].ch + 1 > nch)
-			nch = r->out[i].ch + 1;
-	ch = calloc(nch, sizeof(*ch));
-	if (!ch)
-		return fail(err, size, -ENOMEM, "out of memory");
-	for (i = 0; i < nch; i++) {
-		ch[i].bandwidth_hz = sim_or(dd->sim.bandwidth_hz, SIM_DRIVE_DEFAULT_BANDWIDTH_HZ);
-		ch[i].damping = sim_or(dd->sim.damping, SIM_DRIVE_DEFAULT_DAMPING);
-		ch[i].feedforward = dd->sim.feedforward > 0 ? fmin(dd->sim.feedforward, 1) :
-				    SIM_DRIVE_DEFAULT_FEEDFORWARD;
+	memset(r, 0, sizeof(*r));
+	r->nout = d->noutputs;
+	r->ntrig = d->ntriggers;
+	r->nin = d->ninputs;
+	r->ndev = d->ndevices;
+	r->out = calloc(r->nout ? r->nout : 1, sizeof(*r->out));
+	r->trig = calloc(r->ntrig ? r->ntrig : 1, sizeof(*r->trig));
+	r->in = calloc(r->nin ? r->nin : 1, sizeof(*r->in));
+	r->dev = calloc(nd, sizeof(*r->dev));
+	r->axes = calloc(nd, sizeof(*r->axes));
+	r->douts = calloc(nd, sizeof(*r->douts));
+	r->dins = calloc(nd, sizeof(*r->dins));
+	r->ready = calloc(nd, sizeof(*r->ready));
+	if (!r->out || !r->trig || !r->in || !r->dev || !r->axes || !r->douts || !r->dins ||
+	    !r->ready) {
+		rc = fail(err, errsize, -ENOMEM, "out of memory");
+		goto out;
 	}
-	for (i = 0; i < r->nout; i++) {
-		const struct rig_out *o = &r->out[i];
-		struct sim_drive_channel *c = &ch[o->ch];
-		double pu = fabs(o->scale.per_unit_d);
+	for (i = 0; i < d->ndevices; i++)
+		for (k = i + 1; k < d->ndevices; k++)
+			if (!strcmp(d->devices[i].name, d->devices[k].name)) {
+				rc = fail(err, errsize, -EINVAL, "devices[%u]: '%s' named twice", k,
+					  d->devices[k].name);
+				goto out;
+			}
+	/* the devices that carry outputs become axis devices, in file order */
+	for (k = 0; k < d->ndevices; k++) {
+		struct rig_dev *dv = &r->dev[k];
 
-		if (o->dev != ax)
-			continue;
-		c->vel_max = o->vel_mode ? 0 : lf * o->vmax * pu;
-		c->acc_max = o->vel_mode ? 0 : lf * o->amax * pu;
-		c->velocity_mode = o->vel_mode;
-		c->initial = o->vel_mode ? 0 : hal_scale_counts(&o->scale, o->home, NULL);
+		dv->desc = &d->devices[k];
+		dv->axis = dv->dout = dv->din = -1;
+		for (i = 0; i < d->noutputs; i++)
+			if (find_device(d, d->outputs[i].device) == (int)k) {
+				dv->axis = (int32_t)r->naxes++;
+				break;
+			}
 	}
-	r->sim_drive[ax] = sim_drive_new(dd->name, nch, tick_hz, ch);
-	free(ch);
-	if (!r->sim_drive[ax])
-		return fail(err, size, -errno, "device '%s': simulated drive: %s", dd->name,
-			    strerror(errno));
-	r->axes[ax] = sim_drive_axis(r->sim_drive[ax]);
-	return 0;
+	for (i = 0; i < d->noutputs; i++)
+		for (k = i + 1; k < d->noutputs; k++)
+			if (!strcmp(d->outputs[i].device, d->outputs[k].device) &&
+			    d->outputs[i].axis == d->outputs[k].axis) {
+				rc = fail(err, errsize, -EINVAL,
+					  "outputs[%u] (%s): axis %u of device '%s' is already "
+					  "driven by outputs[%u] (%s)", k, d->outputs[k].channel,
+					  d->outputs[k].axis, d->outputs[k].device, i,
+					  d->outputs[i].channel);
+				goto out;
+			}
+	rc = build_outputs(r, d, src, err, errsize);
+out:
+	if (rc)
+		rig_free(r);
+	return rc;
 }
 
-static int check_lines(struct rig *r, const struct rig_desc *d, const struct mot_timing *t,
-		       char *err, size_t size)
+/* The drivers' checks of the whole description, for one made in code (a
+ * loaded one has passed them, at their places in the file). */
+static int validate(const struct rig_desc *d, uint32_t tick_hz, char *err, size_t size)
 {
-	/* the shortest gap between two frame ticks: floor(ticks per frame) */
-	int64_t gap = (int64_t)(t->ticks_den / t->num);
-	uint32_t i;
+	struct rig_desc_err e;
+	int rc = rig_desc_validate(d, tick_hz, &e);
 
-	for (i = 0; i < d->ntriggers; i++) {
-		const struct rig_trigger_desc *td = &d->triggers[i];
-		struct rig_trig *g = &r->trig[i];
-
-		g->name = td->name;
-		g->width = (int64_t)ceil(td->pulse_ms * t->tick_hz / 1000.0 - 1e-9);
-		if (g->width < 1)
-			g->width = 1;
-		g->offset = llround(td->offset_ms * t->tick_hz / 1000.0);
-		if (g->width >= gap)
-			return fail(err, size, -EINVAL,
-				    "triggers[%u] (%s): a %g ms pulse is %lld ticks: it must end "
-				    "before the next frame's, %lld ticks later", i, td->name,
-				    td->pulse_ms, (long long)g->width, (long long)gap);
-		if (llabs(g->offset) >= gap)
-			return fail(err, size, -EINVAL,
-				    "triggers[%u] (%s): offset %g ms is a frame or more", i,
-				    td->name, td->offset_ms);
-	}
-	return 0;
+	if (!rc)
+		return 0;
+	if (e.output >= 0)
+		return fail(err, size, rc, "outputs[%u] (%s): %s", (unsigned)e.output,
+			    d->outputs[e.output].channel, e.msg);
+	return fail(err, size, rc, "%s", e.msg);
 }
 
 /* Device k's output (trig) or input lines; the outputs are its triggers,
@@ -260,12 +265,6 @@ static uint32_t count_role(const struct rig_desc *d, int k, bool trig)
 	return n;
 }
 
-/* Is device k simulated in this run? */
-static bool simulated(const struct rig_desc *d, uint32_t k, const struct rig_opts *o)
-{
-	return o->sim || d->devices[k].driver == RIG_DRIVER_SIM;
-}
-
 /* Index of line i among the lines of its device (triggers or inputs). */
 static uint32_t line_index(const struct rig_desc *d, uint32_t i, bool trig)
 {
@@ -277,273 +276,116 @@ static uint32_t line_index(const struct rig_desc *d, uint32_t i, bool trig)
 	return n;
 }
 
-/*
- * Device k's trigger (trig) or input lines on a real GPIO chip, in the
- * order rig_trig.line and rig_in.line number them, to be requested by
- * rig_start() into douts[] or dins[] at index at. The loop's thread
- * priority goes to the input event thread.
- */
-static int plan_gpio(struct rig *r, const struct rig_desc *d, uint32_t k, bool trig, uint32_t n,
-		     uint32_t at, const struct rig_opts *o, char *err, size_t size)
+/* Every device's lines by its driver, then each trigger's and input's place
+ * on them. */
+static int build_lines(struct rig_make *m, char *err, size_t size)
 {
-	const struct rig_device_desc *dd = &d->devices[k];
-	struct rig_gpio *g = &r->gpio[r->ngpio];
-	uint32_t i, j = 0, count = trig ? d->ntriggers : d->ninputs;
-
-	g->lines = calloc(n, sizeof(*g->lines));
-	if (!g->lines)
-		return fail(err, size, -ENOMEM, "out of memory");
-	r->ngpio++;
-	for (i = 0; i < count; i++) {
-		const char *dev = trig ? d->triggers[i].device : d->inputs[i].device;
-
-		if (find_device(d, dev) != (int)k)
-			continue;
-		g->lines[j].name = trig ? d->triggers[i].line_name : d->inputs[i].line_name;
-		g->lines[j].offset = trig ? d->triggers[i].line : d->inputs[i].line;
-		g->lines[j].active_low = trig ? d->triggers[i].active_low : d->inputs[i].active_low;
-		j++;
-	}
-	if (trig && dd->has_ready)
-		g->lines[j] = (struct hal_gpio_line){ .name = dd->ready_line_name,
-						      .offset = dd->ready_line,
-						      .active_low = dd->ready_active_low };
-	g->cfg = (struct hal_gpio_cfg){ .device = dd->name, .chip = dd->chip, .nlines = n,
-					.lines = g->lines, .priority = o->gpio_priority };
-	g->trig = trig;
-	g->at = at;
-	return 0;
-}
-
-/* Request the lines planned by plan_gpio(). */
-static int open_gpio(struct rig *r, char *err, size_t size)
-{
-	uint32_t i;
+	const struct rig_desc *d = m->d;
+	struct rig *r = m->r;
+	uint32_t i, k;
 	int rc;
 
-	for (i = 0; i < r->ngpio; i++) {
-		struct rig_gpio *g = &r->gpio[i];
+	for (k = 0; k < d->ndevices; k++) {
+		uint32_t nt = count_role(d, (int)k, true), ni = count_role(d, (int)k, false);
+		struct rig_dev *dv = &r->dev[k];
 
-		if (g->trig)
-			rc = hal_gpio_dout_open(&r->douts[g->at], &g->cfg, err, size);
-		else
-			rc = hal_gpio_din_open(&r->dins[g->at], &g->cfg, err, size);
+		if (!nt && !ni)
+			continue;
+		if (!dv->drv->make_lines)
+			return fail(err, size, -ENOTSUP,
+				    "device '%s': driver %s has no trigger or input lines; play with "
+				    "--sim", dv->desc->name, dv->desc->driver->name);
+		dv->dout = nt ? (int32_t)r->ndouts++ : -1;
+		dv->din = ni ? (int32_t)r->ndins++ : -1;
+		rc = dv->drv->make_lines(m, k, nt, ni, err, size);
 		if (rc)
+			return rc;
+		if (dv->desc->has_ready)
+			r->ready[r->nready++] = (struct rig_line){ .dev = (uint32_t)dv->dout,
+								   .line = nt - 1 };
+	}
+	for (i = 0; i < d->ntriggers; i++) {
+		const struct rig_trigger_desc *td = &d->triggers[i];
+		int dev = find_device(d, td->device);
+
+		if (dev < 0)
+			return fail(err, size, -ENOENT, "triggers[%u] (%s): no device '%s' in devices:",
+				    i, td->name, td->device ? td->device : "");
+		r->trig[i].dev = (uint32_t)r->dev[dev].dout;
+		r->trig[i].line = line_index(d, i, true);
+		if (r->dev[dev].drv->bind &&
+		    (rc = r->dev[dev].drv->bind(m, (uint32_t)dev, true, i, r->trig[i].line, err,
+						size)))
+			return rc;
+	}
+	for (i = 0; i < d->ninputs; i++) {
+		const struct rig_input_desc *id = &d->inputs[i];
+		int dev = find_device(d, id->device);
+
+		if (dev < 0)
+			return fail(err, size, -ENOENT, "inputs[%u] (%s): no device '%s' in devices:",
+				    i, id->name, id->device ? id->device : "");
+		r->in[i].name = id->name;
+		r->in[i].dev = (uint32_t)r->dev[dev].din;
+		r->in[i].line = line_index(d, i, false);
+		r->in[i].role = id->role;
+		if (r->dev[dev].drv->bind &&
+		    (rc = r->dev[dev].drv->bind(m, (uint32_t)dev, false, i, r->in[i].line, err,
+						size)))
 			return rc;
 	}
 	return 0;
 }
 
-static int build_gpio(struct rig *r, const struct rig_desc *d, const struct rig_opts *o,
-		      struct hal_clock *clk, const struct mot_timing *t, char *err, size_t size)
-{
-	double frame_ns = 1e9 * t->den / t->num;
-	size_t nd = d->ndevices ? d->ndevices : 1;
-	int *dev_gpio = calloc(nd, sizeof(int)), *dev_dout = calloc(nd, sizeof(int));
-	int *dev_din = calloc(nd, sizeof(int));
-	uint32_t i, k, nline;
-	int rc = 0;
-
-	r->sim_gpio = calloc(nd, sizeof(*r->sim_gpio));
-	r->douts = calloc(nd, sizeof(*r->douts));
-	r->dins = calloc(nd, sizeof(*r->dins));
-	r->gpio = calloc(2 * nd, sizeof(*r->gpio));
-	r->ready = calloc(nd, sizeof(*r->ready));
-	r->camera = calloc(d->ntriggers ? d->ntriggers : 1, sizeof(*r->camera));
-	if (!dev_gpio || !dev_dout || !dev_din || !r->sim_gpio || !r->douts || !r->dins ||
-	    !r->gpio || !r->ready || !r->camera) {
-		rc = fail(err, size, -ENOMEM, "out of memory");
-		goto out;
-	}
-	for (k = 0; k < d->ndevices; k++) {
-		uint32_t nt = count_role(d, (int)k, true), ni = count_role(d, (int)k, false);
-		struct sim_gpio *g;
-
-		dev_gpio[k] = dev_dout[k] = dev_din[k] = -1;
-		if (!nt && !ni)
-			continue;
-		if (!simulated(d, k, o) && d->devices[k].driver == RIG_DRIVER_GPIO) {
-			dev_dout[k] = nt ? (int)r->ndouts++ : -1;
-			dev_din[k] = ni ? (int)r->ndins++ : -1;
-			rc = nt ? plan_gpio(r, d, k, true, nt, (uint32_t)dev_dout[k], o, err, size) : 0;
-			if (!rc && ni)
-				rc = plan_gpio(r, d, k, false, ni, (uint32_t)dev_din[k], o, err, size);
-			if (rc)
-				goto out;
-			continue;
-		}
-		if (!simulated(d, k, o)) {
-			rc = fail(err, size, -ENOTSUP,
-				  "device '%s': driver %s has no trigger or input lines; play with "
-				  "--sim", d->devices[k].name, driver_name[d->devices[k].driver]);
-			goto out;
-		}
-		/* queue: two camera-ready edges per frame in flight, and a few
-		 * scheduled by tests */
-		g = sim_gpio_new(d->devices[k].name, nt, ni, clk, 64);
-		if (!g) {
-			rc = fail(err, size, -ENOMEM, "out of memory");
-			goto out;
-		}
-		dev_gpio[k] = (int)r->nsim_gpio;
-		r->sim_gpio[r->nsim_gpio++] = g;
-		dev_dout[k] = (int)r->ndouts;
-		dev_din[k] = (int)r->ndins;
-		r->douts[r->ndouts++] = sim_gpio_dout(g);
-		r->dins[r->ndins++] = sim_gpio_din(g);
-		if (d->devices[k].has_ready)
-			sim_gpio_out_polarity(g, nt - 1, d->devices[k].ready_active_low);
-	}
-	for (k = 0; k < d->ndevices; k++)
-		if (d->devices[k].has_ready)
-			r->ready[r->nready++] = (struct rig_line){
-				.dev = (uint32_t)dev_dout[k],
-				.line = count_role(d, (int)k, true) - 1 };
-	for (i = 0; i < d->ntriggers; i++) {
-		const struct rig_trigger_desc *td = &d->triggers[i];
-		int dev = find_device(d, td->device);
-		struct sim_camera_params cp;
-		struct sim_gpio *g;
-
-		if (dev < 0) {
-			rc = fail(err, size, -ENOENT, "triggers[%u] (%s): no device '%s' in devices:",
-				  i, td->name, td->device ? td->device : "");
-			goto out;
-		}
-		nline = line_index(d, i, true);
-		r->trig[i].dev = (uint32_t)dev_dout[dev];
-		r->trig[i].line = nline;
-		if (dev_gpio[dev] < 0)
-			continue; /* a real line: a real camera, polarity set at the request */
-		g = r->sim_gpio[dev_gpio[dev]];
-		sim_gpio_out_polarity(g, nline, td->active_low);
-		cp.exposure_ns = (int64_t)(sim_or(d->devices[dev].sim.exposure_ms,
-						  SIM_CAMERA_DEFAULT_EXPOSURE_FRAC * frame_ns / 1e6) * 1e6);
-		cp.readout_ns = (int64_t)(sim_or(d->devices[dev].sim.readout_ms,
-						 SIM_CAMERA_DEFAULT_READOUT_FRAC * frame_ns / 1e6) * 1e6);
-		r->camera[i] = sim_camera_new(&cp, o->camera_cap ? o->camera_cap : 1 << 16,
-					      i == 0 ? o->camera_log : NULL);
-		if (!r->camera[i]) {
-			rc = fail(err, size, -errno, "triggers[%u] (%s): simulated camera: %s", i,
-				  td->name, strerror(errno));
-			goto out;
-		}
-		sim_camera_trigger(r->camera[i], g, nline);
-	}
-	for (i = 0; i < d->ninputs; i++) {
-		const struct rig_input_desc *id = &d->inputs[i];
-		int dev = find_device(d, id->device);
-		struct sim_gpio *g;
-
-		if (dev < 0) {
-			rc = fail(err, size, -ENOENT, "inputs[%u] (%s): no device '%s' in devices:", i,
-				  id->name, id->device ? id->device : "");
-			goto out;
-		}
-		nline = line_index(d, i, false);
-		r->in[i].name = id->name;
-		r->in[i].dev = (uint32_t)dev_din[dev];
-		r->in[i].line = nline;
-		r->in[i].role = id->role;
-		if (dev_gpio[dev] < 0)
-			continue;
-		g = r->sim_gpio[dev_gpio[dev]];
-		sim_gpio_in_polarity(g, nline, id->active_low);
-		/* the first camera tells when it is ready through this line */
-		if (id->role == RIG_INPUT_CAMERA_READY && d->ntriggers && r->camera[0])
-			sim_camera_ready(r->camera[0], g, nline);
-	}
-out:
-	free(dev_gpio);
-	free(dev_dout);
-	free(dev_din);
-	return rc;
-}
-
 int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	      struct hal_clock *clk, const struct rig_opts *o, char *err, size_t errsize)
 {
-	int *dev_axis = NULL;
+	struct rig_make m = { .r = r, .d = d, .clk = clk, .o = o, .t = &src->timing };
 	uint32_t i, k;
 	int rc;
 
-	memset(r, 0, sizeof(*r));
-	r->nout = d->noutputs;
-	r->ntrig = d->ntriggers;
-	r->nin = d->ninputs;
-	r->out = calloc(r->nout ? r->nout : 1, sizeof(*r->out));
-	r->trig = calloc(r->ntrig ? r->ntrig : 1, sizeof(*r->trig));
-	r->in = calloc(r->nin ? r->nin : 1, sizeof(*r->in));
-	dev_axis = calloc(d->ndevices ? d->ndevices : 1, sizeof(*dev_axis));
-	r->axes = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->axes));
-	r->sim_drive = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->sim_drive));
-	r->co_sim = calloc(d->ndevices ? d->ndevices : 1, sizeof(*r->co_sim));
-	if (!r->out || !r->trig || !r->in || !dev_axis || !r->axes || !r->sim_drive ||
-	    !r->co_sim) {
-		rc = fail(err, errsize, -ENOMEM, "out of memory");
-		goto out;
-	}
-	for (i = 0; i < d->ndevices; i++)
-		for (k = i + 1; k < d->ndevices; k++)
-			if (!strcmp(d->devices[i].name, d->devices[k].name)) {
-				rc = fail(err, errsize, -EINVAL, "devices[%u]: '%s' named twice", k,
-					  d->devices[k].name);
-				goto out;
-			}
-	/* the devices that carry outputs become axis devices, in file order */
-	for (k = 0; k < d->ndevices; k++) {
-		dev_axis[k] = -1;
-		for (i = 0; i < d->noutputs; i++)
-			if (find_device(d, d->outputs[i].device) == (int)k) {
-				dev_axis[k] = (int)r->naxes++;
-				break;
-			}
-	}
-	for (i = 0; i < d->noutputs; i++)
-		for (k = i + 1; k < d->noutputs; k++)
-			if (!strcmp(d->outputs[i].device, d->outputs[k].device) &&
-			    d->outputs[i].axis == d->outputs[k].axis) {
-				rc = fail(err, errsize, -EINVAL,
-					  "outputs[%u] (%s): axis %u of device '%s' is already "
-					  "driven by outputs[%u] (%s)", k, d->outputs[k].channel,
-					  d->outputs[k].axis, d->outputs[k].device, i,
-					  d->outputs[i].channel);
-				goto out;
-			}
-	rc = build_outputs(r, d, src, dev_axis, err, errsize);
+	STRAND_ASSERT_NOT_RT();
+	rc = rig_bind(r, d, src, err, errsize);
+	if (rc)
+		return rc;
+	rc = validate(d, src->timing.tick_hz, err, errsize);
 	if (rc)
 		goto out;
 	for (k = 0; k < d->ndevices; k++) {
-		if (dev_axis[k] < 0)
-			continue;
-		if (!o->sim && d->devices[k].driver == RIG_DRIVER_CANOPEN) {
-			rc = rig_canopen_make(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz,
-					      clk, err, errsize);
-			if (rc)
-				goto out;
-			continue;
-		}
-		if (!o->sim && d->devices[k].driver == RIG_DRIVER_MODBUS) {
-			rc = rig_modbus_open(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz,
-					     clk->is_virtual, err, errsize);
-			if (rc)
-				goto out;
-			continue;
-		}
-		if (!o->sim && d->devices[k].driver != RIG_DRIVER_SIM) {
-			rc = fail(err, errsize, -ENOTSUP,
-				  "device '%s': driver %s is not in this build yet; play with --sim",
-				  d->devices[k].name, driver_name[d->devices[k].driver]);
+		struct rig_dev *dv = &r->dev[k];
+
+		if (!dv->desc->driver) {
+			rc = fail(err, errsize, -EINVAL, "device '%s': no driver", dv->desc->name);
 			goto out;
 		}
-		rc = make_sim_drive(r, d, k, (uint32_t)dev_axis[k], src->timing.tick_hz, err,
-				    errsize);
+		/* under --sim every device is its simulated twin */
+		dv->drv = o->sim ? rig_driver_twin : dv->desc->driver;
+		if (dv->axis < 0)
+			continue;
+		if (!dv->drv->make_axes) {
+			rc = fail(err, errsize, -ENOTSUP,
+				  "device '%s': driver %s is not in this build yet; play with --sim",
+				  dv->desc->name, dv->desc->driver->name);
+			goto out;
+		}
+		rc = dv->drv->make_axes(&m, k, err, errsize);
 		if (rc)
 			goto out;
 	}
-	rc = check_lines(r, d, &src->timing, err, errsize);
-	if (!rc)
-		rc = build_gpio(r, d, o, clk, &src->timing, err, errsize);
+	for (i = 0; i < d->ntriggers; i++) {
+		const struct rig_trigger_desc *td = &d->triggers[i];
+		char msg[256];
+		bool at_offset;
+
+		r->trig[i].name = td->name;
+		rc = rig_trigger_check(td, &src->timing, &r->trig[i].width, &r->trig[i].offset,
+				       &at_offset, msg, sizeof(msg));
+		if (rc) {
+			fail(err, errsize, rc, "triggers[%u] (%s): %s", i, td->name, msg);
+			goto out;
+		}
+	}
+	rc = build_lines(&m, err, errsize);
 	if (rc)
 		goto out;
 	r->started_axes = calloc(r->naxes ? r->naxes : 1, sizeof(bool));
@@ -552,7 +394,6 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	if (!r->started_axes || !r->started_douts || !r->started_dins)
 		rc = fail(err, errsize, -ENOMEM, "out of memory");
 out:
-	free(dev_axis);
 	if (rc)
 		rig_free(r);
 	return rc;
@@ -564,11 +405,13 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 	uint32_t i;
 	int rc;
 
-	/* real lines are requested now: one held by another process is a
-	 * device error, with a message naming the chip and the line */
-	rc = open_gpio(r, err, errsize);
-	if (rc)
-		return rc;
+	STRAND_ASSERT_NOT_RT();
+	/* what only a run takes (real GPIO lines: one held by another process
+	 * is a device error, with a message naming the chip and the line) */
+	for (i = 0; i < r->ndev; i++)
+		if (r->dev[i].drv && r->dev[i].drv->start &&
+		    (rc = r->dev[i].drv->start(r, i, err, errsize)))
+			return rc;
 
 	for (i = 0; i < r->naxes; i++) {
 		rc = hal_axis_start(r->axes[i]);
@@ -622,6 +465,7 @@ void rig_stop(struct rig *r)
 {
 	uint32_t i;
 
+	STRAND_ASSERT_NOT_RT();
 	for (i = 0; i < r->naxes; i++)
 		if (r->started_axes && r->started_axes[i]) {
 			hal_axis_stop(r->axes[i]);
@@ -639,38 +483,33 @@ void rig_stop(struct rig *r)
 		}
 }
 
+void rig_report(const struct rig *r, FILE *f)
+{
+	uint32_t k;
+
+	for (k = 0; k < r->ndev; k++)
+		if (r->dev[k].drv && r->dev[k].drv->report)
+			r->dev[k].drv->report(r, k, f);
+}
+
 void rig_free(struct rig *r)
 {
-	uint32_t i;
+	uint32_t k;
 
+	STRAND_ASSERT_NOT_RT();
 	rig_stop(r);
-	for (i = 0; i < r->naxes; i++)
-		hal_axis_close(r->axes[i]);
-	for (i = 0; r->camera && i < r->ntrig; i++)
-		sim_camera_free(r->camera[i]);
-	for (i = 0; i < r->nsim_gpio; i++)
-		sim_gpio_free(r->sim_gpio[i]);
-	for (i = 0; r->co_sim && i < r->naxes; i++)
-		co_simbus_free(r->co_sim[i]);
-	for (i = 0; i < r->ngpio; i++) {
-		if (r->gpio[i].trig)
-			hal_dout_close(r->douts[r->gpio[i].at]);
-		else
-			hal_din_close(r->dins[r->gpio[i].at]);
-		free(r->gpio[i].lines);
-	}
+	/* each driver releases what it made, its HAL objects included */
+	for (k = 0; r->dev && k < r->ndev; k++)
+		if (r->dev[k].drv && r->dev[k].drv->free)
+			r->dev[k].drv->free(r, k);
 	free(r->axes);
 	free(r->douts);
 	free(r->dins);
 	free(r->out);
 	free(r->trig);
 	free(r->in);
-	free(r->sim_drive);
-	free(r->co_sim);
-	free(r->sim_gpio);
-	free(r->gpio);
+	free(r->dev);
 	free(r->ready);
-	free(r->camera);
 	free(r->started_axes);
 	free(r->started_douts);
 	free(r->started_dins);

@@ -5,13 +5,12 @@
  * in core units, trigger and input lines resolved to (device, line).
  *
  * Building allocates everything the loop will touch (Klipper's "configure,
- * then seal"); nothing is allocated once the loop runs. A device whose
- * driver is `gpio` has its trigger lines and inputs on a GPIO chip
- * (hal/gpio.h), requested by rig_start(): a line held elsewhere is a
- * device error whose message names the chip and the line. Under --sim, or for a device whose driver is `sim`, every
- * device is its simulated twin: a
- * drive (sim/sim_drive.h) for outputs, a GPIO chip (sim/sim_gpio.h) for triggers
- * and inputs, and a camera (sim/sim_camera.h) on every trigger line.
+ * then seal"); nothing is allocated once the loop runs. Each device is made
+ * by its driver (rig_driver.h), which owns what it makes; under --sim, or
+ * for a device whose driver is `sim`, by the simulated twin's (drv_sim.h):
+ * a drive (sim/sim_drive.h) for outputs, a GPIO chip (sim/sim_gpio.h) for
+ * triggers and inputs, and a camera (sim/sim_camera.h) on every trigger
+ * line.
  */
 #ifndef STRAND_RIG_H
 #define STRAND_RIG_H
@@ -19,12 +18,12 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "hal/axis.h"
 #include "hal/clock.h"
 #include "hal/din.h"
 #include "hal/dout.h"
-#include "hal/gpio/gpio.h"
 #include "rig_desc.h"
 #include "scale.h"
 #include "scene/source.h"
@@ -60,12 +59,12 @@ struct rig_line {
 	uint32_t dev, line;
 };
 
-/* A device's trigger or input lines on a GPIO chip, requested at start. */
-struct rig_gpio {
-	bool trig;                   /* douts[at], else dins[at] */
-	uint32_t at;
-	struct hal_gpio_cfg cfg;
-	struct hal_gpio_line *lines;
+/* A device of the rig, as its driver made it. */
+struct rig_dev {
+	const struct rig_device_desc *desc;
+	const struct rig_driver *drv; /* the driver that made it: the sim's under --sim */
+	int32_t axis, dout, din;      /* its place in axes[], douts[], dins[]; -1: none */
+	void *priv;                   /* the driver's own (what to free) */
 };
 
 struct rig {
@@ -77,16 +76,10 @@ struct rig {
 	struct rig_out *out;
 	struct rig_trig *trig;
 	struct rig_in *in;
-	/* the simulated parts (NULL where a device is real) */
-	struct sim_drive **sim_drive;  /* naxes */
-	uint32_t nsim_gpio;
-	struct sim_gpio **sim_gpio;
-	struct sim_camera **camera;    /* ntrig */
-	struct co_simbus **co_sim;     /* naxes: a CANopen bus with interface "sim" */
+	uint32_t ndev;                 /* the description's devices, in its order */
+	struct rig_dev *dev;
 	uint32_t nready;               /* rig-ready outputs: douts[dev], line */
 	struct rig_line *ready;
-	uint32_t ngpio;                /* real GPIO lines (gpio.h): rig_start requests */
-	struct rig_gpio *gpio;         /* them into douts[at] or dins[at] */
 	bool *started_axes, *started_douts, *started_dins;
 };
 
@@ -102,11 +95,31 @@ struct rig_opts {
 int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	      struct hal_clock *clk, const struct rig_opts *o, char *err, size_t errsize);
 
+/* [init] The first half of rig_build(): the outputs bound to the source's
+ * channels and scaled, each device's place among the axes (dev[k].axis),
+ * nothing made or opened. For a program that makes one device itself
+ * (strand-simdrive); rig_free() frees it. */
+int rig_bind(struct rig *r, const struct rig_desc *d, struct play_source *src, char *err,
+	     size_t errsize);
+
 /* [init] Start every device; on failure stop those started. */
 int rig_start(struct rig *r, char *err, size_t errsize);
 /* [init] Stop every started device (drives disabled, lines deasserted). */
 void rig_stop(struct rig *r);
 void rig_free(struct rig *r);
+
+/* [init] Each device's lines for the run's summary (its driver's). */
+void rig_report(const struct rig *r, FILE *f);
+
+/* The index of the device called name, or -1. */
+int rig_device(const struct rig *r, const char *name);
+
+/* Channels of axis device ax: one past the highest its outputs use. */
+uint32_t rig_axis_channels(const struct rig *r, uint32_t ax);
+
+/* Counts an output's axis stands at when the run starts and the device has
+ * no feedback: its home (0 for a velocity channel). */
+int64_t rig_out_initial(const struct rig_out *o);
 
 /* Core value -> file units (degrees for angles), for messages. */
 double rig_file_units(enum src_unit unit, double v);

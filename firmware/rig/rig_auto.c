@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "drv_sim.h"
+
 /* The largest |speed| and |acceleration| (file units) of channel idx over
  * the span, by finite differences every `step` ticks. */
 static int measure(struct play_source *src, uint32_t idx, bool turns, double *vmax, double *amax)
@@ -128,9 +130,9 @@ int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_
 		return rc;
 	}
 	ra->dev[0].name = "sim";
-	ra->dev[0].driver = RIG_DRIVER_SIM;
+	ra->dev[0].driver = &rig_drv_sim;
 	ra->dev[1].name = "io";
-	ra->dev[1].driver = RIG_DRIVER_SIM;
+	ra->dev[1].driver = &rig_drv_sim;
 	ra->trig.name = "camera";
 	ra->trig.device = "io";
 	ra->trig.pulse_ms = 1000.0 / src->timing.tick_hz;

@@ -3,9 +3,9 @@
  * rig_desc.h - the rig as a scene file describes it (the `devices:`,
  * `outputs:`, `triggers:` and `inputs:` sections), in the file's units:
  * degrees for angles, scene units for lengths, rpm, milliseconds. The YAML
- * loader fills one; until it does, tests and the temporary player build
- * them in code. rig_build() (rig.h) turns it into devices and scaled
- * channels.
+ * loader fills one; tests and `strand play --sim` on a scene without a rig
+ * (rig_auto.h) build them in code. rig_build() (rig.h) turns it into
+ * devices and scaled channels.
  *
  *   devices:
  *     - {name: arm, driver: sim, sim: {bandwidth: 40, damping: 1, feedforward: 0.9}}
@@ -29,6 +29,16 @@
  *     - {name: estop, device: io, line: 0, role: estop, active_low: true}
  *     - {name: ready, device: io, line: 1, role: camera_ready}
  *
+ * A device's driver is an entry of the driver table (rig_driver.h); what
+ * only that driver knows (a Modbus register map, a CANopen bus, a GPIO
+ * chip) is behind the device's priv, in the driver's own struct
+ * (drv_<name>.h), read from the file by the driver itself. The rest is
+ * every device's: its simulated twin, and its rig-ready line.
+ *
+ * The rules a description must follow are here once (rig_desc.c), for the
+ * loader, which puts a refusal at its place in the file, and rig_build(),
+ * which names the entry of a description made in code.
+ *
  * Ownership: a description owns nothing; its strings and arrays belong to
  * whoever filled it (the loader's pool, a test).
  */
@@ -36,20 +46,17 @@
 #define STRAND_RIG_DESC_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
-#include "hal/modbus/modbus_desc.h"
+#include "motion/timing.h"
 #include "scene/scene_desc.h" /* struct sd_limits */
 
-enum rig_driver {
-	RIG_DRIVER_SIM,     /* always simulated */
-	RIG_DRIVER_MODBUS,  /* issue 5 */
-	RIG_DRIVER_GPIO,    /* issue 6 */
-	RIG_DRIVER_CANOPEN, /* issue 7 */
-};
+struct rig_driver; /* rig_driver.h */
 
 /* The simulated twin that stands in for a device under --sim (or always,
- * for driver sim). Zero fields take the defaults of rig.h. */
+ * for driver sim). Zero fields take the defaults of sim/sim_drive.h and
+ * sim/sim_camera.h. */
 struct rig_sim_desc {
 	double bandwidth_hz;   /* position loop bandwidth */
 	double damping;        /* zeta */
@@ -59,43 +66,23 @@ struct rig_sim_desc {
 	double readout_ms;
 };
 
-/* A CANopen bus of CiA 402 drives (driver canopen); its outputs name the
- * drives by node-ID.
- *   canopen: {interface: can0, bitrate: 500000, sync_id: 0x80, heartbeat_ms: 50} */
-struct rig_canopen_desc {
-	const char *interface; /* a SocketCAN interface, or "sim": simulated drives */
-	uint32_t bitrate;      /* bit/s, for the bus load check */
-	uint32_t sync_id;      /* COB-ID of the SYNC (default 0x80) */
-	uint32_t heartbeat_ms; /* asked of every drive (default RIG_CO_HEARTBEAT_MS) */
-};
-
 struct rig_device_desc {
 	const char *name;
-	enum rig_driver driver;
+	const struct rig_driver *driver; /* rig_driver_find("modbus"), ... */
+	const void *priv;      /* the driver's settings (drv_<name>.h); NULL: none */
 	struct rig_sim_desc sim;
-	/* the hardware backends add their settings here (issues 5-7) */
-	const struct modbus_desc *modbus; /* driver modbus: bus and register map */
-	const char *chip;      /* gpio: gpiochip0, /dev/gpiochip0 or a label;
-				* NULL: the lines by name, on whichever chip */
 	/* a rig-ready output (a lamp, a PLC input): asserted once every
 	 * device has started, deasserted when the run ends */
 	bool has_ready;
 	uint32_t ready_line;
 	const char *ready_line_name; /* by name; NULL: by number */
 	bool ready_active_low;
-	struct rig_canopen_desc canopen; /* driver canopen: the bus */
-};
-
-/* An output on a CANopen bus: its drive's node-ID is the output's axis
- * (the file says node:), its mode of operation follows the channel. */
-struct rig_canopen_out_desc {
-	uint8_t mode; /* 8 CSP, 9 CSV (rpm channels); 0: from the channel */
 };
 
 struct rig_output_desc {
 	const char *channel;     /* a scene channel (README "Channels") */
 	const char *device;
-	uint32_t axis;           /* channel number on the device */
+	uint32_t axis;           /* channel number on the device (a CANopen drive's node-ID) */
 	double counts_per_unit;  /* non-zero; per degree for angles */
 	double offset;           /* counts at value 0 */
 	struct sd_limits limits; /* where set, they replace the node's */
@@ -103,7 +90,7 @@ struct rig_output_desc {
 	double min_ferror;       /* bound at rest (<= ferror) */
 	double in_position;      /* step mode tolerance; 0: the default */
 	double home;             /* where the axis stands at start when it has no feedback */
-	struct rig_canopen_out_desc canopen; /* driver canopen: node: and mode: */
+	const void *priv;        /* its device's driver's settings of it; NULL: none */
 };
 
 struct rig_trigger_desc {
@@ -142,5 +129,55 @@ struct rig_desc {
 	uint32_t ninputs;
 	const struct rig_input_desc *inputs;
 };
+
+/* ---- the rules (rig_desc.c) ------------------------------------------------
+ * [init]. Each: 0, or a negative errno with the reason in msg, which names
+ * neither the file's position nor the entry (the loader puts it at the key
+ * it names, rig_build() prefixes the entry). The loader applies each as
+ * soon as the keys it reads are read, so that a file's first mistake is the
+ * one reported. */
+
+/* counts_per_unit: non-zero and below 2^31 counts per turn (turns: the
+ * channel is an angle) or per unit. -ERANGE */
+int rig_output_check_scale(const struct rig_output_desc *o, bool turns, char *msg,
+			   size_t size);
+
+/* offset: within +-9e18 counts. -ERANGE */
+int rig_output_check_offset(const struct rig_output_desc *o, char *msg, size_t size);
+
+/* ferror, min_ferror and in_position not negative (the output's mapping is
+ * at fault), min_ferror at most ferror (*at_min: min_ferror is). -EINVAL */
+int rig_output_check_ferror(const struct rig_output_desc *o, bool *at_min, char *msg,
+			    size_t size);
+
+/* The limits an output moves by: each of its own where set, else the
+ * scene's for its channel (its node's; scene may be NULL). */
+void rig_output_limits(const struct sd_limits *own, const struct sd_limits *scene,
+		       struct sd_limits *out);
+
+/* Velocity and acceleration limits in lim, above zero (the pre-roll, the
+ * moves and every stop are planned with them), and min <= max. node: the
+ * channel is a node's, whose limits would have done. -EINVAL */
+int rig_output_check_limits(const char *channel, const struct sd_limits *lim, bool node,
+			    char *msg, size_t size);
+
+/* A trigger at timing t: its pulse in whole ticks (*width, at least one)
+ * ends before the next frame's edge, its offset in ticks (*offset) is less
+ * than a frame (*at_offset: the offset is at fault). -EINVAL */
+int rig_trigger_check(const struct rig_trigger_desc *g, const struct mot_timing *t,
+		      int64_t *width, int64_t *offset, bool *at_offset, char *msg, size_t size);
+
+/* Where a driver's check of the whole description (rig_driver.validate)
+ * found it wrong: an output, or a device's key. */
+struct rig_desc_err {
+	int32_t output;  /* the output at fault, or -1 */
+	int32_t device;  /* else the device at fault, or -1 */
+	const char *key; /* ... at this key of its mapping; NULL: the mapping */
+	char msg[256];
+};
+
+/* Every driver's check of the whole description at tick_hz, in the
+ * table's order: 0, or the first refusal (a negative errno) with e. */
+int rig_desc_validate(const struct rig_desc *d, uint32_t tick_hz, struct rig_desc_err *e);
 
 #endif /* STRAND_RIG_DESC_H */

@@ -25,7 +25,6 @@
 #include "hal/canopen/co_socketcan.h"
 #include "hal/clock.h"
 #include "sim/co_slave.h"
-#include "sim/sim_drive.h" /* the simulated twin's defaults */
 #include "simdrive.h"
 
 static const char usage[] =
@@ -93,12 +92,17 @@ struct can_opts {
 
 static int parse(struct can_opts *o, int argc, char **argv)
 {
+	static const struct rig_sim_desc none;
+	struct sim_drive_channel plant;
 	int opt;
 
+	/* the plant of a twin whose scene says nothing, as `strand play --sim`
+	 * makes it */
+	rig_sim_plant(&none, &plant);
 	o->name = "strand-simdrive";
-	o->bandwidth = SIM_DRIVE_DEFAULT_BANDWIDTH_HZ;
-	o->damping = SIM_DRIVE_DEFAULT_DAMPING;
-	o->feedforward = SIM_DRIVE_DEFAULT_FEEDFORWARD;
+	o->bandwidth = plant.bandwidth_hz;
+	o->damping = plant.damping;
+	o->feedforward = plant.feedforward;
 	o->fault = 0x2310;
 	while ((opt = getopt_long(argc, argv, "h", options, NULL)) != -1) {
 		double v = 0;
@@ -238,8 +242,7 @@ int simdrive_can_main(int argc, char **argv)
 
 	if (rc >= 0)
 		return rc;
-	bus = co_socketcan_open(o.iface, NULL, 0, err, sizeof(err));
-	if (!bus) {
+	if (co_socketcan_open(&bus, o.iface, NULL, 0, err, sizeof(err))) {
 		fprintf(stderr, "strand-simdrive: %s\n", err);
 		return STRAND_EXIT_IO;
 	}
@@ -262,9 +265,8 @@ int simdrive_can_main(int argc, char **argv)
 	c.initial = (int32_t)o.initial;
 	c.send = send_frames;
 	c.ctx = bus;
-	s = co_slave_new(&c);
-	if (!s) {
-		fprintf(stderr, "strand-simdrive: %s\n", strerror(errno));
+	if (co_slave_new(&s, &c, err, sizeof(err))) {
+		fprintf(stderr, "strand-simdrive: %s\n", err);
 		rc = STRAND_EXIT_INTERNAL;
 		goto close_log;
 	}

@@ -148,13 +148,15 @@ static int parse(struct simdrive *sd, int argc, char **argv)
 	return -1;
 }
 
-/* The scene, the rig on simulated twins, the device's drive. */
+/* The scene, its outputs bound, the device's twin: the drive that
+ * `strand play --sim` would make for it (drv_sim.h). */
 static int setup(struct simdrive *sd)
 {
-	struct rig_opts ro = { .sim = true };
 	struct load_err le;
 	char msg[512];
 	uint32_t i, k;
+	int32_t ax = -1;
+	int rc;
 
 	if (scene_file_load(&sd->sf, sd->scene_path, &le) ||
 	    (sd->have_sf = true, scene_file_build(&sd->sf, &sd->b, &le)))
@@ -163,7 +165,7 @@ static int setup(struct simdrive *sd)
 	for (k = 0; k < sd->sf.rig.ndevices; k++) {
 		const struct rig_device_desc *dd = &sd->sf.rig.devices[k];
 
-		if (dd->modbus && (!sd->device || !strcmp(sd->device, dd->name))) {
+		if (rig_modbus_desc(dd) && (!sd->device || !strcmp(sd->device, dd->name))) {
 			sd->dd = dd;
 			break;
 		}
@@ -178,32 +180,35 @@ static int setup(struct simdrive *sd)
 		return STRAND_EXIT_INTERNAL;
 	}
 	sd->have_src = true;
-	hal_clock_init(&sd->clk, true);
-	if (rig_build(&sd->rig, &sd->sf.rig, &sd->src.s, &sd->clk, &ro, msg, sizeof(msg))) {
+	rc = rig_bind(&sd->rig, &sd->sf.rig, &sd->src.s, msg, sizeof(msg));
+	if (rc) {
 		fprintf(stderr, "%s: %s\n", sd->scene_path, msg);
-		return STRAND_EXIT_SCENE;
+		return rc == -ENOMEM ? STRAND_EXIT_INTERNAL : STRAND_EXIT_SCENE;
 	}
 	sd->have_rig = true;
-	for (i = 0; i < sd->rig.naxes; i++)
-		if (!strcmp(sd->rig.axes[i]->name, sd->dd->name))
-			break;
-	if (i == sd->rig.naxes) {
+	ax = sd->rig.dev[k].axis;
+	if (ax < 0) {
 		fprintf(stderr, "%s: device '%s' drives no output\n", sd->scene_path, sd->dd->name);
 		return STRAND_EXIT_SCENE;
 	}
-	sd->mb.name = sd->dd->name;
-	sd->mb.d = sd->dd->modbus;
-	sd->mb.drive = sd->rig.sim_drive[i];
-	sd->mb.nch = sd->rig.axes[i]->nch;
 	sd->mb.tick_hz = sd->src.s.timing.tick_hz;
+	rc = rig_sim_drive_new(&sd->drive, &sd->rig, k, sd->mb.tick_hz, msg, sizeof(msg));
+	if (rc) {
+		fprintf(stderr, "%s: %s\n", sd->scene_path, msg);
+		return rc == -ENOMEM ? STRAND_EXIT_INTERNAL : STRAND_EXIT_SCENE;
+	}
+	sd->mb.name = sd->dd->name;
+	sd->mb.d = rig_modbus_desc(sd->dd);
+	sd->mb.drive = sd->drive;
+	sd->mb.nch = sim_drive_axis(sd->drive)->nch;
 	sd->velocity = calloc(sd->mb.nch ? sd->mb.nch : 1, sizeof(*sd->velocity));
 	if (!sd->velocity) {
 		fprintf(stderr, "strand-simdrive: out of memory\n");
 		return STRAND_EXIT_INTERNAL;
 	}
-	for (k = 0; k < sd->rig.nout; k++)
-		if (sd->rig.out[k].dev == i)
-			sd->velocity[sd->rig.out[k].ch] = sd->rig.out[k].vel_mode;
+	for (i = 0; i < sd->rig.nout; i++)
+		if (sd->rig.out[i].dev == (uint32_t)ax)
+			sd->velocity[sd->rig.out[i].ch] = sd->rig.out[i].vel_mode;
 	sd->mb.velocity = sd->velocity;
 	return -1;
 }
@@ -239,6 +244,8 @@ int main(int argc, char **argv)
 	if (sd.mb.log)
 		fclose(sd.mb.log);
 	free(sd.velocity);
+	if (sd.drive)
+		hal_axis_close(sim_drive_axis(sd.drive));
 	if (sd.have_rig)
 		rig_free(&sd.rig);
 	if (sd.have_src)

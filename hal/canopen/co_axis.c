@@ -3,6 +3,7 @@
 #include "co_axis.h"
 
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,8 +23,6 @@ struct co_axis {
 	struct co_frame *cycle;
 	struct co_frame rx[CO_AXIS_RX_BATCH];
 };
-
-static const struct hal_axis_ops co_axis_ops;
 
 static struct co_axis STRAND_RT *axis_of(struct hal_axis *ax)
 {
@@ -130,7 +129,7 @@ static void STRAND_RT ca_set(struct hal_axis *ax, uint32_t ch, const struct hal_
 	if (i < 0)
 		return;
 	co_master_stage(&a->m, (uint32_t)i,
-			a->m.node[i].cfg.mode == CO402_MODE_CSV ? sp->vel : sp->pos);
+			co_master_mode(&a->m, (uint32_t)i) == CO402_MODE_CSV ? sp->vel : sp->pos);
 }
 
 static int STRAND_RT ca_commit(struct hal_axis *ax, int64_t tick)
@@ -229,13 +228,14 @@ static const struct hal_axis_ops co_axis_ops = {
 	.close = ca_close,
 };
 
-struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
+int co_axis_new(struct hal_axis **out, const struct co_axis_cfg *cfg, char *err, size_t errsize)
 {
 	struct co_master_cfg mc = cfg->master;
 	struct co_axis *a = calloc(1, sizeof(*a));
-	int rc;
+	int rc = -ENOMEM;
 
 	STRAND_ASSERT_NOT_RT();
+	*out = NULL;
 	if (a) {
 		a->nodes = calloc(cfg->ndrives ? cfg->ndrives : 1, sizeof(*a->nodes));
 		a->cycle = calloc(cfg->ndrives + 1, sizeof(*a->cycle));
@@ -247,8 +247,7 @@ struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
 		}
 		free(a);
 		co_bus_close(cfg->bus);
-		errno = ENOMEM;
-		return NULL;
+		goto fail;
 	}
 	a->ax.ops = &co_axis_ops;
 	a->ax.name = cfg->name;
@@ -260,13 +259,16 @@ struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg)
 	rc = co_master_init(&a->m, &mc, cfg->drives, a->nodes, a->cycle, cfg->ndrives);
 	if (rc) {
 		ca_close(&a->ax);
-		errno = -rc;
-		return NULL;
+		goto fail;
 	}
-	return &a->ax;
+	*out = &a->ax;
+	return 0;
+fail:
+	snprintf(err, errsize, "device '%s': CANopen master: %s", cfg->name, strerror(-rc));
+	return rc;
 }
 
 struct co_master *co_axis_master(struct hal_axis *ax)
 {
-	return ax->ops == &co_axis_ops ? &axis_of(ax)->m : NULL;
+	return &axis_of(ax)->m;
 }

@@ -23,6 +23,7 @@
 #ifndef CO_AXIS_H
 #define CO_AXIS_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "co_bus.h"
@@ -45,11 +46,12 @@ struct co_axis_cfg {
 	struct hal_clock *clk;
 };
 
-/* [init] NULL with errno (EINVAL: see co_master_init; ENOMEM); the bus is
- * closed then too. */
-struct hal_axis *co_axis_new(const struct co_axis_cfg *cfg);
+/* [init] The backend into *out: 0, or a negative errno (-EINVAL: see
+ * co_master_init; -ENOMEM) with a message in err naming the device; the
+ * bus is closed then too. */
+int co_axis_new(struct hal_axis **out, const struct co_axis_cfg *cfg, char *err, size_t errsize);
 
-/* The master of a CANopen axis (tests, messages); NULL for another backend. */
+/* The master of an axis co_axis_new() made (tests, messages). */
 struct co_master *co_axis_master(struct hal_axis *ax);
 
 #endif /* CO_AXIS_H */

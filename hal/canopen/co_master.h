@@ -243,6 +243,13 @@ bool co_master_actual(const struct co_master *m, uint32_t i, int64_t *counts);
 /* Index of the drive with this node-ID, or -1. */
 int co_master_index(const struct co_master *m, uint8_t node);
 
+/* Drive i's mode of operation as configured (enum co402_mode): which of a
+ * setpoint's position and velocity its target is. */
+static inline uint8_t co_master_mode(const struct co_master *m, uint32_t i)
+{
+	return m->node[i].cfg.mode;
+}
+
 /* The identifiers the master consumes from these drives (EMCY, TPDO1, SDO
  * response, heartbeat of each: 4 per drive) into ids; how many. For a
  * transport's receive filter. */

@@ -142,8 +142,10 @@ static const struct co_bus_ops socketcan_ops = {
 	.close = sc_close,
 };
 
-static struct co_bus *fail(struct co_socketcan *s, int code, char *err, size_t size,
-			   const char *fmt, const char *ifname)
+/* The message (fmt has the interface's name, then the errno's text), and
+ * nothing left open. */
+static int fail(struct co_socketcan *s, int code, char *err, size_t size, const char *fmt,
+		const char *ifname)
 {
 	snprintf(err, size, fmt, ifname, strerror(code));
 	if (s) {
@@ -151,8 +153,7 @@ static struct co_bus *fail(struct co_socketcan *s, int code, char *err, size_t s
 			close(s->fd);
 		free(s);
 	}
-	errno = code;
-	return NULL;
+	return -code;
 }
 
 /* CAN_RAW_FILTER from ours: the identifier's bits, and a data frame with
@@ -181,8 +182,8 @@ int co_socketcan_filter(struct co_bus *b, const struct co_rx_filter *flt, uint32
 	return set_filter(sc_of(b)->fd, flt, n);
 }
 
-struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *flt,
-				 uint32_t n, char *err, size_t size)
+int co_socketcan_open(struct co_bus **out, const char *ifname, const struct co_rx_filter *flt,
+		      uint32_t n, char *err, size_t size)
 {
 	can_err_mask_t errs = CAN_ERR_CRTL | CAN_ERR_BUSOFF | CAN_ERR_RESTARTED;
 	struct sockaddr_can addr = { .can_family = AF_CAN };
@@ -191,6 +192,7 @@ struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *
 	int rc;
 
 	STRAND_ASSERT_NOT_RT();
+	*out = NULL;
 	if (strlen(ifname) >= IF_NAMESIZE)
 		return fail(NULL, EINVAL, err, size, "CAN interface '%s': %s (name too long)", ifname);
 	s = calloc(1, sizeof(*s));
@@ -224,7 +226,8 @@ struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *
 	snprintf(s->name, sizeof(s->name), "%s", ifname);
 	s->bus.ops = &socketcan_ops;
 	s->bus.name = s->name;
-	return &s->bus;
+	*out = &s->bus;
+	return 0;
 }
 
 int co_socketcan_fd(struct co_bus *b)

@@ -32,12 +32,12 @@ struct co_rx_filter {
 	uint16_t id, mask;
 };
 
-/* [init] A raw CAN socket bound to ifname that receives the data frames
- * with 11-bit identifiers that one of the n filters passes (every frame
- * when flt is NULL), and error frames. NULL with errno and a message in err
- * naming the interface and what to do. */
-struct co_bus *co_socketcan_open(const char *ifname, const struct co_rx_filter *flt,
-				 uint32_t n, char *err, size_t size);
+/* [init] A raw CAN socket bound to ifname into *out, receiving the data
+ * frames with 11-bit identifiers that one of the n filters passes (every
+ * frame when flt is NULL), and error frames. 0, or a negative errno with a
+ * message in err naming the interface and what to do. */
+int co_socketcan_open(struct co_bus **out, const char *ifname, const struct co_rx_filter *flt,
+		      uint32_t n, char *err, size_t size);
 
 /* [init] Replace the receive filters: 0 or a negative errno. */
 int co_socketcan_filter(struct co_bus *b, const struct co_rx_filter *flt, uint32_t n);

@@ -62,7 +62,4 @@ int hal_gpio_dout_open(struct hal_dout **out, const struct hal_gpio_cfg *cfg, ch
 int hal_gpio_din_open(struct hal_din **out, const struct hal_gpio_cfg *cfg, char *err,
 		      size_t errsize);
 
-/* The libgpiod version underneath, for messages and `strand info`. */
-const char *hal_gpio_lib_version(void);
-
 #endif /* HAL_GPIO_H */

@@ -25,8 +25,3 @@ int hal_gpio_req_init(struct hal_gpio_req *r, const struct hal_gpio_cfg *cfg,
 					.initial = kind == GPIO_REQ_OUTPUT ? r->initial : NULL };
 	return 0;
 }
-
-const char *hal_gpio_lib_version(void)
-{
-	return gpio_line_lib_version();
-}

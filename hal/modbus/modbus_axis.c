@@ -16,8 +16,6 @@
 
 #include "hal/rt.h"
 
-static const struct hal_axis_ops modbus_ops;
-
 static const char *const type_names[] = {
 	[MODBUS_TYPE_INT16] = "int16", [MODBUS_TYPE_UINT16] = "uint16",
 	[MODBUS_TYPE_INT32] = "int32", [MODBUS_TYPE_UINT32] = "uint32",
@@ -351,7 +349,8 @@ static bool make_texts(struct modbus_drv *m)
 	return true;
 }
 
-struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t errsize)
+int hal_modbus_open(struct hal_axis **out, const struct modbus_cfg *c, char *err,
+		    size_t errsize)
 {
 	const struct modbus_desc *d = c->d;
 	uint32_t nch = c->nch, nw, nr, a = 0, b = 0;
@@ -360,10 +359,11 @@ struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t e
 	int rc;
 
 	STRAND_ASSERT_NOT_RT();
+	*out = NULL;
 	if (!nch || nch > d->naxes || !c->tick_hz) {
 		snprintf(err, errsize, "device '%s': %u axes used, %u in its register map", c->name,
 			 nch, d->naxes);
-		return NULL;
+		return -EINVAL;
 	}
 	m = calloc(1, sizeof(*m));
 	if (!m)
@@ -375,10 +375,7 @@ struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t e
 	m->d = d;
 	m->every = modbus_update_every(d, c->tick_hz);
 	m->rstatus = -1;
-	if (d->transport == MODBUS_TCP)
-		snprintf(m->where, sizeof(m->where), "tcp %s:%u unit %u", d->host, d->port, d->unit);
-	else
-		snprintf(m->where, sizeof(m->where), "rtu %s unit %u", d->serial, d->unit);
+	modbus_where(m->where, sizeof(m->where), d);
 	m->velocity = zalloc(nch, sizeof(bool), &ok);
 	m->initial = zalloc(nch, sizeof(int64_t), &ok);
 	m->staged = zalloc(nch, sizeof(int64_t), &ok);
@@ -408,6 +405,7 @@ struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t e
 	if (rc) {
 		snprintf(err, errsize, "device '%s': registers written every update overlap at %u",
 			 c->name, m->wreg[b].addr);
+		rc = -EINVAL;
 		goto fail;
 	}
 	rc = modbus_plan_make(&m->rplan, m->rreg, nr, MODBUS_MAP_READ_MAX, &a, &b);
@@ -416,6 +414,7 @@ struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t e
 	if (rc) {
 		snprintf(err, errsize, "device '%s': registers read overlap at %u", c->name,
 			 m->rreg[b].addr);
+		rc = -EINVAL;
 		goto fail;
 	}
 	m->wimg = zalloc(m->wplan.nregs, sizeof(uint16_t), &ok);
@@ -429,38 +428,34 @@ struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t e
 	if (sem_init(&m->wake, 0, 0))
 		goto nomem;
 	m->wake_ready = true;
-	return &m->ax;
+	*out = &m->ax;
+	return 0;
 nomem:
+	rc = -ENOMEM;
 	snprintf(err, errsize, "device '%s': out of memory", c->name);
 fail:
 	if (m && !m->wake_ready)
 		sem_init(&m->wake, 0, 0); /* mb_close destroys it */
 	if (m)
 		mb_close(&m->ax);
-	return NULL;
+	return rc;
 }
 
-bool hal_modbus_stats(struct hal_axis *ax, struct modbus_stats *s)
+void hal_modbus_stats(struct hal_axis *ax, struct modbus_stats *s)
 {
-	struct modbus_drv *m;
+	struct modbus_drv *m = mb_of(ax);
 
-	if (!ax || ax->ops != &modbus_ops)
-		return false;
-	m = mb_of(ax);
 	*s = m->st;
 	s->updates = m->updates;
 	s->replaced = m->replaced;
-	return true;
 }
 
 void hal_modbus_report(struct hal_axis *ax, FILE *f)
 {
-	struct modbus_drv *m;
+	struct modbus_drv *m = mb_of(ax);
 	struct modbus_stats s;
 
-	if (!hal_modbus_stats(ax, &s))
-		return;
-	m = mb_of(ax);
+	hal_modbus_stats(ax, &s);
 	fprintf(f, "  modbus '%s' (%s): %lld updates every %u tick%s, %lld written, %lld replaced "
 		"by a newer one, %lld held at rest, %lld reads; I/O thread %s\n", ax->name,
 		m->where, (long long)s.updates, m->every, m->every == 1 ? "" : "s",

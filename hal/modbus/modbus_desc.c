@@ -8,7 +8,16 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+
+void modbus_where(char *buf, size_t size, const struct modbus_desc *d)
+{
+	if (d->transport == MODBUS_TCP)
+		snprintf(buf, size, "tcp %s:%u unit %u", d->host, d->port, d->unit);
+	else
+		snprintf(buf, size, "rtu %s unit %u", d->serial, d->unit);
+}
 
 uint32_t modbus_update_every(const struct modbus_desc *d, uint32_t tick_hz)
 {

@@ -11,6 +11,7 @@
 #define HAL_MODBUS_DESC_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "modbus_map.h"
@@ -64,6 +65,10 @@ struct modbus_desc {
 #define MODBUS_DEFAULT_BYTE_TIMEOUT_MS 5.0
 #define MODBUS_DEFAULT_MAX_FAULTS 3
 #define MODBUS_DEFAULT_ANSWER_MS 1.0
+
+/* "tcp HOST:PORT unit U" or "rtu PORT unit U": which unit on which bus,
+ * as every message about the device says it. */
+void modbus_where(char *buf, size_t size, const struct modbus_desc *d);
 
 /* [init] Ticks between two updates at tick_hz: tick_hz / update_hz
  * rounded, at least 1. */

@@ -57,9 +57,11 @@ struct modbus_cfg {
 	bool lockstep;                /* the loop runs on the virtual clock */
 };
 
-/* [init] The backend (not connected yet: start() connects). NULL with a
- * message in err on a bad map or out of memory. */
-struct hal_axis *hal_modbus_open(const struct modbus_cfg *c, char *err, size_t errsize);
+/* [init] The backend into *out (not connected yet: start() connects). 0,
+ * or a negative errno (-EINVAL a bad map, -ENOMEM) with a message in err
+ * naming the device. */
+int hal_modbus_open(struct hal_axis **out, const struct modbus_cfg *c, char *err,
+		    size_t errsize);
 
 /* What the device's bus did. Read after the loop ended. */
 struct modbus_stats {
@@ -78,11 +80,11 @@ struct modbus_stats {
 	int64_t rtt_min_ns, rtt_max_ns, rtt_sum_ns, rtt_n; /* per update */
 };
 
-/* The stats of a Modbus backend: false when ax is another kind. */
-bool hal_modbus_stats(struct hal_axis *ax, struct modbus_stats *s);
+/* The stats of an axis hal_modbus_open() made. */
+void hal_modbus_stats(struct hal_axis *ax, struct modbus_stats *s);
 
-/* [init] One or two lines about the bus for the run's summary; nothing when
- * ax is another kind. */
+/* [init] One or two lines about the bus of an axis hal_modbus_open() made,
+ * for the run's summary. */
 void hal_modbus_report(struct hal_axis *ax, FILE *f);
 
 #endif /* HAL_MODBUS_DEV_H */

@@ -240,7 +240,7 @@ static void test_cycle(void **state)
 		int64_t j = (int64_t)first, x;
 
 		ch.initial = 1000;
-		twin = sim_drive_new("twin", 1, 1000, &ch);
+		assert_int_equal(sim_drive_new(&twin, "twin", 1, 1000, &ch, NULL, 0), 0);
 		tx = sim_drive_axis(twin);
 		hal_axis_start(tx);
 		for (k = 0; k < 300; k++) {
@@ -348,12 +348,12 @@ static void test_start_no_bootup(void **state)
 	int64_t t0, dt;
 
 	cu_init(&r, 3, 1000);
-	r.sb = co_simbus_new(&r.clk, 1024, 1 << 16);
-	co_simbus_add(r.sb, &r.slave[0], false);
-	co_simbus_add(r.sb, &r.slave[1], true); /* powered off */
-	co_simbus_add(r.sb, &r.slave[2], false);
+	assert_int_equal(co_simbus_new(&r.sb, &r.clk, 1024, 1 << 16, NULL, 0), 0);
+	assert_int_equal(co_simbus_add(NULL, r.sb, &r.slave[0], false, NULL, 0), 0);
+	assert_int_equal(co_simbus_add(NULL, r.sb, &r.slave[1], true, NULL, 0), 0); /* powered off */
+	assert_int_equal(co_simbus_add(NULL, r.sb, &r.slave[2], false, NULL, 0), 0);
 	r.cfg.bus = co_simbus_bus(r.sb);
-	r.ax = co_axis_new(&r.cfg);
+	assert_int_equal(co_axis_new(&r.ax, &r.cfg, NULL, 0), 0);
 	r.m = co_axis_master(r.ax);
 	t0 = hal_clock_now(&r.clk);
 	start_fails(&r, -ETIMEDOUT, CO_FAULT_BOOT, 2,

@@ -54,8 +54,7 @@ static void pipe_init(struct pipe *p, const char *name)
 	};
 
 	memset(p, 0, sizeof(*p));
-	p->s = co_slave_new(&c);
-	assert_non_null(p->s);
+	assert_int_equal(co_slave_new(&p->s, &c, NULL, 0), 0);
 	co_slave_power_on(p->s, 0);
 	p->nq = 0; /* its boot-up message */
 }

@@ -40,7 +40,9 @@ static struct hal_clock clk;
 
 static void call_sim_drive_new(void)
 {
-	sim_drive_new("x", 1, 1000, &chan);
+	struct sim_drive *d;
+
+	sim_drive_new(&d, "x", 1, 1000, &chan, NULL, 0);
 }
 
 static void call_sd_close(void)
@@ -48,14 +50,16 @@ static void call_sd_close(void)
 	struct sim_drive *d;
 
 	strand_rt_leave();
-	d = sim_drive_new("x", 1, 1000, &chan);
+	assert_int_equal(sim_drive_new(&d, "x", 1, 1000, &chan, NULL, 0), 0);
 	strand_rt_enter();
 	hal_axis_close(sim_drive_axis(d));
 }
 
 static void call_sim_gpio_new(void)
 {
-	sim_gpio_new("x", 1, 1, &clk, 16);
+	struct sim_gpio *g;
+
+	sim_gpio_new(&g, "x", 1, 1, &clk, 16, NULL, 0);
 }
 
 static void call_go_start(void)
@@ -63,21 +67,25 @@ static void call_go_start(void)
 	struct sim_gpio *g;
 
 	strand_rt_leave();
-	g = sim_gpio_new("x", 1, 1, &clk, 16);
+	assert_int_equal(sim_gpio_new(&g, "x", 1, 1, &clk, 16, NULL, 0), 0);
 	strand_rt_enter();
 	hal_dout_start(sim_gpio_dout(g));
 }
 
 static void call_co_simbus_new(void)
 {
-	co_simbus_new(&clk, 64, 0);
+	struct co_simbus *b;
+
+	co_simbus_new(&b, &clk, 64, 0, NULL, 0);
 }
 
 static void call_sim_camera_new(void)
 {
 	const struct sim_camera_params p = { .exposure_ns = 1000, .readout_ns = 1000 };
 
-	sim_camera_new(&p, 16, NULL);
+	struct sim_camera *c;
+
+	sim_camera_new(&c, &p, 16, NULL, NULL, 0);
 }
 
 /* Runs call() in a child on a thread that entered the loop: it must die
@@ -151,12 +159,13 @@ static void test_flag_is_per_thread(void **state)
 static void test_rt_ops_in_rt(void **state)
 {
 	struct hal_setpoint sp = { .pos = 100 };
-	struct sim_drive *d = sim_drive_new("x", 1, 1000, &chan);
-	struct hal_axis *ax = sim_drive_axis(d);
+	struct sim_drive *d = NULL;
+	struct hal_axis *ax;
 	struct hal_fault f;
 	int64_t counts;
 
-	assert_non_null(d);
+	assert_int_equal(sim_drive_new(&d, "x", 1, 1000, &chan, NULL, 0), 0);
+	ax = sim_drive_axis(d);
 	assert_int_equal(hal_axis_start(ax), 0);
 	strand_rt_enter();
 	assert_int_equal(hal_axis_input(ax, 0), 0);

@@ -14,6 +14,7 @@
 
 #include "load/affine.h"
 #include "load/load.h"
+#include "rig/drv_gpio.h"
 #include "testutil.h"
 
 const char *const examples[] = {
@@ -247,9 +248,10 @@ static void test_gpio_lines(void **state)
 		      "         {name: ready, device: io, line: 0, role: camera_ready}]\n");
 	r = &sf.rig;
 	assert_int_equal(r->ndevices, 2);
-	assert_int_equal(r->devices[0].driver, RIG_DRIVER_GPIO);
-	assert_string_equal(r->devices[0].chip, "gpiochip2");
-	assert_null(r->devices[1].chip);
+	assert_ptr_equal(r->devices[0].driver, rig_driver_find("gpio"));
+	assert_ptr_equal(r->devices[1].driver, rig_driver_find("gpio"));
+	assert_string_equal(((const struct rig_gpio_desc *)r->devices[0].priv)->chip, "gpiochip2");
+	assert_null(((const struct rig_gpio_desc *)r->devices[1].priv)->chip);
 	assert_false(r->devices[0].has_ready);
 	assert_true(r->devices[1].has_ready);
 	assert_string_equal(r->devices[1].ready_line_name, "LAMP");

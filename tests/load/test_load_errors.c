@@ -543,6 +543,20 @@ static const struct err_case cases[] = {
 	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
 	  "triggers: [{name: cam, device: io, line: 0, offset_ms: -50}]\n",
 	  "t.yaml:5:56: offset -50 ms is a frame (41.6667 ms) or more" },
+	{ "rig: offset of a frame's ticks",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "triggers: [{name: cam, device: io, line: 0, offset_ms: 41.2}]\n",
+	  "t.yaml:5:56: offset 41.2 ms is 41 ticks: frame ticks may be only 41 apart" },
+	{ "rig: output limits crossing its node's",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z},\n"
+	  "         limits: {max: 5, velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 1, limits: {min: 10}}]\n",
+	  "t.yaml:5:11: limit max 5 is below min 10" },
 	{ "rig: line twice",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"

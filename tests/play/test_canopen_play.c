@@ -15,6 +15,7 @@
 #include "cli/exitcode.h"
 #include "hal/canopen/co_axis.h"
 #include "playutil.h"
+#include "rig/drv_canopen.h"
 #include "sim/co_simbus.h"
 #include "sim/sim_drive.h"
 #include "sim/sim_gpio.h"
@@ -34,11 +35,12 @@ static void prepare(struct play *p, struct pu_rig *r, struct pu_source *ps, stru
 	pu_rig_init(r, ps, 1, inputs);
 	pu_opts(o, ps);
 	if (can) {
-		r->dev[0].driver = RIG_DRIVER_CANOPEN;
-		r->dev[0].canopen.interface = "sim";
-		r->dev[0].canopen.bitrate = 1000000;
-		r->dev[0].canopen.sync_id = 0x80;
-		r->dev[0].canopen.heartbeat_ms = 20;
+		static const struct rig_canopen_desc bus = {
+			.interface = "sim", .bitrate = 1000000, .sync_id = 0x80, .heartbeat_ms = 20,
+		};
+
+		r->dev[0].driver = &rig_drv_canopen;
+		r->dev[0].priv = &bus;
 		r->out[0].axis = 3;
 		r->out[1].axis = 7;
 		o->rig.sim = false;
@@ -50,7 +52,7 @@ static void prepare(struct play *p, struct pu_rig *r, struct pu_source *ps, stru
 
 static struct co_slave *drive(struct play *p, uint8_t node)
 {
-	return co_simbus_node(p->rig.co_sim[0], node);
+	return co_simbus_node(rig_canopen_simbus(&p->rig, "arm"), node);
 }
 
 /* play_run, with no allocation by the loop thread. */
@@ -98,9 +100,9 @@ static void test_targets(void **state)
 	play_free(&pc);
 
 	prepare(&pt, &r, &ps, &o, false, 0);
-	sim_drive_trace(pt.rig.sim_drive[0], twin, TICKS);
+	sim_drive_trace(sim_drive_of(pt.rig.axes[0]), twin, TICKS);
 	assert_int_equal(run(&pt), STRAND_EXIT_OK);
-	assert_int_equal(sim_drive_traced(pt.rig.sim_drive[0]), n);
+	assert_int_equal(sim_drive_traced(sim_drive_of(pt.rig.axes[0])), n);
 	for (i = 0; i < n; i++) {
 		if (can_a[i] != twin[2 * i] || can_b[i] != twin[2 * i + 1])
 			fail_msg("tick %u: the bus carried %d, %d; the twin got %lld, %lld", i,
@@ -196,7 +198,7 @@ static void test_estop(void **state)
 
 	prepare(&p, &r, &ps, &o, true, PU_ESTOP);
 	co_slave_trace(drive(&p, 3), trace, TICKS);
-	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, due(&p, 3000), true), 0);
+	assert_int_equal(sim_gpio_schedule(rig_sim_gpio(&p.rig, "io"), 0, due(&p, 3000), true), 0);
 	assert_int_equal(run(&p), STRAND_EXIT_ESTOP);
 	assert_int_equal(loop_result(p.L)->rep.tick, 3000);
 	assert_int_equal(co_slave_traced(drive(&p, 3)), 3000);
@@ -210,6 +212,7 @@ static void test_estop(void **state)
  * node, the object and the abort, and no drive is left enabled. */
 static void test_start_refused(void **state)
 {
+	static const struct rig_canopen_desc bus = { .interface = "sim", .bitrate = 1000000 };
 	struct pu_source ps;
 	struct pu_rig r;
 	struct rig rig;
@@ -219,19 +222,18 @@ static void test_start_refused(void **state)
 
 	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
 	pu_rig_init(&r, &ps, 1, 0);
-	r.dev[0].driver = RIG_DRIVER_CANOPEN;
-	r.dev[0].canopen.interface = "sim";
-	r.dev[0].canopen.bitrate = 1000000;
+	r.dev[0].driver = &rig_drv_canopen;
+	r.dev[0].priv = &bus;
 	r.out[0].axis = 3;
 	r.out[1].axis = 7;
 	hal_clock_init(&clk, true);
 	assert_int_equal(rig_build(&rig, &r.d, &ps.s, &clk, &ro, err, sizeof(err)), 0);
-	co_slave_refuse(co_simbus_node(rig.co_sim[0], 7), 0x6060, 0, CO_ABORT_VALUE);
+	co_slave_refuse(co_simbus_node(rig_canopen_simbus(&rig, "arm"), 7), 0x6060, 0, CO_ABORT_VALUE);
 	assert_int_equal(rig_start(&rig, err, sizeof(err)), -EIO);
 	assert_string_equal(err, "device 'arm': start: node 7: SDO write of 0x6060:00 aborted: "
 				 "invalid value for parameter (0x06090030) (Input/output error)");
-	assert_true(co_slave_watch(co_simbus_node(rig.co_sim[0], 3))->state < CO402_SWITCHED_ON);
-	assert_int_equal(co_slave_watch(co_simbus_node(rig.co_sim[0], 3))->nmt,
+	assert_true(co_slave_watch(co_simbus_node(rig_canopen_simbus(&rig, "arm"), 3))->state < CO402_SWITCHED_ON);
+	assert_int_equal(co_slave_watch(co_simbus_node(rig_canopen_simbus(&rig, "arm"), 3))->nmt,
 			 CO_NMT_PREOPERATIONAL);
 	rig_free(&rig);
 }

@@ -59,7 +59,7 @@ static void test_whole_run(void **state)
 	/* the rig stood at the first pose, where b is just starting to move:
 	 * a one-tick move to the start of b's one-tick run-up, a tick at rest
 	 * there, then frame 0 */
-	assert_int_equal(check_frames(&p, p.rig.camera[0], 0, 240, -1), 2);
+	assert_int_equal(check_frames(&p, rig_sim_camera(&p.rig, 0), 0, 240, -1), 2);
 	assert_int_equal(loop_result(p.L)->frames_fired, 241);
 	/* the drive followed: worst following error seen, and within bound */
 	assert_true(loop_result(p.L)->ferr_worst > 0);
@@ -82,13 +82,13 @@ static void test_preroll(void **state)
 	r.out[1].home = 0.3;
 	pu_opts(&o, &ps);
 	assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
-	t0 = sim_camera_exposure(p.rig.camera[0], 0)->tick;
+	t0 = sim_camera_exposure(rig_sim_camera(&p.rig, 0), 0)->tick;
 	printf("pre-roll %lld ticks\n", (long long)t0);
 	assert_true(t0 > 0);
 	/* 45 deg at 60 deg/s and 120 deg/s^2 takes at least 1.25 s from the
 	 * last tick at rest (tick -1, where the rig stood) */
 	assert_true(t0 + 1 >= 1250);
-	check_frames(&p, p.rig.camera[0], 0, 240, t0);
+	check_frames(&p, rig_sim_camera(&p.rig, 0), 0, 240, t0);
 	play_free(&p);
 }
 
@@ -114,7 +114,7 @@ static void test_rates(void **state)
 		pu_opts(&o, &ps);
 		assert_int_equal(pu_run(&p, &r, &ps, &o), STRAND_EXIT_OK);
 		/* frame 17 is in the middle of a's move: a run-up first */
-		assert_true(check_frames(&p, p.rig.camera[0], 17, 230, -1) > 2);
+		assert_true(check_frames(&p, rig_sim_camera(&p.rig, 0), 17, 230, -1) > 2);
 		play_free(&p);
 	}
 }
@@ -143,11 +143,11 @@ static void test_24h(void **state)
 	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
 	assert_int_equal(pu_play(&p), STRAND_EXIT_OK);
 	res = loop_result(p.L);
-	n = sim_camera_count(p.rig.camera[0]);
+	n = sim_camera_count(rig_sim_camera(&p.rig, 0));
 	assert_int_equal(n, (uint64_t)last + 1);
-	assert_int_equal(sim_camera_exposure(p.rig.camera[0], n - 1)->tick, 86399981);
+	assert_int_equal(sim_camera_exposure(rig_sim_camera(&p.rig, 0), n - 1)->tick, 86399981);
 	for (f = 0; f <= last; f++)
-		if (sim_camera_exposure(p.rig.camera[0], (uint64_t)f)->tick !=
+		if (sim_camera_exposure(rig_sim_camera(&p.rig, 0), (uint64_t)f)->tick !=
 		    mot_timing_trigger_tick(p.tm, f))
 			fail_msg("frame %lld at the wrong tick", (long long)f);
 	printf("24 h: %lld ticks in %.2f s wall, %.1f ns cpu per tick\n",
@@ -186,9 +186,9 @@ static void test_journal_matches_camera(void **state)
 	cb = pu_csv_col(&c, "b.position");
 	ctc = pu_csv_col(&c, "timecode");
 	assert_string_equal(c.cell[0][0], "frame");
-	assert_int_equal(c.nrows - 1, sim_camera_count(p.rig.camera[0]));
+	assert_int_equal(c.nrows - 1, sim_camera_count(rig_sim_camera(&p.rig, 0)));
 	for (i = 1; i < c.nrows; i++) {
-		const struct sim_exposure *e = sim_camera_exposure(p.rig.camera[0], i - 1);
+		const struct sim_exposure *e = sim_camera_exposure(rig_sim_camera(&p.rig, 0), i - 1);
 		int64_t tick = atoll(c.cell[i][ct]);
 		mot_q32 fr = mot_timing_tick_frame(p.tm, tick - e->tick +
 						   mot_timing_trigger_tick(p.tm, i - 1));
@@ -303,7 +303,7 @@ static void test_loop_and_ping_pong(void **state)
 				want[n++] = f;
 			pass_end[2] = n;
 		}
-		assert_int_equal(sim_camera_count(p.rig.camera[0]), n);
+		assert_int_equal(sim_camera_count(rig_sim_camera(&p.rig, 0)), n);
 		assert_int_equal(pu_csv_read(&c, path), 0);
 		assert_int_equal(c.nrows - 1, n);
 		cf = pu_csv_col(&c, "frame");
@@ -312,7 +312,7 @@ static void test_loop_and_ping_pong(void **state)
 			int64_t tick = atoll(c.cell[i + 1][ct]);
 
 			assert_int_equal(atoll(c.cell[i + 1][cf]), want[i]);
-			assert_int_equal(tick, sim_camera_exposure(p.rig.camera[0], i)->tick);
+			assert_int_equal(tick, sim_camera_exposure(rig_sim_camera(&p.rig, 0), i)->tick);
 			/* within a pass, the gap is the difference of trigger ticks */
 			if (i > 0 && i != pass_end[0] && i != pass_end[1]) {
 				int64_t gap = llabs(mot_timing_trigger_tick(p.tm, want[i]) -
@@ -355,17 +355,17 @@ static void test_offset_and_width(void **state)
 		pu_alloc_hook_install();
 		assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
 	}
-	sim_gpio_record(p.rig.sim_gpio[0], edges, 1024);
+	sim_gpio_record(rig_sim_gpio(&p.rig, "io"), edges, 1024);
 	assert_int_equal(pu_play(&p), STRAND_EXIT_OK);
-	n = sim_gpio_edges(p.rig.sim_gpio[0]);
+	n = sim_gpio_edges(rig_sim_gpio(&p.rig, "io"));
 	assert_int_equal(n, 4 * 241);
 	/* the camera on line 1 fires 13 ticks after the one on line 0 */
-	tick0 = sim_camera_exposure(p.rig.camera[0], 0)->tick + 8;
+	tick0 = sim_camera_exposure(rig_sim_camera(&p.rig, 0), 0)->tick + 8;
 	for (i = 0; i < 241; i++) {
 		int64_t t = tick0 + mot_timing_trigger_tick(p.tm, (int64_t)i);
 
-		assert_int_equal(sim_camera_exposure(p.rig.camera[0], i)->tick, t - 8);
-		assert_int_equal(sim_camera_exposure(p.rig.camera[1], i)->tick, t + 5);
+		assert_int_equal(sim_camera_exposure(rig_sim_camera(&p.rig, 0), i)->tick, t - 8);
+		assert_int_equal(sim_camera_exposure(rig_sim_camera(&p.rig, 1), i)->tick, t + 5);
 	}
 	for (i = 0; i < n; i++) {
 		uint64_t k;
@@ -416,16 +416,16 @@ static void test_stall_catch_up(void **state)
 	o.journal_path = path;
 	pu_alloc_hook_install();
 	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), 0);
-	sim_camera_on_exposure(p.rig.camera[0], stall_at_50, &p);
-	sim_gpio_record(p.rig.sim_gpio[0], edges, 1024);
+	sim_camera_on_exposure(rig_sim_camera(&p.rig, 0), stall_at_50, &p);
+	sim_gpio_record(rig_sim_gpio(&p.rig, "io"), edges, 1024);
 	assert_int_equal(pu_finish(&p, false), STRAND_EXIT_OK);
 	lat = &loop_result(p.L)->lat;
 	/* 51 and 52 went out back to back: the camera, busy with 51 for half
 	 * a frame, could not take 52 (a real camera would not either) */
-	assert_int_equal(sim_camera_missed(p.rig.camera[0]), 1);
-	assert_int_equal(sim_camera_count(p.rig.camera[0]), 240);
+	assert_int_equal(sim_camera_missed(rig_sim_camera(&p.rig, 0)), 1);
+	assert_int_equal(sim_camera_count(rig_sim_camera(&p.rig, 0)), 240);
 	/* every trigger went out once, at its own tick */
-	assert_int_equal(sim_gpio_edges(p.rig.sim_gpio[0]), 2 * 241);
+	assert_int_equal(sim_gpio_edges(rig_sim_gpio(&p.rig, "io")), 2 * 241);
 	t0 = edges[0].tick;
 	for (f = 0; f <= 240; f++) {
 		assert_true(edges[2 * f].asserted);

@@ -43,7 +43,7 @@ static const struct sim_drive_watch *watch(const struct play *p, uint32_t out)
 {
 	const struct rig_out *o = &p->rig.out[out];
 
-	return sim_drive_watch(p->rig.sim_drive[o->dev], o->ch);
+	return sim_drive_watch(sim_drive_of(p->rig.axes[o->dev]), o->ch);
 }
 
 /* The last traced targets of an output: at rest (the last two equal). */
@@ -55,10 +55,10 @@ static void assert_at_rest(int64_t *trace, int64_t n, uint32_t nch, uint32_t ch)
 
 static void no_exposure_from(struct play *p, int64_t tick)
 {
-	uint64_t i, n = sim_camera_count(p->rig.camera[0]);
+	uint64_t i, n = sim_camera_count(rig_sim_camera(&p->rig, 0));
 
 	for (i = 0; i < n; i++)
-		assert_true(sim_camera_exposure(p->rig.camera[0], i)->tick < tick);
+		assert_true(sim_camera_exposure(rig_sim_camera(&p->rig, 0), i)->tick < tick);
 	assert_int_equal((int64_t)n, loop_result(p->L)->frames_fired);
 }
 
@@ -78,7 +78,7 @@ static void test_estop(void **state)
 		uint32_t i;
 
 		prepare(&p, &r, &ps, &o, PU_ESTOP);
-		assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0,
+		assert_int_equal(sim_gpio_schedule(rig_sim_gpio(&p.rig, "io"), 0,
 						   loop_due(p.L, 3000) + when[k], true), 0);
 		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
 		assert_int_equal(loop_result(p.L)->rep.cause, LOOP_CAUSE_ESTOP);
@@ -88,7 +88,7 @@ static void test_estop(void **state)
 			assert_int_equal(watch(&p, i)->last_commit_tick, 2999);
 			assert_false(watch(&p, i)->powered);
 		}
-		assert_false(sim_gpio_out_level(p.rig.sim_gpio[0], 0)); /* active high: low */
+		assert_false(sim_gpio_out_level(rig_sim_gpio(&p.rig, "io"), 0)); /* active high: low */
 		no_exposure_from(&p, 3000);
 		assert_true(loop_result(p.L)->frames_fired > 60);
 		play_free(&p);
@@ -104,11 +104,11 @@ static void test_estop_before_start(void **state)
 	struct play p;
 
 	prepare(&p, &r, &ps, &o, PU_ESTOP);
-	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, INT64_MIN, true), 0);
+	assert_int_equal(sim_gpio_schedule(rig_sim_gpio(&p.rig, "io"), 0, INT64_MIN, true), 0);
 	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
 	assert_int_equal(loop_result(p.L)->rep.tick, 0);
 	assert_int_equal(watch(&p, 0)->commits, 0);
-	assert_int_equal(sim_camera_count(p.rig.camera[0]), 0);
+	assert_int_equal(sim_camera_count(rig_sim_camera(&p.rig, 0)), 0);
 	play_free(&p);
 }
 
@@ -122,16 +122,16 @@ static void test_stop_input(void **state)
 	int64_t trace[2][12000];
 
 	prepare(&p, &r, &ps, &o, PU_STOP);
-	sim_drive_trace(p.rig.sim_drive[0], trace[0], 12000);
-	sim_drive_trace(p.rig.sim_drive[1], trace[1], 12000);
-	assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], 0, loop_due(p.L, 3000), true), 0);
+	sim_drive_trace(sim_drive_of(p.rig.axes[0]), trace[0], 12000);
+	sim_drive_trace(sim_drive_of(p.rig.axes[1]), trace[1], 12000);
+	assert_int_equal(sim_gpio_schedule(rig_sim_gpio(&p.rig, "io"), 0, loop_due(p.L, 3000), true), 0);
 	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_STOPPED);
 	assert_int_equal(loop_result(p.L)->rep.cause, LOOP_CAUSE_STOP_INPUT);
 	no_exposure_from(&p, 3001);
 	/* a was moving fast: stopping took a while, and ended at rest */
 	assert_true(loop_result(p.L)->ticks_run > 3010);
-	assert_at_rest(trace[0], sim_drive_traced(p.rig.sim_drive[0]), 1, 0);
-	assert_at_rest(trace[1], sim_drive_traced(p.rig.sim_drive[1]), 1, 0);
+	assert_at_rest(trace[0], sim_drive_traced(sim_drive_of(p.rig.axes[0])), 1, 0);
+	assert_at_rest(trace[1], sim_drive_traced(sim_drive_of(p.rig.axes[1])), 1, 0);
 	play_free(&p);
 }
 
@@ -184,18 +184,18 @@ static void test_sigint(void **state)
 		sigints = 0;
 		kills_wanted = k;
 		prepare(&p, &r, &ps, &o, 0);
-		sim_drive_trace(p.rig.sim_drive[0], trace, 12000);
-		sim_camera_on_exposure(p.rig.camera[0], kill_at_100, &p);
+		sim_drive_trace(sim_drive_of(p.rig.axes[0]), trace, 12000);
+		sim_camera_on_exposure(rig_sim_camera(&p.rig, 0), kill_at_100, &p);
 		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_STOPPED);
-		at = sim_camera_exposure(p.rig.camera[0], 100)->tick;
+		at = sim_camera_exposure(rig_sim_camera(&p.rig, 0), 100)->tick;
 		res = loop_result(p.L);
-		assert_int_equal(sim_camera_count(p.rig.camera[0]), 101);
+		assert_int_equal(sim_camera_count(rig_sim_camera(&p.rig, 0)), 101);
 		assert_int_equal(res->rep.tick, at + 1);
 		if (k == 1) {
 			assert_int_equal(res->rep.cause, LOOP_CAUSE_SIGNAL);
 			/* a was moving at frame 100: it decelerated to rest */
 			assert_true(res->ticks_run > at + 10);
-			assert_at_rest(trace, sim_drive_traced(p.rig.sim_drive[0]), 1, 0);
+			assert_at_rest(trace, sim_drive_traced(sim_drive_of(p.rig.axes[0])), 1, 0);
 			assert_true(watch(&p, 0)->powered || watch(&p, 0)->disabled_tick > at + 10);
 		} else {
 			assert_int_equal(res->rep.cause, LOOP_CAUSE_IMMEDIATE);
@@ -221,8 +221,8 @@ static void test_drive_trip(void **state)
 	const struct loop_report *rep;
 
 	prepare(&p, &r, &ps, &o, 0);
-	sim_drive_trace(p.rig.sim_drive[0], trace, 12000);
-	sim_drive_inject(p.rig.sim_drive[1], 0, 3000, SIM_DRIVE_TRIP);
+	sim_drive_trace(sim_drive_of(p.rig.axes[0]), trace, 12000);
+	sim_drive_inject(sim_drive_of(p.rig.axes[1]), 0, 3000, SIM_DRIVE_TRIP);
 	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
 	rep = &loop_result(p.L)->rep;
 	assert_int_equal(rep->cause, LOOP_CAUSE_DEVICE);
@@ -232,7 +232,7 @@ static void test_drive_trip(void **state)
 	assert_int_equal(rep->tick, 3000);
 	assert_int_equal(watch(&p, 1)->disabled_tick, 3000);
 	no_exposure_from(&p, 3000);
-	assert_at_rest(trace, sim_drive_traced(p.rig.sim_drive[0]), 1, 0);
+	assert_at_rest(trace, sim_drive_traced(sim_drive_of(p.rig.axes[0])), 1, 0);
 	play_describe(&p, msg, sizeof(msg));
 	printf("%s\n", msg);
 	assert_non_null(strstr(msg, "device 'arm2' channel 0 (b.position): overcurrent"));
@@ -256,8 +256,8 @@ static void test_first_reason_stands(void **state)
 		uint32_t line = k == 0 ? 1 : 0; /* the stop input, the e-stop */
 
 		prepare(&p, &r, &ps, &o, PU_ESTOP | PU_STOP);
-		sim_drive_inject(p.rig.sim_drive[1], 0, 3000, SIM_DRIVE_TRIP);
-		assert_int_equal(sim_gpio_schedule(p.rig.sim_gpio[0], line, loop_due(p.L, 3005),
+		sim_drive_inject(sim_drive_of(p.rig.axes[1]), 0, 3000, SIM_DRIVE_TRIP);
+		assert_int_equal(sim_gpio_schedule(rig_sim_gpio(&p.rig, "io"), line, loop_due(p.L, 3005),
 						   true), 0);
 		if (k == 0) {
 			assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
@@ -299,7 +299,7 @@ static void test_following_error(void **state)
 		const struct loop_report *rep;
 
 		prepare(&p, &r, &ps, &o, 0);
-		sim_drive_inject(p.rig.sim_drive[0], 0, 3000, faults[k]);
+		sim_drive_inject(sim_drive_of(p.rig.axes[0]), 0, 3000, faults[k]);
 		assert_int_equal(pu_finish(&p, true), STRAND_EXIT_FAULT);
 		rep = &loop_result(p.L)->rep;
 		assert_int_equal(rep->cause, LOOP_CAUSE_FERROR);
@@ -353,7 +353,7 @@ static void test_runtime_limits(void **state)
 		} else {
 			assert_int_equal(code, STRAND_EXIT_OK);
 			assert_true(res->limited[0] > 100);
-			assert_int_equal(sim_camera_count(p.rig.camera[0]), 101);
+			assert_int_equal(sim_camera_count(rig_sim_camera(&p.rig, 0)), 101);
 		}
 		play_free(&p);
 	}

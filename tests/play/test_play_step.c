@@ -39,7 +39,7 @@ static void on_exposure(void *ctx, const struct sim_exposure *e)
 		return;
 	for (i = 0; i < 2; i++) {
 		const struct rig_out *o = &p->rig.out[i];
-		const struct sim_drive_watch *w = sim_drive_watch(p->rig.sim_drive[o->dev], o->ch);
+		const struct sim_drive_watch *w = sim_drive_watch(sim_drive_of(p->rig.axes[o->dev]), o->ch);
 
 		shots[nshots].target[i] = w->target;
 		shots[nshots].actual[i] = w->x;
@@ -62,7 +62,7 @@ static void prepare(struct play *p, struct pu_rig *r, struct pu_source *ps,
 	if (play_prepare(p, &r->d, &ps->s, o, err, sizeof(err)))
 		fail_msg("play_prepare: %s", err);
 	nshots = 0;
-	sim_camera_on_exposure(p->rig.camera[0], on_exposure, p);
+	sim_camera_on_exposure(rig_sim_camera(&p->rig, 0), on_exposure, p);
 }
 
 /* Every shot at the frame's exact pose (the counts of the source's value
@@ -156,14 +156,14 @@ static void test_step_camera_ready(void **state)
 		assert_int_equal(pu_finish(&p, false), STRAND_EXIT_OK);
 		assert_int_equal(loop_result(p.L)->frames_fired, 10);
 		if (!wired) {
-			assert_true(sim_camera_missed(p.rig.camera[0]) > 0);
+			assert_true(sim_camera_missed(rig_sim_camera(&p.rig, 0)) > 0);
 		} else {
-			assert_int_equal(sim_camera_missed(p.rig.camera[0]), 0);
-			assert_int_equal(sim_camera_count(p.rig.camera[0]), 10);
+			assert_int_equal(sim_camera_missed(rig_sim_camera(&p.rig, 0)), 0);
+			assert_int_equal(sim_camera_count(rig_sim_camera(&p.rig, 0)), 10);
 			/* paced by the camera: exposure plus readout apart */
 			for (i = 1; i < 10; i++)
-				assert_true(sim_camera_exposure(p.rig.camera[0], i)->tick -
-						    sim_camera_exposure(p.rig.camera[0], i - 1)->tick >=
+				assert_true(sim_camera_exposure(rig_sim_camera(&p.rig, 0), i)->tick -
+						    sim_camera_exposure(rig_sim_camera(&p.rig, 0), i - 1)->tick >=
 					    (int64_t)(0.5 * 1000 / 24));
 		}
 		play_free(&p);

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * pool.h - the loader's scratch memory: many small allocations that all live
- * as long as one loaded scene file and are freed together.
+ * pool.h - a scene file's memory: many small allocations that all live as
+ * long as one loaded scene file and are freed together (the loader's and
+ * the rig drivers' settings alike, yml.h).
  *
  * The scene file's description (names, key arrays, marks) is built piece by
  * piece while the YAML is walked, with sizes known only as each sequence is

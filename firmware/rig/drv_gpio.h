@@ -1,0 +1,23 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * drv_gpio.h - the GPIO driver (drv_gpio.c): a device's trigger lines,
+ * rig-ready line and inputs on one GPIO chip (hal/gpio/gpio.h), requested
+ * when the rig starts, so that a line held by another process is an error
+ * of the start naming the chip and the line.
+ *
+ *   - {name: io, driver: gpio, chip: gpiochip0}   # chip: optional
+ */
+#ifndef STRAND_DRV_GPIO_H
+#define STRAND_DRV_GPIO_H
+
+#include "rig_driver.h"
+
+extern const struct rig_driver rig_drv_gpio;
+
+/* A gpio device's settings (rig_device_desc.priv; NULL: the defaults). */
+struct rig_gpio_desc {
+	const char *chip; /* gpiochip0, /dev/gpiochip0 or a label; NULL: the
+			   * lines by name, on whichever chip */
+};
+
+#endif /* STRAND_DRV_GPIO_H */

@@ -1,0 +1,148 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * rig_desc.c - the rules a rig description follows (see rig_desc.h), once:
+ * the loader refuses a scene file by them, with the place in the file, and
+ * rig_build() a description made in code, naming the entry. So `strand
+ * check` and `strand play` can never disagree about what a rig may be.
+ */
+#include "rig_desc.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+
+#include "rig_driver.h"
+
+int rig_output_check_scale(const struct rig_output_desc *o, bool turns, char *msg,
+			   size_t size)
+{
+	double scale = fabs(o->counts_per_unit) * (turns ? 360 : 1);
+
+	/* a scale is Q32.32 counts per core unit (scale.h) */
+	if (!isfinite(scale) || o->counts_per_unit == 0 || scale >= 2147483648.0) {
+		snprintf(msg, size, "counts_per_unit must be non-zero and below 2^31 counts per %s",
+			 turns ? "turn" : "unit");
+		return -ERANGE;
+	}
+	return 0;
+}
+
+int rig_output_check_offset(const struct rig_output_desc *o, char *msg, size_t size)
+{
+	/* counts are int64_t, with room for the motion on top */
+	if (!isfinite(o->offset) || fabs(o->offset) > 9e18) {
+		snprintf(msg, size, "offset out of range");
+		return -ERANGE;
+	}
+	return 0;
+}
+
+int rig_output_check_ferror(const struct rig_output_desc *o, bool *at_min, char *msg,
+			    size_t size)
+{
+	*at_min = false;
+	if (o->ferror < 0 || o->min_ferror < 0 || o->in_position < 0) {
+		snprintf(msg, size, "ferror, min_ferror and in_position cannot be negative");
+		return -EINVAL;
+	}
+	/* the bound scales from min_ferror at rest to ferror at full speed */
+	if (o->ferror > 0 && o->min_ferror > o->ferror) {
+		*at_min = true;
+		snprintf(msg, size, "min_ferror %.10g is above ferror %.10g", o->min_ferror,
+			 o->ferror);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+void rig_output_limits(const struct sd_limits *own, const struct sd_limits *scene,
+		       struct sd_limits *out)
+{
+	static const struct sd_limits none;
+	const struct sd_limits *b = scene ? scene : &none;
+	struct sd_limits l = *own;
+
+	if (!l.has_min && b->has_min) {
+		l.has_min = true;
+		l.min = b->min;
+	}
+	if (!l.has_max && b->has_max) {
+		l.has_max = true;
+		l.max = b->max;
+	}
+	if (!l.has_vel && b->has_vel) {
+		l.has_vel = true;
+		l.vel = b->vel;
+	}
+	if (!l.has_acc && b->has_acc) {
+		l.has_acc = true;
+		l.acc = b->acc;
+	}
+	*out = l;
+}
+
+int rig_output_check_limits(const char *channel, const struct sd_limits *lim, bool node,
+			    char *msg, size_t size)
+{
+	if (!lim->has_vel || !lim->has_acc || !(lim->vel > 0) || !(lim->acc > 0) ||
+	    !isfinite(lim->vel) || !isfinite(lim->acc)) {
+		snprintf(msg, size,
+			 "output '%s' needs velocity and acceleration limits (here%s): the "
+			 "pre-roll, the moves and every stop are planned with them", channel,
+			 node ? " or on its node" : "");
+		return -EINVAL;
+	}
+	if (lim->has_min && lim->has_max && lim->min > lim->max) {
+		snprintf(msg, size, "limit max %.10g is below min %.10g", lim->max, lim->min);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+int rig_trigger_check(const struct rig_trigger_desc *g, const struct mot_timing *t,
+		      int64_t *width, int64_t *offset, bool *at_offset, char *msg, size_t size)
+{
+	/* the shortest gap between two frame ticks: floor(ticks per frame) */
+	double gap = (double)(t->ticks_den / t->num);
+	double frame_ms = 1000.0 * t->den / t->num, tick_ms = 1000.0 / t->tick_hz;
+	/* whole ticks, at least one; in doubles until they are known to fit */
+	double w = fmax(ceil(g->pulse_ms * t->tick_hz / 1000.0 - 1e-9), 1);
+	double off = round(g->offset_ms * t->tick_hz / 1000.0);
+
+	*at_offset = false;
+	if (!(w < gap)) {
+		snprintf(msg, size, "a %.10g ms pulse does not end before the next frame's (frames "
+			 "are %.6g ms apart, ticks %.6g ms)", g->pulse_ms, frame_ms, tick_ms);
+		return -EINVAL;
+	}
+	*at_offset = true;
+	if (!(fabs(g->offset_ms) < frame_ms)) {
+		snprintf(msg, size, "offset %.10g ms is a frame (%.6g ms) or more", g->offset_ms,
+			 frame_ms);
+		return -EINVAL;
+	}
+	/* less than a frame, but as many ticks as two frame ticks may be apart */
+	if (!(fabs(off) < gap)) {
+		snprintf(msg, size, "offset %.10g ms is %.0f ticks: frame ticks may be only %.0f "
+			 "apart", g->offset_ms, fabs(off), gap);
+		return -EINVAL;
+	}
+	*at_offset = false;
+	*width = (int64_t)w;
+	*offset = (int64_t)off;
+	return 0;
+}
+
+int rig_desc_validate(const struct rig_desc *d, uint32_t tick_hz, struct rig_desc_err *e)
+{
+	const struct rig_driver *const *drv;
+	int rc;
+
+	e->output = e->device = -1;
+	e->key = NULL;
+	e->msg[0] = '\0';
+	for (drv = rig_drivers; *drv; drv++)
+		if ((*drv)->validate && (rc = (*drv)->validate(d, tick_hz, e)))
+			return rc;
+	return 0;
+}
