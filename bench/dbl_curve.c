@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * dbl_curve.c - scalar curves in double, doing what motion/curve.c does
+ * dbl_curve.c - scalar curves in double, doing what motion/curve*.c do
  * (see dbl_curve.h). Where the core needs integer machinery that double
  * does not (block floating point scales, 128-bit sums, the Newton
  * reciprocal), the twin does the plain double operation instead; the
@@ -13,7 +13,7 @@
 #include <math.h>
 #include <string.h>
 
-/* Newton start rules and limits: curve.c's */
+/* Newton start rules and limits: curve_solve.c's */
 enum { START_CHORD, START_CUBE0, START_CUBE1 };
 #define NEWTON_MAX_IT 64
 #define NEWTON_TOL (1.0 / 2147483648.0)     /* 2^-31 */
@@ -87,7 +87,7 @@ static inline double end_of(const struct dbl_curve *c, bool keys, uint32_t j)
 	return keys ? c->frame[j + 1] : c->seg[j].f1;
 }
 
-/* curve.c's locate(): the hint, its successor, else a binary search */
+/* curve_locate.c's mot_cv_locate(): the hint, its successor, else a binary search */
 static uint32_t locate(const struct dbl_curve *c, bool keys, uint32_t n, uint32_t hint, double f)
 {
 	uint32_t lo = 0, hi = n;
@@ -143,7 +143,7 @@ static void bezier_reduce(const struct dbl_curve *c, const double *k, double u, 
 			w[i] += (w[i + 1] - w[i]) * u;
 }
 
-/* curve.c's power_frame() and power_value(): a[k - 1] multiplies u^k */
+/* curve_solve.c's power form evaluation: a[k - 1] multiplies u^k */
 static void power_frame(const double *a, uint32_t m, double u, double *f, double *df)
 {
 	double r = a[m - 1], d = m * a[m - 1];
@@ -187,7 +187,7 @@ static void frame_at(const struct dbl_curve *c, const struct dbl_seg *s, double 
 	*df = (double)(c->nkeys - 1) * (w[1] - w[0]);
 }
 
-/* frame(u) = fref + d on piece s: curve.c's solve_u() (rtsafe), the same
+/* frame(u) = fref + d on piece s: curve_solve.c's Newton solve (rtsafe), the same
  * bracket, safeguards and stopping rule, with a plain division for the step */
 static double solve_u(const struct dbl_curve *c, const struct dbl_seg *s, double d, double u,
 		      int *it)
@@ -355,7 +355,7 @@ double dbl_curve_integral(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 
 /* ---- preparation ---------------------------------------------------------------- */
 
-/* curve.c's prep_power(): the power form's coefficients, exact in raw
+/* curve_bezier.c's power form: the power form's coefficients, exact in raw
  * Q32.32 units, and the same rule for taking it (sum k |a_k| and sum |a_k|
  * below 2^53; no |a_k| of 2^54 or more) */
 static void prep_power(struct dbl_curve *c)
@@ -392,7 +392,7 @@ static void prep_power(struct dbl_curve *c)
 			c->pw[side * m + j] = a[side][j];
 }
 
-/* curve.c's basis(): weights of E(j)..E(j+3) on u^p over den */
+/* curve_approx.c's basis: weights of E(j)..E(j+3) on u^p over den */
 static void basis(const struct dbl_curve *c, double b1, double b2, double nb[4][4], double *den)
 {
 	static const double bsp[4][4] = {
@@ -453,7 +453,7 @@ static void prep_spline(struct dbl_curve *c, uint32_t j, double nb[4][4], double
 		big += fabs(nf[p]);
 	}
 	s->f0 = s->fref + s->fc[0];
-	/* the start rules, on the numerators as curve.c tests them (up to the
+	/* the start rules, on the numerators as curve_solve.c tests them (up to the
 	 * rounding of double, which the core's exact sums do not have) */
 	s->start = START_CHORD;
 	if (fabs(nf[1]) + fabs(nf[2]) <= 1e-12 * big)
@@ -463,7 +463,7 @@ static void prep_spline(struct dbl_curve *c, uint32_t j, double nb[4][4], double
 }
 
 /* Hermite piece j: Catmull-Rom tangents times h (one-sided at the ends),
- * then the cubic in s and its mean-value coefficients, as curve.c does */
+ * then the cubic in s and its mean-value coefficients, as curve_approx.c does */
 static void prep_hermite(struct dbl_curve *c, uint32_t j, double h, double dv)
 {
 	struct dbl_seg *s = &c->seg[j];

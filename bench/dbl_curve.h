@@ -5,7 +5,7 @@
  * power form relative to a reference key, reciprocals of widths, ease
  * factors, running integrals) and the same evaluation (cursor lookup, the
  * safeguarded Newton solve of the approximating kinds from the same start,
- * Bezier in power form where curve.c uses it and by de Casteljau's
+ * Bezier in power form where curve_bezier.c uses it and by de Casteljau's
  * algorithm elsewhere), in double and libm. Keys come from a scene
  * description, quantised to Q32.32 first exactly as scene_build() does, so
  * that the twin, the core and tests/ref_curve.c all see the same inputs.
@@ -43,7 +43,7 @@ struct dbl_curve {
 	bool seg_ease, span_ease, integral;
 	double *frame, *value; /* the keys */
 	struct dbl_seg *seg;
-	double *pw;            /* bezier in power form (curve.c's rule), else NULL:
+	double *pw;            /* bezier in power form (curve_bezier.c's rule), else NULL:
 				* the frame's a_1 .. a_m, then the value's */
 	double span_f0, span_f1, span_inv;
 	struct dbl_ease span;

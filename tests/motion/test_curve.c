@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * test_curve.c - motion/curve.c against the floating-point reference of
+ * test_curve.c - motion/curve*.c against the floating-point reference of
  * tests/ref_curve.c (FORMULAS.md sections 6 to 8), on seeded random key sets
  * with uneven key times: accuracy of every kind with and without ease,
  * passing through keys, convex hulls, Hermite's overshoot, the Beta-spline's
@@ -249,7 +249,7 @@ static void test_bezier_max(void **state)
 }
 
 /*
- * Bezier curves that curve.c evaluates in power form (the form's range: a
+ * Bezier curves that the core evaluates in power form (the form's range: a
  * few keys close together; test_bezier's sets mostly fall outside it)
  * against the reference, with the same bound, and the power form taken for
  * most of these sets.
