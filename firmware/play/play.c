@@ -14,9 +14,9 @@
 #include "scene/timecode.h"
 
 /* Records the journal keeps mapped ahead of the loop: ten seconds of
- * frames, at least 4096. A run without an end gets room for this many. */
+ * frames, at least 4096. What it holds in memory is sized by these, never
+ * by the run's length (journal.h). */
 #define JOURNAL_AHEAD_S 10
-#define JOURNAL_UNBOUNDED (1LL << 24)
 
 static uint32_t journal_unit(enum src_unit u)
 {
@@ -54,10 +54,14 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.nout = n;
 	ji.out_name = names;
 	ji.out_unit = units;
+	/* a run with an end refuses a frame past it; one without grows its
+	 * file until the run stops or the disk is full */
 	ji.capacity = total >= 0 ? total : JOURNAL_UNBOUNDED;
-	if (ji.capacity < 1)
+	if (total == 0)
 		ji.capacity = 1;
 	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (p->rig.ntrig ? p->rig.ntrig : 1));
+	/* a tick's edges are FIRED after every one of them was armed */
+	ji.behind = p->rig.ntrig ? p->rig.ntrig : 1;
 	rc = journal_open(&p->jr, p->o.journal_path, &ji);
 	free(names);
 	free(units);
