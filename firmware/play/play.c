@@ -73,6 +73,19 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	return 0;
 }
 
+/* A stop asked for while the run is prepared (a signal) once the devices
+ * have started: they are stopped at once, as at the end of a run, and the
+ * run does not begin. 0, or -ECANCELED. */
+static int given_up(struct play *p, char *err, size_t errsize)
+{
+	if (!hal_cancelled(p->o.rig.cancel))
+		return 0;
+	snprintf(err, errsize, "start given up after every device had started");
+	rig_stop(&p->rig);
+	p->rig_started = false;
+	return -ECANCELED;
+}
+
 int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *src,
 		 const struct play_opts *o, char *err, size_t errsize)
 {
@@ -112,6 +125,8 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, &p->status, err, errsize);
 	if (rc == -EINVAL)
 		p->failed_at = PLAY_STAGE_OPTIONS; /* --from after --to, and the like */
+	if (!rc)
+		rc = given_up(p, err, errsize);
 	if (rc)
 		return rc;
 	p->failed_at = PLAY_STAGE_JOURNAL;
@@ -129,6 +144,10 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 			return rc;
 		}
 	}
+	p->failed_at = PLAY_STAGE_START;
+	rc = given_up(p, err, errsize);
+	if (rc)
+		return rc;
 	p->failed_at = PLAY_STAGE_NONE;
 	return 0;
 }
