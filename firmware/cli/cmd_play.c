@@ -204,7 +204,7 @@ static void on_signal(int sig)
 }
 
 struct saved_signals {
-	struct sigaction sigint, sigterm;
+	struct sigaction sigint, sigterm, sigxfsz;
 	bool installed;
 };
 
@@ -220,6 +220,11 @@ static void signals_install(struct saved_signals *s)
 	g_sigints = 0;
 	g_signo = 0;
 	s->installed = !sigaction(SIGINT, &sa, &s->sigint) && !sigaction(SIGTERM, &sa, &s->sigterm);
+	/* a file size limit (ulimit -f, LimitFSIZE=) reached by the journal's
+	 * growth is then EFBIG, a clean stop the service reports, not a kill
+	 * with the drives enabled */
+	sa.sa_handler = SIG_IGN;
+	s->installed = !sigaction(SIGXFSZ, &sa, &s->sigxfsz) && s->installed;
 }
 
 /* The handlers the program had before, once every device has stopped. */
@@ -230,6 +235,7 @@ static void signals_restore(struct saved_signals *s)
 	atomic_store(&g_play, NULL);
 	sigaction(SIGINT, &s->sigint, NULL);
 	sigaction(SIGTERM, &s->sigterm, NULL);
+	sigaction(SIGXFSZ, &s->sigxfsz, NULL);
 	s->installed = false;
 }
 

@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "cli/exitcode.h"
+#include "cliutil.h"
 
 #include "hal/ring.h"
 #include "journal/journal.h"
@@ -437,6 +438,49 @@ static void test_journal_full_disk(void **state)
 	unlink(path);
 }
 
+/* The same through `strand play`, which ignores SIGXFSZ while it runs (the
+ * limit would kill it otherwise, with the drives enabled): exit 4 and the
+ * journal's message; the test process's disposition is its own again
+ * afterwards. */
+static void test_cli_file_limit(void **state)
+{
+	static const char scene[] =
+		"scene: limit\n"
+		"timing: {tick_hz: 1000, frame_rate: 250, frames: [0, 20000]}\n"
+		"nodes:\n"
+		"  - {name: a, joint: {type: revolute, axis: y}, limits: {velocity: 90, acceleration: 360}}\n"
+		"strands:\n"
+		"  - {node: a, keys: [{frame: 0, angle: 0}, {frame: 20000, angle: 10}]}\n";
+	struct rlimit old, lim;
+	struct sigaction now;
+	char path[256], jpath[256], args[768];
+	struct run r;
+	FILE *f;
+
+	pu_tmpname(path, sizeof(path), "limit.yaml");
+	pu_tmpname(jpath, sizeof(jpath), "limit.journal");
+	f = fopen(path, "w");
+	assert_non_null(f);
+	fputs(scene, f);
+	fclose(f);
+	snprintf(args, sizeof(args), "play %s --sim --clock virtual --journal %s --quiet", path, jpath);
+	assert_int_equal(getrlimit(RLIMIT_FSIZE, &old), 0);
+	lim = old;
+	lim.rlim_cur = 1200000; /* the header and one chunk of 14563 records */
+	assert_int_equal(setrlimit(RLIMIT_FSIZE, &lim), 0);
+	strand(&r, args);
+	assert_int_equal(setrlimit(RLIMIT_FSIZE, &old), 0);
+	printf("%s", r.err);
+	assert_int_equal(r.rc, STRAND_EXIT_IO);
+	assert_non_null(strstr(r.err, "journal cannot record the next frame (File too large)"));
+	assert_non_null(strstr(r.err, "last frame 14562;"));
+	run_free(&r);
+	sigaction(SIGXFSZ, NULL, &now);
+	assert_true(now.sa_handler == SIG_DFL);
+	unlink(path);
+	unlink(jpath);
+}
+
 /* The same in a run: the loop stops before the frame it cannot record
  * (exit 4), nothing crashes, the journal keeps every frame fired. */
 static void test_play_full_disk(void **state)
@@ -555,6 +599,7 @@ int main(void)
 		cmocka_unit_test(test_journal_past_2_24),
 		cmocka_unit_test(test_journal_full_disk),
 		cmocka_unit_test(test_play_full_disk),
+		cmocka_unit_test(test_cli_file_limit),
 		cmocka_unit_test(test_ring_spsc),
 	};
 
