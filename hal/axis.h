@@ -58,7 +58,9 @@ struct hal_axis;
 
 struct hal_axis_ops {
 	/* [init] Bring the device up and enable its power stage; the channels
-	 * hold their present position. 0 or a negative errno. */
+	 * hold their present position. 0 or a negative errno; -ECANCELED
+	 * when the cancel request its configuration gave (cancel.h) came
+	 * while it waited: then nothing of it is left enabled. */
 	int (*start)(struct hal_axis *ax);
 	/* [rt] Take in what arrived since the last tick (feedback, status).
 	 * 0, or the negative errno of a fault latched now or before. */

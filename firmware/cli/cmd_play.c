@@ -175,15 +175,78 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	return -1;
 }
 
-static struct play *g_play;
-static volatile sig_atomic_t g_sigints;
+/*
+ * The signals of a run, from before the first device starts to after the
+ * last one stopped. Until the loop runs, a signal asks the start to give up
+ * (g_cancel: the backends' waits and rig_start look at it, and the devices
+ * started are stopped the ordinary way); once it runs, the loop is asked
+ * to stop (play_signal). g_play is published after play_prepare returned,
+ * and the request looked at once more after that, so that a signal in
+ * between is seen by one or the other (both are sequentially consistent:
+ * the handler stores the request, then loads g_play; the program stores
+ * g_play, then loads the request).
+ */
+static struct hal_cancel g_cancel;
+static struct play *_Atomic g_play;
+static volatile sig_atomic_t g_sigints, g_signo;
 
 static void on_signal(int sig)
 {
+	struct play *p;
+
 	if (sig == SIGINT)
 		g_sigints++;
-	if (g_play)
-		play_signal(g_play, sig, sig == SIGINT ? g_sigints : 1);
+	g_signo = sig;
+	hal_cancel_request(&g_cancel);
+	p = atomic_load(&g_play);
+	if (p)
+		play_signal(p, sig, sig == SIGINT ? g_sigints : 1);
+}
+
+struct saved_signals {
+	struct sigaction sigint, sigterm, sigxfsz;
+	bool installed;
+};
+
+static void signals_install(struct saved_signals *s)
+{
+	struct sigaction sa;
+
+	memset(&sa, 0, sizeof(sa));
+	sa.sa_handler = on_signal;
+	sigemptyset(&sa.sa_mask);
+	hal_cancel_init(&g_cancel);
+	atomic_store(&g_play, NULL);
+	g_sigints = 0;
+	g_signo = 0;
+	s->installed = !sigaction(SIGINT, &sa, &s->sigint) && !sigaction(SIGTERM, &sa, &s->sigterm);
+	/* a file size limit (ulimit -f, LimitFSIZE=) reached by the journal's
+	 * growth is then EFBIG, a clean stop the service reports, not a kill
+	 * with the drives enabled */
+	sa.sa_handler = SIG_IGN;
+	s->installed = !sigaction(SIGXFSZ, &sa, &s->sigxfsz) && s->installed;
+}
+
+/* The handlers the program had before, once every device has stopped. */
+static void signals_restore(struct saved_signals *s)
+{
+	if (!s->installed)
+		return;
+	atomic_store(&g_play, NULL);
+	sigaction(SIGINT, &s->sigint, NULL);
+	sigaction(SIGTERM, &s->sigterm, NULL);
+	sigaction(SIGXFSZ, &s->sigxfsz, NULL);
+	s->installed = false;
+}
+
+/* A signal came while the devices started: the run did not begin, and the
+ * devices that had started are stopped (play_prepare saw to it). */
+static int stopped_at_start(FILE *err, const char *where)
+{
+	fprintf(err, "strand play: stopped by a signal (%s) during start-up (%s); the devices "
+		"that had started were stopped, their drives disabled\n",
+		g_signo == SIGINT ? "SIGINT" : g_signo == SIGTERM ? "SIGTERM" : "?", where);
+	return STRAND_EXIT_STOPPED;
 }
 
 static void default_journal(char *buf, size_t size, const char *scene)
@@ -297,7 +360,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	struct rig_auto ra;
 	struct frame_list fl = { 0 };
 	const struct rig_desc *rig;
-	struct sigaction sa;
+	struct saved_signals sigs = { .installed = false };
 	struct play p;
 	const char *path;
 	char msg[512];
@@ -387,24 +450,32 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		c.o.journal_path = c.journal;
 	}
 	c.o.status_tty = !c.quiet && isatty(fileno(err)) ? err : NULL;
+	/* before any device starts: a CANopen start-up takes seconds, and a
+	 * SIGTERM then must not leave drives enabled with nothing behind */
+	signals_install(&sigs);
+	c.o.rig.cancel = &g_cancel;
 	rc = play_prepare(&p, rig, &src.s, &c.o, msg, sizeof(msg));
+	if (rc == -ECANCELED) {
+		rc = stopped_at_start(err, msg);
+		goto out;
+	}
 	if (rc) {
 		fprintf(err, "%s: %s\n", path, msg);
 		rc = prepare_exit(&p, rc);
 		goto out;
 	}
-	memset(&sa, 0, sizeof(sa));
-	sa.sa_handler = on_signal;
-	sigemptyset(&sa.sa_mask);
-	g_play = &p;
-	g_sigints = 0;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
+	atomic_store(&g_play, &p);
+	if (hal_cancelled(&g_cancel)) {
+		/* in the window before the loop could be told */
+		atomic_store(&g_play, NULL);
+		rc = stopped_at_start(err, "before the loop began");
+		goto out;
+	}
 	rc = play_run(&p);
 	rc = rc ? STRAND_EXIT_INTERNAL : cli_play_exit(&loop_result(p.L)->rep);
-	signal(SIGINT, SIG_DFL);
-	signal(SIGTERM, SIG_DFL);
-	g_play = NULL;
+	/* the loop has ended: from now on a signal only sets g_cancel, which
+	 * the stop of the devices (rig_stop) does not give up for */
+	atomic_store(&g_play, NULL);
 	if (rc != STRAND_EXIT_OK) {
 		play_describe(&p, msg, sizeof(msg));
 		fprintf(err, "strand play: %s\n", msg);
@@ -416,6 +487,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		play_summary(&p, out, rc == STRAND_EXIT_OK);
 out:
 	play_free(&p);
+	signals_restore(&sigs);
 	frames_free(&fl);
 	rig_auto_free(&ra);
 	source_scene_free(&src);
@@ -460,7 +532,8 @@ const struct cli_cmd cmd_play = {
 		"  --quiet               no status line, no summary\n"
 		"\n"
 		"SIGINT or SIGTERM: every axis comes to rest within its limits (exit 5); a second\n"
-		"SIGINT disables the drives at once.\n"
+		"SIGINT disables the drives at once. During the devices' start-up it is given up\n"
+		"and every device started is stopped (exit 5).\n"
 		"\n"
 		"exit codes: 0 done, 1 strand check rejects the scene, 2 invalid scene or rig,\n"
 		"3 usage, 4 journal or file, 5 stopped by SIGINT/SIGTERM or a stop input, 6 e-stop,\n"

@@ -26,15 +26,30 @@
  *
  * Space: the loop never maps, grows or allocates. The file is mapped in
  * chunks of about 1 MiB by the service thread (an ordinary thread), ahead
- * of the loop: it allocates the disk blocks first (posix_fallocate), so a
- * full disk is an error the service reports and not a SIGBUS in the loop,
- * maps the chunk (populated at once under mlockall, touched page by page
- * otherwise) and publishes its address; chunks the loop has left behind
- * are unmapped. Mapping in chunks keeps memory bounded however long a
- * --loop runs, and keeps mlockall(MCL_FUTURE) from populating a mapping the
- * size of a day's journal. A record whose chunk is not mapped yet is refused
- * (journal_next returns NULL) and the loop stops the run rather than fire a
- * frame it cannot record; on the virtual clock it waits for the service.
+ * of the loop: it allocates the disk blocks first (posix_fallocate, which
+ * also grows the file), so a full disk is an error the service reports and
+ * not a SIGBUS in the loop, maps the chunk (populated at once under
+ * mlockall, touched page by page otherwise) and publishes it; chunks the
+ * loop has left behind are unmapped. A record whose chunk is not mapped yet
+ * is refused (journal_next returns NULL) and the loop stops the run rather
+ * than fire a frame it cannot record; on the virtual clock it waits for the
+ * service.
+ *
+ * What is in flight is bounded, whatever the length of the run: the chunks
+ * mapped are those from the oldest record the loop may still write
+ * (`behind` records below the newest: one tick's edges, whose FIRED times
+ * follow, and the current frame, whose following error is still being
+ * written) to `ahead` records beyond it. The chunk index is a ring of
+ * nslots = (ahead + behind) / per_chunk + 2 slots, chunk c in slot
+ * c % nslots: no more are ever mapped at once (journal_svc.c shows why).
+ * So a run of two billion passes holds the same few slots and megabytes as
+ * a run of one, and a run without an end (capacity JOURNAL_UNBOUNDED) goes
+ * on until the disk is full, the file at the file system's largest size,
+ * or the run stops.
+ *
+ * The file is the writer's native structs, with the byte order and the
+ * record's layout in the header: a journal from a machine that stores them
+ * otherwise is refused by name, never misread.
  *
  * The loop's side is journal_rt.c, the service thread's journal_svc.c, the
  * reader (`strand journal`) journal_read.c.
@@ -44,12 +59,24 @@
 
 #include <stdatomic.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
+#include "hal/rt.h" /* STRAND_RT */
+
 #define JOURNAL_MAGIC "STRANDJ1"
+#define JOURNAL_VERSION 2 /* 1: no byte order or layout in the header (read too) */
 #define JOURNAL_NAME_MAX 48
 #define JOURNAL_OUT_MAX 4096 /* outputs a journal holds at most */
+/* journal_info.capacity of a run without an end; the header says -1 */
+#define JOURNAL_UNBOUNDED (-1)
+
+/* The header's byte order marker as the writer's CPU stores it: a reader
+ * of the other byte order sees 0x04030201. */
+#define JOURNAL_BYTE_ORDER 0x01020304u
+/* A double every IEEE 754 binary64 machine stores alike, for the header. */
+#define JOURNAL_PROBE (-1.5)
 
 enum journal_state {
 	JOURNAL_EMPTY = 0,
@@ -69,6 +96,7 @@ struct journal_out {
 	uint32_t pad;
 };
 
+/* Version 2. Version 1 is the same up to scene[], then out[] at once. */
 struct journal_hdr {
 	char magic[8];
 	uint32_t version;
@@ -79,8 +107,11 @@ struct journal_hdr {
 	uint32_t tick_hz;
 	uint32_t mode; /* 0 continuous, 1 step */
 	int64_t start_wall_ns;
-	int64_t capacity; /* records the file has room for */
+	int64_t capacity; /* records the run planned; -1: a run without an end */
 	char scene[64];
+	uint32_t byte_order; /* JOURNAL_BYTE_ORDER */
+	uint32_t layout;     /* journal_layout() of the writer */
+	double probe;        /* JOURNAL_PROBE */
 	struct journal_out out[];
 };
 
@@ -98,22 +129,41 @@ struct journal_rec {
 	int64_t sp[];     /* nout setpoints, Q32.32 core units */
 };
 
+/* The record's layout as this build lays it out: the offsets of its
+ * fields and the sizes it rests on, one byte each. A reader built with
+ * another ABI (other alignments, another size of double) computes another
+ * value and refuses the file. */
+static inline uint32_t journal_layout(void)
+{
+	return (uint32_t)offsetof(struct journal_rec, frame) |
+	       (uint32_t)offsetof(struct journal_rec, ferr) << 8 |
+	       (uint32_t)offsetof(struct journal_rec, sp) << 16 |
+	       (uint32_t)(sizeof(double) << 4 | sizeof(struct journal_out) / 8) << 24;
+}
+
+/* One slot of the ring of chunks. */
+struct journal_slot {
+	_Atomic int64_t chunk; /* the chunk mapped here (published), -1: none */
+	unsigned char *first;  /* its first record, set before chunk is published */
+	void *map;             /* service: what to munmap */
+	size_t len;
+};
+
 struct journal {
 	int fd;
 	uint32_t hdr_bytes;
 	uint32_t rec_bytes;
 	uint32_t per_chunk; /* records per chunk */
 	long page;
-	int64_t capacity;   /* records */
-	uint32_t nchunks;
-	_Atomic(unsigned char *) *chunk; /* nchunks: first record of each mapped chunk, or NULL */
-	void **chunk_map;   /* service: what to munmap */
-	size_t *chunk_len;
-	uint32_t mapped_lo, mapped_hi; /* service: chunks [lo, hi) are mapped */
+	int64_t capacity;   /* records at most; JOURNAL_UNBOUNDED: no end */
+	int64_t ahead;      /* records the service keeps mapped ahead of the loop */
+	int64_t behind;     /* ... and below the newest it armed */
+	uint32_t nslots;
+	struct journal_slot *slot; /* nslots: chunk c in slot c % nslots */
+	int64_t mapped_lo, mapped_hi; /* service: chunks [lo, hi) are mapped */
 	int64_t next;            /* loop: records armed so far */
-	_Atomic int64_t written; /* loop -> service: records armed */
-	int64_t ahead;           /* records the service keeps mapped ahead */
-	_Atomic int err;         /* service -> loop: first error (negative errno) */
+	_Atomic int64_t written; /* loop -> service: records armed (release) */
+	_Atomic int err;         /* service -> loop: first error, negative errno (release) */
 	int64_t synced_at_ns;
 };
 
@@ -125,8 +175,10 @@ struct journal_info {
 	uint32_t nout;
 	const char *const *out_name;
 	const uint32_t *out_unit;
-	int64_t capacity; /* records */
+	int64_t capacity; /* records (>= 1), or JOURNAL_UNBOUNDED */
 	int64_t ahead;    /* records to keep mapped ahead of the loop (>= 1) */
+	int64_t behind;   /* records below the newest the loop may still write:
+			   * the edges of one tick (0: 1) */
 };
 
 /* [init] Create the file (truncating an old one), write the header and
@@ -141,6 +193,18 @@ int journal_open(struct journal *j, const char *path, const struct journal_info 
 struct journal_rec *journal_next(struct journal *j);
 void journal_arm(struct journal *j, struct journal_rec *r);
 void journal_fire(struct journal_rec *r, int64_t mono_ns, int64_t wall_ns);
+
+/* [rt] Why journal_next() will never give the next record: the service's
+ * error (a negative errno: -ENOSPC for a full disk), -ENOSPC when a bounded
+ * journal is full; 0 while the record may still come (its chunk is being
+ * mapped). */
+int journal_refused(const struct journal *j);
+
+/* [rt] The service's first error, 0 if none. */
+static inline int STRAND_RT journal_error(const struct journal *j)
+{
+	return atomic_load_explicit(&j->err, memory_order_acquire);
+}
 
 /* [service thread] Map chunks ahead of the loop, unmap those behind it, ask
  * for writeback once a second. 0 or the first error (sticky). */

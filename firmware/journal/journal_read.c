@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -31,9 +32,65 @@ static double to_file_units(int64_t q, uint32_t unit)
 	return unit == JOURNAL_UNIT_TURNS ? v * 360.0 : v;
 }
 
+/* Where version v's output names begin: version 1 had none of the byte
+ * order and layout fields, its out[] began where they are now. */
+static size_t out_offset(uint32_t v)
+{
+	return v == 1 ? offsetof(struct journal_hdr, byte_order) : offsetof(struct journal_hdr, out);
+}
+
+/* Whether the header hh of a file of `size` bytes is one this build reads:
+ * 0, or -EBADMSG with msg saying why not. */
+static int check_header(const char *path, const struct journal_hdr *hh, off_t size, char *msg,
+			unsigned msgsize)
+{
+	uint32_t v = hh->version;
+
+	if (size < (off_t)sizeof(*hh) || memcmp(hh->magic, JOURNAL_MAGIC, 8)) {
+		snprintf(msg, msgsize, "%s: not a strand journal", path);
+		return -EBADMSG;
+	}
+	/* the version is the first number: in the other byte order it reads
+	 * reversed, in either version */
+	if ((v != 1 && v != JOURNAL_VERSION) || (v == JOURNAL_VERSION &&
+						  hh->byte_order != JOURNAL_BYTE_ORDER)) {
+		if (__builtin_bswap32(v) == 1 || __builtin_bswap32(v) == JOURNAL_VERSION)
+			snprintf(msg, msgsize, "%s: a strand journal written on a machine of the other "
+				 "byte order (%s-endian); read it with strand on such a machine", path,
+				 __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ ? "big" : "little");
+		else if (v > JOURNAL_VERSION && v < 0x10000)
+			snprintf(msg, msgsize, "%s: a strand journal of version %u; this strand reads "
+				 "versions 1 to %u", path, v, JOURNAL_VERSION);
+		else
+			snprintf(msg, msgsize, "%s: not a strand journal", path);
+		return -EBADMSG;
+	}
+	if (v == JOURNAL_VERSION && hh->layout != journal_layout()) {
+		snprintf(msg, msgsize, "%s: a strand journal whose records are laid out otherwise "
+			 "(layout 0x%08x, this build's 0x%08x: another architecture's ABI); read "
+			 "it with strand on the machine that wrote it", path, hh->layout,
+			 journal_layout());
+		return -EBADMSG;
+	}
+	if (v == JOURNAL_VERSION && hh->probe != JOURNAL_PROBE) {
+		snprintf(msg, msgsize, "%s: a strand journal whose doubles are not this machine's "
+			 "IEEE 754 format; read it with strand on the machine that wrote it", path);
+		return -EBADMSG;
+	}
+	if (hh->nout > JOURNAL_OUT_MAX ||
+	    hh->hdr_bytes < out_offset(v) + hh->nout * sizeof(hh->out[0]) ||
+	    hh->rec_bytes != sizeof(struct journal_rec) + hh->nout * sizeof(int64_t) ||
+	    !hh->rate_num || !hh->rate_den) {
+		snprintf(msg, msgsize, "%s: not a strand journal", path);
+		return -EBADMSG;
+	}
+	return 0;
+}
+
 int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 {
 	struct journal_hdr hh, *h = NULL;
+	const struct journal_out *o;
 	struct journal_rec *r = NULL;
 	struct timecode tc;
 	struct stat st;
@@ -47,14 +104,17 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		snprintf(msg, msgsize, "%s: %s", path, strerror(errno));
 		return err;
 	}
-	if (fstat(fd, &st) || pread(fd, &hh, sizeof(hh), 0) != (ssize_t)sizeof(hh) ||
-	    memcmp(hh.magic, JOURNAL_MAGIC, 8) || hh.version != 1 || hh.nout > JOURNAL_OUT_MAX ||
-	    hh.hdr_bytes < sizeof(hh) + hh.nout * sizeof(hh.out[0]) ||
-	    hh.rec_bytes != sizeof(*r) + hh.nout * sizeof(int64_t) || !hh.rate_num ||
-	    !hh.rate_den) {
-		snprintf(msg, msgsize, "%s: not a strand journal", path);
+	memset(&hh, 0, sizeof(hh));
+	if (fstat(fd, &st) || pread(fd, &hh, sizeof(hh), 0) < 0) {
+		err = -errno;
+		snprintf(msg, msgsize, "%s: %s", path, strerror(errno));
 		close(fd);
-		return -EBADMSG;
+		return err;
+	}
+	err = check_header(path, &hh, st.st_size, msg, msgsize);
+	if (err) {
+		close(fd);
+		return err;
 	}
 	h = malloc(hh.hdr_bytes);
 	r = malloc(hh.rec_bytes);
@@ -68,10 +128,11 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		snprintf(msg, msgsize, "%s: truncated header", path);
 		goto out;
 	}
+	o = (const struct journal_out *)((const char *)h + out_offset(h->version));
 	timecode_init(&tc, h->rate_num, h->rate_den);
 	fprintf(out, "frame,timecode,tick,trigger,state,due_ns,mono_ns,late_us,wall,ferr,ferr_channel");
 	for (i = 0; i < h->nout; i++)
-		fprintf(out, ",%.*s", JOURNAL_NAME_MAX, h->out[i].name);
+		fprintf(out, ",%.*s", JOURNAL_NAME_MAX, o[i].name);
 	fputc('\n', out);
 	for (off = h->hdr_bytes; off + (off_t)h->rec_bytes <= st.st_size; off += h->rec_bytes) {
 		char tcs[24], wall[48];
@@ -98,12 +159,12 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		}
 		if (r->ferr_out >= 0 && (uint32_t)r->ferr_out < h->nout)
 			fprintf(out, "%.10g,%.*s",
-				h->out[r->ferr_out].unit == JOURNAL_UNIT_TURNS ? r->ferr * 360.0 : r->ferr,
-				JOURNAL_NAME_MAX, h->out[r->ferr_out].name);
+				o[r->ferr_out].unit == JOURNAL_UNIT_TURNS ? r->ferr * 360.0 : r->ferr,
+				JOURNAL_NAME_MAX, o[r->ferr_out].name);
 		else
 			fputc(',', out);
 		for (i = 0; i < h->nout; i++)
-			fprintf(out, ",%.10g", to_file_units(r->sp[i], h->out[i].unit));
+			fprintf(out, ",%.10g", to_file_units(r->sp[i], o[i].unit));
 		fputc('\n', out);
 	}
 	if (!err && ferror(out)) {

@@ -1,8 +1,20 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * journal_svc.c - the service thread's side of the journal (journal.h):
- * the file, its header, and the chunks mapped ahead of the loop and
+ * the file, its header, and the ring of chunks mapped ahead of the loop and
  * unmapped behind it.
+ *
+ * Why nslots = (ahead + behind) / per_chunk + 2 slots are enough: the
+ * service keeps mapped the chunks from lo, that of record w - behind (w the
+ * records armed when it looked), up to hi, the first chunk wholly beyond
+ * record w + ahead. With x = w - behind = L * per_chunk + r (0 <= r <
+ * per_chunk) and n = ahead + behind, hi - lo = ceil((r + n) / per_chunk) <=
+ * 1 + ceil((n - 1) / per_chunk) <= 2 + n / per_chunk. So the chunk that
+ * goes into a slot is always nslots past the one it replaces, which was
+ * unmapped first: the loop, which looks for chunk c in slot c % nslots,
+ * finds c there or another number, never another chunk's memory under c's.
+ * And a slot is reused only for a chunk the loop has not reached, after
+ * the loop has left the chunk it held (journal_next).
  */
 #include "journal.h"
 #include "hal/rt.h"
@@ -21,21 +33,31 @@ static size_t round_up(size_t x, size_t a)
 	return (x + a - 1) / a * a;
 }
 
-static off_t chunk_start(const struct journal *j, uint32_t c)
+static off_t chunk_start(const struct journal *j, int64_t c)
 {
 	return (off_t)j->hdr_bytes + (off_t)c * j->per_chunk * j->rec_bytes;
 }
 
-static int64_t chunk_records(const struct journal *j, uint32_t c)
+static int64_t chunk_records(const struct journal *j, int64_t c)
 {
-	int64_t left = j->capacity - (int64_t)c * j->per_chunk;
+	int64_t left;
 
+	if (j->capacity == JOURNAL_UNBOUNDED)
+		return j->per_chunk;
+	left = j->capacity - c * j->per_chunk;
 	return left < j->per_chunk ? left : j->per_chunk;
 }
 
-/* Allocate the blocks of chunk c, grow the file over it, map it. */
-static int map_chunk(struct journal *j, uint32_t c)
+static struct journal_slot *slot_of(struct journal *j, int64_t c)
 {
+	return &j->slot[c % j->nslots];
+}
+
+/* Allocate the blocks of chunk c, grow the file over it, map it into its
+ * slot (free: its last chunk was unmapped), publish it. */
+static int map_chunk(struct journal *j, int64_t c)
+{
+	struct journal_slot *s = slot_of(j, c);
 	off_t start = chunk_start(j, c);
 	off_t end = start + (off_t)chunk_records(j, c) * j->rec_bytes;
 	off_t lo = start / j->page * j->page;
@@ -44,30 +66,40 @@ static int map_chunk(struct journal *j, uint32_t c)
 	int err;
 	off_t pg;
 
-	/* posix_fallocate extends the file too; blocks exist before any store */
-	err = posix_fallocate(j->fd, start, end - start);
+	/* posix_fallocate extends the file too; blocks exist before any
+	 * store, so a full disk is ENOSPC here, not a SIGBUS in the loop;
+	 * a signal that interrupts it (tmpfs checks) is no reason to stop */
+	do
+		err = posix_fallocate(j->fd, start, end - start);
+	while (err == EINTR);
 	if (err)
 		return -err;
 	m = mmap(NULL, len, PROT_READ | PROT_WRITE, MAP_SHARED, j->fd, lo);
 	if (m == MAP_FAILED)
 		return -errno;
-	/* Fault in the pages that belong to this chunk alone, so the loop's
-	 * first store does not fault (the chunk is not published yet, nobody
-	 * else writes them). A page shared with the previous chunk was made
-	 * present through that chunk's mapping. */
-	for (pg = round_up((size_t)start, (size_t)j->page); pg < end; pg += j->page)
+	/* Fault every page in, so that the loop's first store does not fault
+	 * (under mlockall the mapping came populated). The first page may be
+	 * shared with the previous chunk, whose last record the loop may be
+	 * writing right now: it is touched at this chunk's first byte, which
+	 * nobody writes before the chunk is published. */
+	for (pg = start; pg < end; pg = (pg / j->page + 1) * j->page)
 		*(volatile unsigned char *)(m + (pg - lo)) = 0;
-	j->chunk_map[c] = m;
-	j->chunk_len[c] = len;
-	atomic_store_explicit(&j->chunk[c], m + (start - lo), memory_order_release);
+	s->map = m;
+	s->len = len;
+	s->first = m + (start - lo);
+	atomic_store_explicit(&s->chunk, c, memory_order_release);
 	return 0;
 }
 
-static void unmap_chunk(struct journal *j, uint32_t c)
+static void unmap_chunk(struct journal *j, int64_t c)
 {
-	atomic_store_explicit(&j->chunk[c], NULL, memory_order_release);
-	munmap(j->chunk_map[c], j->chunk_len[c]);
-	j->chunk_map[c] = NULL;
+	struct journal_slot *s = slot_of(j, c);
+
+	/* withdrawn before it goes: a loop that looks now finds no chunk */
+	atomic_store_explicit(&s->chunk, -1, memory_order_release);
+	munmap(s->map, s->len);
+	s->map = NULL;
+	s->first = NULL;
 }
 
 int journal_open(struct journal *j, const char *path, const struct journal_info *info)
@@ -80,7 +112,8 @@ int journal_open(struct journal *j, const char *path, const struct journal_info 
 	STRAND_ASSERT_NOT_RT();
 	memset(j, 0, sizeof(*j));
 	j->fd = -1;
-	if (info->nout > JOURNAL_OUT_MAX || info->capacity < 1 || info->ahead < 1)
+	if (info->nout > JOURNAL_OUT_MAX || info->ahead < 1 || info->behind < 0 ||
+	    (info->capacity < 1 && info->capacity != JOURNAL_UNBOUNDED))
 		return -EINVAL;
 	j->page = sysconf(_SC_PAGESIZE);
 	hdr_bytes = round_up(sizeof(*h) + info->nout * sizeof(h->out[0]), (size_t)j->page);
@@ -90,18 +123,20 @@ int journal_open(struct journal *j, const char *path, const struct journal_info 
 	if (j->per_chunk < 1)
 		j->per_chunk = 1;
 	j->capacity = info->capacity;
-	j->nchunks = (uint32_t)((info->capacity + j->per_chunk - 1) / j->per_chunk);
 	j->ahead = info->ahead;
-	j->chunk = calloc(j->nchunks, sizeof(*j->chunk));
-	j->chunk_map = calloc(j->nchunks, sizeof(*j->chunk_map));
-	j->chunk_len = calloc(j->nchunks, sizeof(*j->chunk_len));
+	j->behind = info->behind ? info->behind : 1;
+	/* what is in flight, not the run: see the top of the file */
+	j->nslots = (uint32_t)((j->ahead + j->behind) / j->per_chunk + 2);
+	j->slot = calloc(j->nslots, sizeof(*j->slot));
 	h = calloc(1, hdr_bytes);
-	if (!j->chunk || !j->chunk_map || !j->chunk_len || !h) {
+	if (!j->slot || !h) {
 		err = -ENOMEM;
 		goto fail;
 	}
+	for (i = 0; i < j->nslots; i++)
+		atomic_init(&j->slot[i].chunk, -1);
 	memcpy(h->magic, JOURNAL_MAGIC, 8);
-	h->version = 1;
+	h->version = JOURNAL_VERSION;
 	h->hdr_bytes = j->hdr_bytes;
 	h->rec_bytes = j->rec_bytes;
 	h->nout = info->nout;
@@ -112,6 +147,9 @@ int journal_open(struct journal *j, const char *path, const struct journal_info 
 	h->start_wall_ns = info->start_wall_ns;
 	h->capacity = info->capacity;
 	strncpy(h->scene, info->scene ? info->scene : "", sizeof(h->scene) - 1);
+	h->byte_order = JOURNAL_BYTE_ORDER;
+	h->layout = journal_layout();
+	h->probe = JOURNAL_PROBE;
 	for (i = 0; i < info->nout; i++) {
 		strncpy(h->out[i].name, info->out_name[i], JOURNAL_NAME_MAX - 1);
 		h->out[i].unit = info->out_unit[i];
@@ -141,31 +179,30 @@ fail:
 int journal_service(struct journal *j, int64_t now_ns)
 {
 	int64_t w = atomic_load_explicit(&j->written, memory_order_acquire);
-	int64_t want = w + j->ahead;
-	uint32_t hi, cur = (uint32_t)(w / j->per_chunk);
+	int64_t want = w + j->ahead, lo, hi;
 	int err;
 
 	STRAND_ASSERT_NOT_RT();
-	if (j->err)
-		return j->err;
-	if (want > j->capacity)
+	err = atomic_load_explicit(&j->err, memory_order_relaxed);
+	if (err)
+		return err;
+	if (j->capacity != JOURNAL_UNBOUNDED && want > j->capacity)
 		want = j->capacity;
-	hi = (uint32_t)((want + j->per_chunk - 1) / j->per_chunk);
-	if (hi > j->nchunks)
-		hi = j->nchunks;
-	while (j->mapped_hi < hi) {
+	hi = (want + j->per_chunk - 1) / j->per_chunk;
+	/* the chunk of the oldest record the loop may still write: one tick's
+	 * edges get their FIRED times, the current frame its following error */
+	lo = w > j->behind ? (w - j->behind) / j->per_chunk : 0;
+	/* behind first: the chunks ahead go into the slots this frees */
+	while (j->mapped_lo < lo && j->mapped_lo < j->mapped_hi)
+		unmap_chunk(j, j->mapped_lo++);
+	while (j->mapped_hi < hi && j->mapped_hi - j->mapped_lo < j->nslots) {
 		err = map_chunk(j, j->mapped_hi);
 		if (err) {
-			j->err = err;
+			/* the loop stops at the last record mapped (journal_refused) */
+			atomic_store_explicit(&j->err, err, memory_order_release);
 			return err;
 		}
 		j->mapped_hi++;
-	}
-	/* keep the loop's chunk and the one before it (the last frame's
-	 * following error is still being written there) */
-	while (j->mapped_lo + 1 < cur && j->mapped_lo < j->mapped_hi) {
-		unmap_chunk(j, j->mapped_lo);
-		j->mapped_lo++;
 	}
 	if (now_ns - j->synced_at_ns >= 1000000000) {
 		j->synced_at_ns = now_ns;
@@ -177,13 +214,11 @@ int journal_service(struct journal *j, int64_t now_ns)
 int journal_close(struct journal *j)
 {
 	int err = 0;
-	uint32_t c;
 
 	STRAND_ASSERT_NOT_RT();
-	if (j->chunk_map)
-		for (c = 0; c < j->nchunks; c++)
-			if (j->chunk_map[c])
-				unmap_chunk(j, c);
+	if (j->slot)
+		while (j->mapped_lo < j->mapped_hi)
+			unmap_chunk(j, j->mapped_lo++);
 	if (j->fd >= 0) {
 		off_t len = (off_t)j->hdr_bytes + (off_t)j->next * j->rec_bytes;
 
@@ -192,12 +227,8 @@ int journal_close(struct journal *j)
 		if (close(j->fd) && !err)
 			err = -errno;
 	}
-	free(j->chunk);
-	free(j->chunk_map);
-	free(j->chunk_len);
-	j->chunk = NULL;
-	j->chunk_map = NULL;
-	j->chunk_len = NULL;
+	free(j->slot);
+	j->slot = NULL;
 	j->fd = -1;
-	return err ? err : j->err;
+	return err ? err : atomic_load(&j->err);
 }

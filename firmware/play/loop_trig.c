@@ -49,7 +49,7 @@ static struct journal_rec STRAND_RT *journal_take(struct loop *L, uint32_t i, in
 	while (!(rec = journal_next(jr))) {
 		/* on the virtual clock time waits for the journal's service; on
 		 * the wall clock a frame that cannot be recorded is not fired */
-		if (!L->cfg.wait_for_journal || jr->err || jr->next >= jr->capacity)
+		if (!L->cfg.wait_for_journal || journal_refused(jr))
 			return NULL;
 		sched_yield();
 	}
@@ -77,7 +77,7 @@ static bool STRAND_RT rise(struct loop *L, uint32_t i, int64_t f, int64_t due)
 	if (L->trig.jr) {
 		pl->armed = journal_take(L, i, f, due);
 		if (!pl->armed) {
-			struct loop_where w = { .channel = -1, .out = -1, .code = L->trig.jr->err };
+			struct loop_where w = { .channel = -1, .out = -1, .code = journal_error(L->trig.jr) };
 
 			loop_stop(L, LOOP_END_FAULT, LOOP_CAUSE_JOURNAL, &w);
 			return false;

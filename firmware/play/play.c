@@ -14,9 +14,9 @@
 #include "scene/timecode.h"
 
 /* Records the journal keeps mapped ahead of the loop: ten seconds of
- * frames, at least 4096. A run without an end gets room for this many. */
+ * frames, at least 4096. What it holds in memory is sized by these, never
+ * by the run's length (journal.h). */
 #define JOURNAL_AHEAD_S 10
-#define JOURNAL_UNBOUNDED (1LL << 24)
 
 static uint32_t journal_unit(enum src_unit u)
 {
@@ -54,10 +54,14 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.nout = n;
 	ji.out_name = names;
 	ji.out_unit = units;
+	/* a run with an end refuses a frame past it; one without grows its
+	 * file until the run stops or the disk is full */
 	ji.capacity = total >= 0 ? total : JOURNAL_UNBOUNDED;
-	if (ji.capacity < 1)
+	if (total == 0)
 		ji.capacity = 1;
 	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (p->rig.ntrig ? p->rig.ntrig : 1));
+	/* a tick's edges are FIRED after every one of them was armed */
+	ji.behind = p->rig.ntrig ? p->rig.ntrig : 1;
 	rc = journal_open(&p->jr, p->o.journal_path, &ji);
 	free(names);
 	free(units);
@@ -67,6 +71,19 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	}
 	p->has_journal = true;
 	return 0;
+}
+
+/* A stop asked for while the run is prepared (a signal) once the devices
+ * have started: they are stopped at once, as at the end of a run, and the
+ * run does not begin. 0, or -ECANCELED. */
+static int given_up(struct play *p, char *err, size_t errsize)
+{
+	if (!hal_cancelled(p->o.rig.cancel))
+		return 0;
+	snprintf(err, errsize, "start given up after every device had started");
+	rig_stop(&p->rig);
+	p->rig_started = false;
+	return -ECANCELED;
 }
 
 int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *src,
@@ -108,6 +125,8 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, &p->status, err, errsize);
 	if (rc == -EINVAL)
 		p->failed_at = PLAY_STAGE_OPTIONS; /* --from after --to, and the like */
+	if (!rc)
+		rc = given_up(p, err, errsize);
 	if (rc)
 		return rc;
 	p->failed_at = PLAY_STAGE_JOURNAL;
@@ -125,6 +144,10 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 			return rc;
 		}
 	}
+	p->failed_at = PLAY_STAGE_START;
+	rc = given_up(p, err, errsize);
+	if (rc)
+		return rc;
 	p->failed_at = PLAY_STAGE_NONE;
 	return 0;
 }

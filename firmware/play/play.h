@@ -11,7 +11,9 @@
  *
  * The loop thread is the only one that touches the rig while it runs; the
  * service thread reads the status ring and maps journal chunks. Signal
- * handlers reach the loop through play_signal() only (an atomic store).
+ * handlers reach the loop through play_signal() only (an atomic store),
+ * and the start before it through the cancel request of o.rig.cancel
+ * (hal/cancel.h): the program installs them before play_prepare().
  */
 #ifndef STRAND_PLAY_H
 #define STRAND_PLAY_H
@@ -74,8 +76,11 @@ struct play {
 	int64_t wall_ns;          /* the run's duration on the monotonic clock */
 };
 
-/* [init] Build the rig for src (simulated where asked), open the journal,
- * prepare the loop. 0 or a negative errno with a message in err. */
+/* [init] Build the rig for src (simulated where asked), start it, prepare
+ * the loop, open the journal. 0 or a negative errno with a message in err;
+ * -ECANCELED when o->rig.cancel was requested meanwhile (a signal while the
+ * devices started): every device that had started is stopped by then,
+ * no drive left enabled. */
 int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *src,
 		 const struct play_opts *o, char *err, size_t errsize);
 

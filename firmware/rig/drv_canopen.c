@@ -290,7 +290,7 @@ static int co_make_axes(struct rig_make *m, uint32_t k, char *err, size_t size)
 	struct co_drive_cfg drv[CO_NODE_MAX];
 	uint16_t ids[4 * CO_NODE_MAX];
 	struct co_rx_filter flt[4 * CO_NODE_MAX];
-	struct co_axis_cfg ac = { .name = dd->name, .clk = m->clk };
+	struct co_axis_cfg ac = { .name = dd->name, .clk = m->clk, .cancel = m->o->cancel };
 	struct co_dev *cd = calloc(1, sizeof(*cd));
 	int rc;
 

@@ -348,6 +348,7 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 	rc = rig_bind(r, d, src, err, errsize);
 	if (rc)
 		return rc;
+	r->cancel = o->cancel;
 	rc = validate(d, src->timing.tick_hz, err, errsize);
 	if (rc)
 		goto out;
@@ -399,6 +400,17 @@ out:
 	return rc;
 }
 
+/* A stop asked for while the devices start (a signal): no device starts
+ * after it, those started are stopped. 0, or -ECANCELED saying where. */
+static int given_up(const struct rig *r, const char *before, char *err, size_t size)
+{
+	if (!hal_cancelled(r->cancel))
+		return 0;
+	if (before)
+		return fail(err, size, -ECANCELED, "start given up before device '%s'", before);
+	return fail(err, size, -ECANCELED, "start given up after every device had started");
+}
+
 int rig_start(struct rig *r, char *err, size_t errsize)
 {
 	struct hal_fault f;
@@ -408,18 +420,26 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 	STRAND_ASSERT_NOT_RT();
 	/* what only a run takes (real GPIO lines: one held by another process
 	 * is a device error, with a message naming the chip and the line) */
-	for (i = 0; i < r->ndev; i++)
+	for (i = 0; i < r->ndev; i++) {
+		if ((rc = given_up(r, r->dev[i].desc->name, err, errsize)))
+			return rc;
 		if (r->dev[i].drv && r->dev[i].drv->start &&
 		    (rc = r->dev[i].drv->start(r, i, err, errsize)))
 			return rc;
+	}
 
 	for (i = 0; i < r->naxes; i++) {
+		/* a backend's start that waits looks at r->cancel itself */
+		if ((rc = given_up(r, r->axes[i]->name, err, errsize)))
+			goto undo;
 		rc = hal_axis_start(r->axes[i]);
 		if (rc)
 			goto fail_axis;
 		r->started_axes[i] = true;
 	}
 	for (i = 0; i < r->ndouts; i++) {
+		if ((rc = given_up(r, r->douts[i]->name, err, errsize)))
+			goto undo;
 		rc = hal_dout_start(r->douts[i]);
 		if (rc) {
 			fail(err, errsize, rc, "device '%s': trigger lines: %s", r->douts[i]->name,
@@ -429,6 +449,8 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 		r->started_douts[i] = true;
 	}
 	for (i = 0; i < r->ndins; i++) {
+		if ((rc = given_up(r, r->dins[i]->name, err, errsize)))
+			goto undo;
 		rc = hal_din_start(r->dins[i]);
 		if (rc) {
 			fail(err, errsize, rc, "device '%s': input lines: %s", r->dins[i]->name,
@@ -437,6 +459,8 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 		}
 		r->started_dins[i] = true;
 	}
+	if ((rc = given_up(r, NULL, err, errsize)))
+		goto undo;
 	/* every device is up: the rig is ready (rig_stop's deasserting every
 	 * line says it no longer is) */
 	for (i = 0; i < r->nready; i++) {
@@ -451,7 +475,9 @@ int rig_start(struct rig *r, char *err, size_t errsize)
 	return 0;
 fail_axis:
 	/* a backend that latched why names the bus, unit and register */
-	if (hal_axis_fault(r->axes[i], &f) && f.cause)
+	if (rc == -ECANCELED)
+		fail(err, errsize, rc, "device '%s': start given up", r->axes[i]->name);
+	else if (hal_axis_fault(r->axes[i], &f) && f.cause)
 		fail(err, errsize, rc, "device '%s': start: %s (%s)", r->axes[i]->name, f.cause,
 		     strerror(-rc));
 	else

@@ -21,6 +21,7 @@
 #include <stdio.h>
 
 #include "hal/axis.h"
+#include "hal/cancel.h"
 #include "hal/clock.h"
 #include "hal/din.h"
 #include "hal/dout.h"
@@ -81,6 +82,7 @@ struct rig {
 	uint32_t nready;               /* rig-ready outputs: douts[dev], line */
 	struct rig_line *ready;
 	bool *started_axes, *started_douts, *started_dins;
+	const struct hal_cancel *cancel; /* rig_opts.cancel */
 };
 
 struct rig_opts {
@@ -88,6 +90,9 @@ struct rig_opts {
 	const char *camera_log; /* the first simulated camera's log file, or NULL */
 	uint64_t camera_cap;    /* exposures each simulated camera keeps */
 	int gpio_priority;      /* the GPIO input event thread's SCHED_FIFO priority, 0: none */
+	/* A stop asked for while the devices start (a signal): rig_start()
+	 * and the backends' waits give up (hal/cancel.h). NULL: never. */
+	const struct hal_cancel *cancel;
 };
 
 /* [init] Build the rig for a source. 0, or a negative errno with a message
@@ -102,7 +107,9 @@ int rig_build(struct rig *r, const struct rig_desc *d, struct play_source *src,
 int rig_bind(struct rig *r, const struct rig_desc *d, struct play_source *src, char *err,
 	     size_t errsize);
 
-/* [init] Start every device; on failure stop those started. */
+/* [init] Start every device; on failure stop those started. -ECANCELED
+ * when the run's cancel request (rig_opts.cancel) came meanwhile: the
+ * devices started are stopped then too, drives disabled. */
 int rig_start(struct rig *r, char *err, size_t errsize);
 /* [init] Stop every started device (drives disabled, lines deasserted). */
 void rig_stop(struct rig *r);

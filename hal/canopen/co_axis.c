@@ -14,6 +14,7 @@ struct co_axis {
 	struct co_master m;
 	struct co_bus *bus;
 	struct hal_clock *clk;
+	const struct hal_cancel *cancel; /* the start's, or NULL */
 	uint8_t bus_state;  /* enum co_bus_state, as last told to the master */
 	bool started;
 	struct hal_fault hf;
@@ -55,16 +56,26 @@ static void STRAND_RT drain(struct co_axis *a, int64_t now)
 	}
 }
 
-/* Run the master's timers until it leaves phase `during`. */
-static void run_until_not(struct co_axis *a, enum co_master_phase during)
+/* Run the master's timers until it leaves phase `during`, or, when
+ * `cancellable`, until the run's cancel request comes: the start waits
+ * seconds for boot-ups and enabling, and a signal then must not wait
+ * behind them. Woken at least every HAL_CANCEL_POLL_NS to look (a signal
+ * to this thread ends the wait at once; one to another does not). The stop
+ * is not cancellable: it is the way out. */
+static void run_until_not(struct co_axis *a, enum co_master_phase during, bool cancellable)
 {
 	int64_t now = hal_clock_now(a->clk), next;
 
+	cancellable = cancellable && a->cancel;
 	while (co_master_phase(&a->m) == during) {
+		if (cancellable && hal_cancelled(a->cancel))
+			break;
 		drain(a, now);
 		next = co_master_poll(&a->m, now);
 		if (co_master_phase(&a->m) != during)
 			break;
+		if (cancellable && next - now > HAL_CANCEL_POLL_NS)
+			next = now + HAL_CANCEL_POLL_NS;
 		co_bus_wait(a->bus, next);
 		now = hal_clock_now(a->clk);
 	}
@@ -93,11 +104,18 @@ static int ca_start(struct hal_axis *ax)
 	while (co_bus_recv(a->bus, a->rx, CO_AXIS_RX_BATCH) == CO_AXIS_RX_BATCH)
 		;
 	co_master_start(&a->m, hal_clock_now(a->clk));
-	run_until_not(a, CO_MASTER_STARTING);
+	run_until_not(a, CO_MASTER_STARTING, true);
 	if (co_master_phase(&a->m) == CO_MASTER_RUNNING)
 		return 0;
 	rc = co_master_fault(&a->m, &f);
-	describe(a);
+	if (!rc && hal_cancelled(a->cancel)) {
+		/* asked to stop (a signal): the drives enabled so far, and
+		 * those on their way, are shut down as after any failed start */
+		snprintf(a->msg, sizeof(a->msg), "start given up (a stop was asked for)");
+		rc = -ECANCELED;
+	} else {
+		describe(a);
+	}
 	/* leave no drive enabled behind: shut down those that got that far */
 	ca_stop(ax);
 	return rc ? rc : -EIO;
@@ -197,7 +215,7 @@ static int ca_stop(struct hal_axis *ax)
 	if (!a->started)
 		return 0;
 	co_master_stop(&a->m, hal_clock_now(a->clk));
-	run_until_not(a, CO_MASTER_STOPPING);
+	run_until_not(a, CO_MASTER_STOPPING, false);
 	if (co_master_phase(&a->m) == CO_MASTER_STOPPED)
 		return 0;
 	if (!a->msg[0])
@@ -254,6 +272,7 @@ int co_axis_new(struct hal_axis **out, const struct co_axis_cfg *cfg, char *err,
 	a->ax.nch = CO_NODE_MAX + 1;
 	a->bus = cfg->bus;
 	a->clk = cfg->clk;
+	a->cancel = cfg->cancel;
 	mc.send = bus_send;
 	mc.ctx = a;
 	rc = co_master_init(&a->m, &mc, cfg->drives, a->nodes, a->cycle, cfg->ndrives);

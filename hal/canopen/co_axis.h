@@ -7,9 +7,10 @@
  * The device's channels are the drives' node-IDs (1..127), so every message
  * that names a channel names the node. start() runs the whole start-up
  * sequence and returns when every drive is in "operation enabled" holding
- * its position; input() takes in what arrived, commit() sends the RPDOs and
- * one SYNC; disable() is a quick stop of every drive; stop() waits until
- * they confirm it and puts them in pre-operational.
+ * its position (or gives it up when the run's cancel request comes, with
+ * every drive shut down); input() takes in what arrived, commit() sends the
+ * RPDOs and one SYNC; disable() is a quick stop of every drive; stop()
+ * waits until they confirm it and puts them in pre-operational.
  *
  * The loop's thread does the socket I/O itself, non-blocking, rather than
  * handing frames to an I/O thread through rings: a raw CAN socket's send
@@ -29,6 +30,7 @@
 #include "co_bus.h"
 #include "co_master.h"
 #include "hal/axis.h"
+#include "hal/cancel.h"
 #include "hal/clock.h"
 
 /* Frames taken per recv() call, and the most input() takes in one tick: a
@@ -44,6 +46,10 @@ struct co_axis_cfg {
 	uint32_t ndrives;
 	struct co_bus *bus;            /* taken over: closed by close() */
 	struct hal_clock *clk;
+	/* kept: when it is set while start() waits (boot-up, configuration,
+	 * enabling), the start is given up, every drive shut down, and start()
+	 * returns -ECANCELED; NULL: never */
+	const struct hal_cancel *cancel;
 };
 
 /* [init] The backend into *out: 0, or a negative errno (-EINVAL: see

@@ -60,22 +60,40 @@ static int start_thread(struct modbus_drv *m)
 	return -rc;
 }
 
+/*
+ * Between the start's transactions: rc, or -ECANCELED once the run's cancel
+ * request came (a signal). libmodbus's waits are its own (a signal does not
+ * cut short its wait for an answer, which the response timeout bounds), so
+ * the start looks between them; a transaction a signal did cut short (the
+ * connect) is given up the same way, whatever it returned.
+ */
+static int given_up(struct modbus_drv *m, int rc)
+{
+	if (!hal_cancelled(m->c.cancel))
+		return rc;
+	snprintf(m->msg, sizeof(m->msg), "%s: start given up (a stop was asked for)", m->where);
+	return -ECANCELED;
+}
+
 static int mb_start(struct hal_axis *ax)
 {
 	struct modbus_drv *m = mb_of(ax);
 	uint32_t i, nch = ax->nch;
+	bool enabled = false;
 	int rc;
 
 	STRAND_ASSERT_NOT_RT();
 	m->pending = m->popped; /* no thread yet: the loop's buffer serves */
 	memset(m->pending, 0, m->done_size);
-	rc = mb_io_connect(m);
+	rc = given_up(m, 0);
+	if (!rc)
+		rc = given_up(m, mb_io_connect(m));
 	if (rc)
 		goto fail;
 	/* hold where the drive stands: its actual position where it has one */
 	memcpy(m->written, m->initial, nch * sizeof(int64_t));
 	if (m->rplan.nblocks) {
-		rc = mb_io_read(m, -1);
+		rc = given_up(m, mb_io_read(m, -1));
 		if (rc)
 			goto fail;
 		if (m->rstatus >= 0 && (m->pending->status & m->d->status_fault_mask)) {
@@ -105,9 +123,14 @@ static int mb_start(struct hal_axis *ax)
 			goto fail;
 		}
 	}
-	rc = mb_io_write(m, m->written, -1);
-	if (!rc && m->d->has_enable)
+	rc = given_up(m, mb_io_write(m, m->written, -1));
+	if (!rc && m->d->has_enable) {
+		/* an enable whose answer did not come may have been set too */
+		enabled = true;
 		rc = mb_io_enable(m, true);
+	}
+	/* nothing may stay enabled after a stop was asked for */
+	rc = given_up(m, rc);
 	if (rc)
 		goto fail;
 	m->have_written = true;
@@ -128,6 +151,9 @@ fail:
 	memcpy(m->fault_text, m->msg, sizeof(m->fault_text));
 	m->fault_sent = true;
 	latch_here(m, rc, -1, m->fault_text, m->pending->detail);
+	/* the power stage off again where this start put it on */
+	if (enabled && m->connected)
+		mb_io_enable(m, false);
 	mb_io_close(m);
 	return rc;
 }

@@ -44,6 +44,7 @@
 #include <stdio.h>
 
 #include "hal/axis.h"
+#include "hal/cancel.h"
 #include "modbus_desc.h"
 
 /* How the backend is opened. */
@@ -55,6 +56,10 @@ struct modbus_cfg {
 	const int64_t *initial;       /* nch: a channel's target at start without feedback */
 	const bool *velocity;         /* nch: the target register takes the velocity */
 	bool lockstep;                /* the loop runs on the virtual clock */
+	/* kept: looked at between the start's transactions (connect, read,
+	 * write, enable); once set, start() sets nothing more, clears an
+	 * enable it set, and returns -ECANCELED. NULL: never. */
+	const struct hal_cancel *cancel;
 };
 
 /* [init] The backend into *out (not connected yet: start() connects). 0,

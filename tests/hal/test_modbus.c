@@ -17,16 +17,19 @@
  *
  * Then every injected fault: the run's exit code and the message that names
  * the device, the unit and the register; a connection dropped at rest made
- * again; mbpoll, Debian's independent Modbus client, reading the drive's
- * registers after a run.
+ * again; a signal while the drive is being enabled at start; mbpoll,
+ * Debian's independent Modbus client, reading the drive's registers after
+ * a run.
  */
 #define _GNU_SOURCE
 #include <math.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli/exitcode.h"
@@ -441,6 +444,110 @@ static void test_reconnect_at_rest(void **state)
 	finish(&s);
 }
 
+/* A signal sender: once the server has logged the start's setpoint write
+ * (so strand's handlers are in place and its start is setting the enable
+ * coil, which the drive answers late), `count` signals `sig` to the
+ * process, 20 ms apart. It blocks them itself, so that they go to the
+ * thread that runs strand. */
+struct sender {
+	const char *log;
+	int sig, count;
+};
+
+static void *send_at_start(void *arg)
+{
+	const struct sender *s = arg;
+	struct timespec ms = { 0, 1000000 }, gap = { 0, 20000000 };
+	struct mbp_write *w = NULL;
+	sigset_t set;
+	int i;
+
+	sigemptyset(&set);
+	sigaddset(&set, SIGINT);
+	sigaddset(&set, SIGTERM);
+	pthread_sigmask(SIG_BLOCK, &set, NULL);
+	for (i = 0; i < 10000; i++) {
+		int64_t n = mbp_log_read(s->log, &w, NULL, NULL);
+
+		free(w);
+		if (n >= 1)
+			break;
+		nanosleep(&ms, NULL);
+	}
+	for (i = 0; i < s->count; i++) {
+		kill(getpid(), s->sig);
+		nanosleep(&gap, NULL);
+	}
+	return NULL;
+}
+
+static volatile sig_atomic_t stray;
+
+static void on_stray(int sig)
+{
+	stray++;
+}
+
+/*
+ * SIGTERM, and then two SIGINTs, while strand's start waits for the drive
+ * to answer the enable coil (half a second late, as from its second request
+ * on): the start is given up, the coil set is cleared again, nothing more
+ * is written, exit 5 with the start-up's message; and the handlers the
+ * process had before are its handlers again afterwards (no signal reached
+ * them: strand's caught every one).
+ */
+static void test_signal_at_start(void **state)
+{
+	static const struct {
+		int sig, count;
+		const char *name;
+	} cases[] = { { SIGTERM, 1, "SIGTERM" }, { SIGINT, 2, "SIGINT" } };
+	struct sigaction mine = { .sa_handler = on_stray }, was_int, was_term, now;
+	size_t k;
+
+	sigemptyset(&mine.sa_mask);
+	sigaction(SIGINT, &mine, &was_int);
+	sigaction(SIGTERM, &mine, &was_term);
+	for (k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+		struct sender snd = { .sig = cases[k].sig, .count = cases[k].count };
+		struct mbp_write *w;
+		struct setup s;
+		struct run r;
+		pthread_t th;
+		char want[256];
+		int on, off;
+
+		tcp_setup(&s, "mb-signal");
+		mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 3000\nanswer_ms: 0.2\n", NULL);
+		start_peer(&s, "--late-after 1 --late-ms 500");
+		snd.log = s.log;
+		assert_int_equal(pthread_create(&th, NULL, send_at_start, &snd), 0);
+		play(&r, &s, "--clock virtual");
+		pthread_join(th, NULL);
+		snprintf(want, sizeof(want), "strand play: stopped by a signal (%s) during start-up "
+			 "(device 'drives': start given up); the devices that had started were "
+			 "stopped, their drives disabled\n", cases[k].name);
+		assert_int_equal(r.rc, STRAND_EXIT_STOPPED);
+		if (!strstr(r.err, want))
+			fail_msg("want '%s' in '%s'", want, r.err);
+		run_free(&r);
+		assert_int_equal(mbp_stop(&s.peer), 0);
+		/* the start's write only; the coil set, then cleared */
+		assert_int_equal(mbp_log_read(s.log, &w, &on, &off), 1);
+		free(w);
+		assert_int_equal(on, 1);
+		assert_int_equal(off, 1);
+		assert_int_equal(stray, 0);
+		sigaction(SIGTERM, NULL, &now);
+		assert_true(now.sa_handler == on_stray);
+		sigaction(SIGINT, NULL, &now);
+		assert_true(now.sa_handler == on_stray);
+		finish(&s);
+	}
+	sigaction(SIGINT, &was_int, NULL);
+	sigaction(SIGTERM, &was_term, NULL);
+}
+
 /* mbpoll, an independent client, reads what the drive holds after a run
  * that stops at frame 36 (a at 40 deg): the last setpoints in each word
  * order, the actual position, the heartbeat, the status and the enable
@@ -542,6 +649,7 @@ int main(void)
 		cmocka_unit_test(test_faults_rtu),
 		cmocka_unit_test(test_no_drive),
 		cmocka_unit_test(test_reconnect_at_rest),
+		cmocka_unit_test(test_signal_at_start),
 		cmocka_unit_test(test_mbpoll),
 		cmocka_unit_test(test_check),
 	};

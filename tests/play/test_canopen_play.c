@@ -5,7 +5,8 @@
  * the virtual clock: every target each drive took equals what the same run
  * sends the in-process twin, with the same following errors; a drive lost
  * (heartbeat), an emergency, an e-stop (quick stop on the bus), a start-up
- * refused by a drive; and the loop thread allocates nothing throughout.
+ * refused by a drive, a start-up given up when a stop is asked for (a
+ * signal) while it waits; and the loop thread allocates nothing throughout.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -238,6 +239,100 @@ static void test_start_refused(void **state)
 	rig_free(&rig);
 }
 
+/* The virtual clock, with a signal's cancel request at a moment of
+ * virtual time: the start's waits advance the clock, so the request comes
+ * while the start waits, at the same point on every run. */
+static const struct hal_clock_ops *virt_ops;
+static struct hal_cancel sig_cancel;
+static int64_t sig_at;
+
+static int64_t sig_now(struct hal_clock *c)
+{
+	return virt_ops->now(c);
+}
+
+static void sig_sleep_until(struct hal_clock *c, int64_t t)
+{
+	virt_ops->sleep_until(c, t);
+	if (sig_at >= 0 && virt_ops->now(c) >= sig_at)
+		hal_cancel_request(&sig_cancel);
+}
+
+static int64_t sig_wall(struct hal_clock *c)
+{
+	return virt_ops->wall(c);
+}
+
+static const struct hal_clock_ops sig_ops = {
+	.now = sig_now, .sleep_until = sig_sleep_until, .wall = sig_wall,
+};
+
+/*
+ * Node 7 is powered off: the start waits the boot-up timeout (2 s) for it,
+ * while node 3 boots, is configured and enabled. A stop asked for at 500 ms
+ * (what SIGTERM's handler does) ends the start within HAL_CANCEL_POLL_NS:
+ * rig_start fails with -ECANCELED, node 3 has been shut down (no longer
+ * enabled, pre-operational) through the ordinary stop, node 7 was never
+ * enabled. Without the request the same start fails after the 2 s.
+ */
+static void test_start_cancelled(void **state)
+{
+	static const struct rig_canopen_desc bus = { .interface = "sim", .bitrate = 1000000 };
+	struct pu_source ps;
+	struct pu_rig r;
+	struct rig rig;
+	struct hal_clock clk;
+	struct rig_opts ro = { .cancel = &sig_cancel };
+	const struct co_slave_watch *w;
+	char err[512];
+	uint32_t k;
+	int round;
+
+	for (round = 0; round < 2; round++) {
+		bool enabled = false;
+
+		pu_arm_source(&ps, 24, 1, 1000, 0, 240);
+		pu_rig_init(&r, &ps, 1, 0);
+		r.dev[0].driver = &rig_drv_canopen;
+		r.dev[0].priv = &bus;
+		r.out[0].axis = 3;
+		r.out[1].axis = 7;
+		hal_clock_init(&clk, true);
+		virt_ops = clk.ops;
+		clk.ops = &sig_ops;
+		hal_cancel_init(&sig_cancel);
+		sig_at = round == 0 ? 500 * MS : -1;
+		assert_int_equal(rig_build(&rig, &r.d, &ps.s, &clk, &ro, err, sizeof(err)), 0);
+		co_slave_power_off(co_simbus_node(rig_canopen_simbus(&rig, "arm"), 7));
+		if (round == 1) {
+			/* the control: the start would have waited its 2 s */
+			assert_int_equal(rig_start(&rig, err, sizeof(err)), -ETIMEDOUT);
+			printf("without the request: %s at %.3f s\n", err, hal_clock_now(&clk) / 1e9);
+			assert_true(hal_clock_now(&clk) >= 2000 * MS);
+			rig_free(&rig);
+			continue;
+		}
+		assert_int_equal(rig_start(&rig, err, sizeof(err)), -ECANCELED);
+		printf("given up: %s at %.3f s\n", err, hal_clock_now(&clk) / 1e9);
+		assert_string_equal(err, "device 'arm': start given up");
+		/* seen within a poll of the request; the stop took a few SYNCs */
+		assert_true(hal_clock_now(&clk) >= 500 * MS);
+		assert_true(hal_clock_now(&clk) < 500 * MS + HAL_CANCEL_POLL_NS + 100 * MS);
+		w = co_slave_watch(co_simbus_node(rig_canopen_simbus(&rig, "arm"), 3));
+		for (k = 0; k < w->ntransitions && k < CO_SLAVE_LOG; k++)
+			enabled |= w->log[k].to == CO402_ENABLED;
+		assert_true(enabled); /* it got that far */
+		assert_true(w->state < CO402_SWITCHED_ON);
+		assert_int_equal(w->nmt, CO_NMT_PREOPERATIONAL);
+		/* node 7 went no further than its power-on's switch on disabled */
+		w = co_slave_watch(co_simbus_node(rig_canopen_simbus(&rig, "arm"), 7));
+		for (k = 0; k < w->ntransitions && k < CO_SLAVE_LOG; k++)
+			assert_true(w->log[k].to < CO402_READY);
+		assert_int_equal(w->state, CO402_DISABLED);
+		rig_free(&rig);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -246,6 +341,7 @@ int main(void)
 		cmocka_unit_test(test_emcy),
 		cmocka_unit_test(test_estop),
 		cmocka_unit_test(test_start_refused),
+		cmocka_unit_test(test_start_cancelled),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
