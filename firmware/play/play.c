@@ -418,6 +418,10 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 		if (res->limited[i])
 			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
 				p->rig.out[i].channel, (long long)res->limited[i]);
+	if (res->edges_bound_ticks)
+		fprintf(f, "  input edges: %lld; on %lld ticks a device gave the most a tick takes "
+			"(%d), the rest waited for the next tick\n", (long long)res->edges,
+			(long long)res->edges_bound_ticks, LOOP_EDGES_PER_TICK);
 	rig_report(&p->rig, f);
 	if (res->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",

@@ -5,8 +5,11 @@
  * The event thread is the ring's only producer and the loop its only
  * consumer. The thread blocks in poll() on the lines' event descriptors
  * and an eventfd that stop() writes to end it; it never touches the
- * loop's state (level[] is the loop's, sent[] the thread's). What it must tell the loop besides edges (events lost, a
- * read failing) it latches in one atomic fault code.
+ * loop's state. It publishes each line's newest level (newest[], atomic)
+ * as it pushes the line's edge, so that the loop sees an e-stop by level
+ * even while its edge waits in the ring behind others (din.h). What it
+ * must tell the loop besides edges (events lost, a read failing) it
+ * latches in one atomic fault code.
  */
 #define _GNU_SOURCE /* pthread_setname_np */
 #include "gpio_priv.h"
@@ -37,8 +40,8 @@ struct gpio_din {
 	struct gpio_req *req;
 	uint32_t n;
 	bool active_low[GPIO_LINE_MAX];
-	bool level[GPIO_LINE_MAX]; /* logical, the loop's: after the edges polled */
 	bool sent[GPIO_LINE_MAX];  /* logical, the thread's: after the edges pushed */
+	atomic_bool newest[GPIO_LINE_MAX]; /* sent[], for the loop to read */
 	uint64_t corrected;        /* the thread's: edges made from a read-back */
 	struct hal_ring ring;      /* struct hal_edge, thread -> loop */
 	struct hal_edge *ring_buf;
@@ -74,6 +77,7 @@ static void push(struct gpio_din *g, uint32_t line, bool asserted, int64_t ts_ns
 	g->sent[line] = asserted;
 	if (!hal_ring_push(&g->ring, &e))
 		latch(g, -ENOBUFS);
+	atomic_store(&g->newest[line], asserted);
 }
 
 /* Read what waits on fds[k] and pass it on; false when the thread must end. */
@@ -194,8 +198,10 @@ static int initial_levels(struct gpio_din *g)
 	rc = gpio_req_get(g->req, high);
 	if (rc)
 		return rc;
-	for (i = 0; i < g->n; i++)
-		g->level[i] = g->sent[i] = high[i] != g->active_low[i];
+	for (i = 0; i < g->n; i++) {
+		g->sent[i] = high[i] != g->active_low[i];
+		atomic_store(&g->newest[i], g->sent[i]);
+	}
 	return 0;
 }
 
@@ -240,10 +246,8 @@ static uint32_t STRAND_RT din_poll(struct hal_din *d, int64_t now_ns, struct hal
 	struct gpio_din *g = to_din(d);
 	uint32_t n = 0;
 
-	while (n < max && hal_ring_pop(&g->ring, &ev[n])) {
-		g->level[ev[n].line] = ev[n].asserted;
+	while (n < max && hal_ring_pop(&g->ring, &ev[n]))
 		n++;
-	}
 	return n;
 }
 
@@ -251,7 +255,7 @@ static bool STRAND_RT din_level(struct hal_din *d, uint32_t line)
 {
 	struct gpio_din *g = to_din(d);
 
-	return line < g->n && g->level[line];
+	return line < g->n && atomic_load(&g->newest[line]);
 }
 
 static int STRAND_RT din_fault(struct hal_din *d, struct hal_fault *f)

@@ -224,6 +224,35 @@ static void test_din_edges(void **state)
 	hal_din_close(d);
 }
 
+/* A line's level is the newest the thread passed on, ahead of the edges
+ * still in the ring: an e-stop shows in the level before the loop has
+ * polled its edge, which may wait behind others (din.h). */
+static void test_din_level_ahead_of_poll(void **state)
+{
+	const struct hal_gpio_line l[2] = { { .name = "estop", .active_low = true },
+					    { .name = "ready" } };
+	struct timespec ms = { 0, 1000000 };
+	struct hal_edge ev[4];
+	struct hal_din *d;
+	int i;
+
+	fake_lines();
+	fake_chip.high[2] = true; /* the chain is closed */
+	d = open_din(l, 2, 0);
+	assert_int_equal(hal_din_start(d), 0);
+	assert_false(hal_din_level(d, 0));
+	fake_edge(0, false, 300); /* it opens */
+	for (i = 0; i < 5000 && !hal_din_level(d, 0); i++)
+		nanosleep(&ms, NULL);
+	assert_true(hal_din_level(d, 0)); /* nothing polled yet */
+	assert_int_equal(poll_edges(d, ev, 1), 1);
+	assert_int_equal(ev[0].line, 0);
+	assert_true(ev[0].asserted);
+	assert_int_equal(ev[0].ts_ns, 300);
+	assert_true(hal_din_level(d, 0));
+	hal_din_close(d);
+}
+
 /* The kernel labelled an edge wrong (the v1 ABI reads the line in its
  * thread, after the fact) or lost one: the read-back after the events
  * sets the level right with an edge of its own. */
@@ -298,6 +327,7 @@ int main(void)
 		cmocka_unit_test(test_open_errors),
 		cmocka_unit_test(test_din_edges),
 		cmocka_unit_test(test_din_read_back),
+		cmocka_unit_test(test_din_level_ahead_of_poll),
 		cmocka_unit_test(test_din_lost_edges),
 		cmocka_unit_test(test_din_unplugged),
 	};
