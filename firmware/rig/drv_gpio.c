@@ -37,7 +37,7 @@ static int gpio_parse_device(const struct rig_parse *p, struct rig_device_desc *
 
 /* Device k's trigger (trig) or input lines, in the order rig_trig.line and
  * rig_in.line number them (the rig-ready line after the triggers). The
- * loop's thread priority goes to the input event thread. */
+ * plan's scheduling of input event threads goes to the event thread. */
 static int plan(struct rig_make *m, uint32_t k, bool trig, uint32_t n, struct gpio_plan *pl)
 {
 	const struct rig_device_desc *dd = m->r->dev[k].desc;
@@ -72,8 +72,7 @@ static int plan(struct rig_make *m, uint32_t k, bool trig, uint32_t n, struct gp
 						       .offset = dd->ready_line,
 						       .active_low = dd->ready_active_low };
 	pl->cfg = (struct hal_gpio_cfg){ .device = dd->name, .chip = g ? g->chip : NULL,
-					 .nlines = n, .lines = pl->lines,
-					 .priority = m->o->gpio_priority };
+					 .nlines = n, .lines = pl->lines, .sched = m->o->events };
 	return 0;
 }
 

@@ -24,6 +24,7 @@
 #include "hal/clock.h"
 #include "hal/din.h"
 #include "hal/dout.h"
+#include "hal/thread.h"
 #include "rig_desc.h"
 #include "scale.h"
 #include "scene/source.h"
@@ -87,7 +88,10 @@ struct rig_opts {
 	bool sim;               /* every device by its simulated twin */
 	const char *camera_log; /* the first simulated camera's log file, or NULL */
 	uint64_t camera_cap;    /* exposures each simulated camera keeps */
-	int gpio_priority;      /* the GPIO input event thread's SCHED_FIFO priority, 0: none */
+	/* the scheduling of the threads devices start (play/rt.h's plan):
+	 * input event threads (GPIO), bus I/O threads (Modbus); zero: SCHED_OTHER */
+	struct hal_sched events, io;
+	FILE *warn;             /* what a device has to say at start, or NULL: nothing */
 };
 
 /* [init] Build the rig for a source. 0, or a negative errno with a message

@@ -13,8 +13,9 @@
  * changes in one set-values ioctl, nothing when nothing changed. Edges
  * thus come from the loop's own schedule; no thread sleeps per pulse.
  *
- * Inputs: a thread of the backend's own waits in poll() on the lines'
- * event descriptors and hands each edge, with the kernel's CLOCK_MONOTONIC
+ * Inputs: a thread of the backend's own (strand-gpio-DEVICE, scheduled as
+ * cfg.sched says: at the loop's priority in strand's plan) waits in poll()
+ * on the lines' event descriptors and hands each edge, with the kernel's CLOCK_MONOTONIC
  * timestamp, to the loop through a lock-free ring (ring.h); poll() in the
  * loop only drains that ring. A full ring is a latched fault, since a lost
  * e-stop edge must not pass silently (the loop also checks the e-stop by
@@ -33,6 +34,7 @@
 
 #include "hal/din.h"
 #include "hal/dout.h"
+#include "hal/thread.h"
 
 #define HAL_GPIO_CONSUMER "strand"
 /* Edges in flight between the event thread and the loop, by default. */
@@ -50,7 +52,7 @@ struct hal_gpio_cfg {
 	uint32_t nlines;     /* 1 .. GPIO_LINE_MAX */
 	const struct hal_gpio_line *lines;
 	uint32_t ring_cap;   /* inputs: a power of two, 0: HAL_GPIO_RING_DEFAULT */
-	int priority;        /* inputs: the event thread's SCHED_FIFO priority, 0: none */
+	struct hal_sched sched; /* inputs: the event thread's (zero: SCHED_OTHER) */
 };
 
 /*

@@ -11,14 +11,11 @@
  * must tell the loop besides edges (events lost, a read failing) it
  * latches in one atomic fault code.
  */
-#define _GNU_SOURCE /* pthread_setname_np */
 #include "gpio_priv.h"
 
 #include <errno.h>
 #include <poll.h>
 #include <pthread.h>
-#include <sched.h>
-#include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -48,9 +45,8 @@ struct gpio_din {
 	int wake_fd;               /* eventfd: stop() ends the thread */
 	int fds[GPIO_LINE_MAX];
 	uint32_t nfds;
-	int priority;
-	pthread_t thread;
-	bool running;
+	struct hal_sched sched;
+	struct hal_thread thread;
 	_Atomic int fault;         /* negative errno, 0: healthy; the thread's */
 	char name[];
 };
@@ -148,12 +144,9 @@ static void *event_thread(void *arg)
 {
 	struct gpio_din *g = arg;
 	struct pollfd pfd[GPIO_LINE_MAX + 1];
-	sigset_t all;
 	uint32_t k;
 
-	/* signals are the service thread's business */
-	sigfillset(&all);
-	pthread_sigmask(SIG_BLOCK, &all, NULL);
+	/* (started with every signal blocked: hal/thread.h) */
 	for (k = 0; k < g->nfds; k++)
 		pfd[k] = (struct pollfd){ .fd = g->fds[k], .events = POLLIN };
 	pfd[g->nfds] = (struct pollfd){ .fd = g->wake_fd, .events = POLLIN };
@@ -205,39 +198,23 @@ static int initial_levels(struct gpio_din *g)
 	return 0;
 }
 
+/* The event thread, as the plan schedules it (at the loop's priority: the
+ * e-stop must not wait behind ordinary work). SCHED_FIFO refused, it runs
+ * SCHED_OTHER; the plan's report says so. */
 static int din_start(struct hal_din *d)
 {
 	struct gpio_din *g = to_din(d);
-	struct sched_param sp = { .sched_priority = g->priority };
-	pthread_attr_t attr;
+	char name[HAL_THREAD_NAME_MAX + 1];
 	int rc;
 
 	STRAND_ASSERT_NOT_RT();
-	if (!g->req || g->running)
+	if (!g->req || g->thread.running)
 		return g->req ? 0 : -EBADF;
 	rc = initial_levels(g);
 	if (rc)
 		return rc;
-	pthread_attr_init(&attr);
-	if (g->priority > 0) {
-		/* as the loop: the e-stop must not wait behind ordinary work.
-		 * pthread_* return a positive error number, not -1. */
-		pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
-		pthread_attr_setschedpolicy(&attr, SCHED_FIFO);
-		pthread_attr_setschedparam(&attr, &sp);
-	}
-	rc = pthread_create(&g->thread, &attr, event_thread, g);
-	if (rc == EPERM && g->priority > 0) {
-		/* refused real-time: the loop reports that for itself */
-		pthread_attr_setinheritsched(&attr, PTHREAD_INHERIT_SCHED);
-		rc = pthread_create(&g->thread, &attr, event_thread, g);
-	}
-	pthread_attr_destroy(&attr);
-	if (rc)
-		return -rc;
-	pthread_setname_np(g->thread, "strand-gpio");
-	g->running = true;
-	return 0;
+	hal_thread_name(name, "strand-gpio-", g->name);
+	return hal_thread_start(&g->thread, name, &g->sched, 0, event_thread, g);
 }
 
 static uint32_t STRAND_RT din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
@@ -288,12 +265,9 @@ static int din_stop(struct hal_din *d)
 	uint64_t one = 1;
 
 	STRAND_ASSERT_NOT_RT();
-	if (g->running) {
-		if (write(g->wake_fd, &one, sizeof(one)) != sizeof(one))
-			pthread_cancel(g->thread);
-		pthread_join(g->thread, NULL);
-		g->running = false;
-	}
+	if (g->thread.running && write(g->wake_fd, &one, sizeof(one)) != sizeof(one))
+		pthread_cancel(g->thread.id);
+	hal_thread_join(&g->thread);
 	gpio_req_close(g->req);
 	g->req = NULL;
 	return 0;
@@ -362,7 +336,7 @@ int hal_gpio_din_open(struct hal_din **out, const struct hal_gpio_cfg *cfg, char
 	for (i = 0; i < g->n; i++)
 		g->active_low[i] = cfg->lines[i].active_low;
 	g->nfds = gpio_req_fds(g->req, g->fds, GPIO_LINE_MAX);
-	g->priority = cfg->priority;
+	g->sched = cfg->sched;
 	atomic_init(&g->fault, 0);
 	g->base = (struct hal_din){ .ops = &gpio_din_ops, .name = g->name, .nlines = g->n };
 	*out = &g->base;

@@ -11,7 +11,8 @@
  * registers read every read_every ticks.
  *
  * libmodbus blocks, so it never runs on the loop's thread. Each device has
- * an I/O thread of its own (a bus: one connection, one serial line):
+ * an I/O thread of its own, strand-mb-DEVICE, scheduled as cfg.sched says
+ * (a bus: one connection, one serial line):
  *
  *   strand-rt                          modbus I/O thread
  *   set() stages counts
@@ -44,6 +45,7 @@
 #include <stdio.h>
 
 #include "hal/axis.h"
+#include "hal/thread.h"
 #include "modbus_desc.h"
 
 /* How the backend is opened. */
@@ -55,6 +57,7 @@ struct modbus_cfg {
 	const int64_t *initial;       /* nch: a channel's target at start without feedback */
 	const bool *velocity;         /* nch: the target register takes the velocity */
 	bool lockstep;                /* the loop runs on the virtual clock */
+	struct hal_sched sched;       /* the I/O thread's (zero: SCHED_OTHER) */
 };
 
 /* [init] The backend into *out (not connected yet: start() connects). 0,
