@@ -92,6 +92,7 @@ struct rig_opts {
 	 * input event threads (GPIO), bus I/O threads (Modbus); zero: SCHED_OTHER */
 	struct hal_sched events, io;
 	FILE *warn;             /* what a device has to say at start, or NULL: nothing */
+	const char *gpio_sysfs; /* where GPIO chips are looked up, NULL: /sys (tests) */
 };
 
 /* [init] Build the rig for a source. 0, or a negative errno with a message

@@ -21,6 +21,17 @@
  * e-stop edge must not pass silently (the loop also checks the e-stop by
  * level).
  *
+ * A chip that sleeps: a GPIO expander behind I2C or SPI (MCP23017,
+ * PCA9555, ...) or a USB bridge, which the kernel reaches through a bus
+ * transaction in get-values and set-values, hundreds of microseconds on
+ * I2C, in the calling thread. Found at open from sysfs (gpio_chip.c says
+ * how, and why no libgpiod call can tell). Its output lines would make the
+ * loop wait in every tick a trigger changes: refused, unless the device
+ * accepts it (sleep_ok), with a warning then. Its input lines only delay
+ * the edges the event thread passes on (the kernel reads the chip when it
+ * interrupts), never the loop: a warning. Each message says what a set or
+ * a read took at start.
+ *
  * Polarity is per line and done here, so the loop sees logical levels:
  * active-low lines are asserted at physical 0 (an e-stop chain wired
  * normally closed, an opto-isolated trigger that pulls down).
@@ -53,6 +64,14 @@ struct hal_gpio_cfg {
 	const struct hal_gpio_line *lines;
 	uint32_t ring_cap;   /* inputs: a power of two, 0: HAL_GPIO_RING_DEFAULT */
 	struct hal_sched sched; /* inputs: the event thread's (zero: SCHED_OTHER) */
+	/* A chip that sleeps (below): outputs are refused unless sleep_ok;
+	 * what to say at start goes into warning (warning_size bytes, empty
+	 * when nothing; NULL: nowhere). sysfs: where sysfs is mounted, NULL
+	 * for /sys (tests give a tree of their own). */
+	bool sleep_ok;
+	char *warning;
+	size_t warning_size;
+	const char *sysfs;
 };
 
 /*

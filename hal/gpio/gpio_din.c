@@ -335,6 +335,9 @@ int hal_gpio_din_open(struct hal_din **out, const struct hal_gpio_cfg *cfg, char
 	g->n = cfg->nlines;
 	for (i = 0; i < g->n; i++)
 		g->active_low[i] = cfg->lines[i].active_low;
+	rc = hal_gpio_sleep_check(g->req, cfg, GPIO_REQ_INPUT_EDGES, NULL, err, errsize);
+	if (rc)
+		goto fail;
 	g->nfds = gpio_req_fds(g->req, g->fds, GPIO_LINE_MAX);
 	g->sched = cfg->sched;
 	atomic_init(&g->fault, 0);
@@ -346,6 +349,7 @@ nomem:
 	snprintf(err, errsize, "device '%s': out of memory", cfg->device);
 fail:
 	if (g) {
+		gpio_req_close(g->req);
 		if (g->wake_fd >= 0)
 			close(g->wake_fd);
 		free(g->ring_buf);
