@@ -36,7 +36,11 @@ struct hal_din_ops {
 	/* [rt] Move up to max edges that happened by now into ev, oldest
 	 * first; returns how many. Edges beyond max stay for the next call. */
 	uint32_t (*poll)(struct hal_din *d, int64_t now_ns, struct hal_edge *ev, uint32_t max);
-	/* [rt] A line's logical level after the edges polled so far. */
+	/* [rt] A line's newest logical level: after every edge the backend
+	 * has seen by now, those that poll() has not handed out yet included.
+	 * The loop takes a bounded number of edges per tick (loop.h), and
+	 * checks the e-stop by this level every tick: an e-stop edge queued
+	 * behind many others must not wait for them. */
 	bool (*level)(struct hal_din *d, uint32_t line);
 	/* [rt] The first latched fault (lost events, a line gone), 0 if none. */
 	int (*fault)(struct hal_din *d, struct hal_fault *f);

@@ -52,8 +52,12 @@ $(BUILD)/strand $(BUILD)/strand-simdrive: $(GPIOD_LIB)
 $(TEST_BIN): | $(GPIOD_LIB)
 $(BUILD)/fuzz/fuzz_load: | $(GPIOD_LIB)
 
-# test_gpio: the fake chip, ahead of the archive in the link.
-$(BUILD)/tests/test_gpio: $(BUILD)/san/tests/fake/gpio_line_fake.o
+# test_gpio, test_play_gpio and test_rt_plan (a run with a GPIO input
+# thread): the fake chip, ahead of the archive in the link, and a sysfs
+# tree of their own for chips that sleep.
+GPIO_FAKE_TESTS := test_gpio test_play_gpio test_rt_plan
+$(addprefix $(BUILD)/tests/,$(GPIO_FAKE_TESTS)): $(BUILD)/san/tests/fake/gpio_line_fake.o \
+	$(BUILD)/san/tests/fake/sysfs_tree.o
 
 # make bench-gpio (part of make bench): the trigger's edge jitter measured
 # in the test VM: tests/vm/t_gpio_trigger.sh over the scene ten times (760

@@ -29,7 +29,8 @@ struct sim_out {
 
 struct sim_in {
 	bool active_low;
-	bool asserted;
+	bool asserted; /* after the edges polled */
+	bool newest;   /* after every edge due by the last poll (din.h: level) */
 };
 
 struct sim_gpio {
@@ -167,7 +168,7 @@ static uint32_t STRAND_RT gi_poll(struct hal_din *d, int64_t now_ns, struct hal_
 {
 	struct sim_gpio *g = of_din(d);
 	struct sched_edge e;
-	uint32_t n = 0, k = 0;
+	uint32_t n = 0, k = 0, j;
 
 	while (hal_ring_pop(&g->inject, &e)) {
 		e.at_ns = now_ns;
@@ -178,6 +179,7 @@ static uint32_t STRAND_RT gi_poll(struct hal_din *d, int64_t now_ns, struct hal_
 		struct sched_edge *s = &g->q[k++];
 		struct sim_in *in = &g->in[s->line];
 
+		in->newest = s->asserted;
 		if (in->asserted == s->asserted)
 			continue; /* no change, no edge */
 		in->asserted = s->asserted;
@@ -186,6 +188,10 @@ static uint32_t STRAND_RT gi_poll(struct hal_din *d, int64_t now_ns, struct hal_
 		ev[n].ts_ns = s->at_ns;
 		n++;
 	}
+	/* edges due but beyond max wait for the next poll; their levels are
+	 * the lines' newest now (a scan of the queue, which is short) */
+	for (j = k; j < g->qlen && g->q[j].at_ns <= now_ns; j++)
+		g->in[g->q[j].line].newest = g->q[j].asserted;
 	if (k) {
 		memmove(g->q, g->q + k, (g->qlen - k) * sizeof(*g->q));
 		g->qlen -= k;
@@ -195,7 +201,7 @@ static uint32_t STRAND_RT gi_poll(struct hal_din *d, int64_t now_ns, struct hal_
 
 static bool STRAND_RT gi_level(struct hal_din *d, uint32_t line)
 {
-	return of_din(d)->in[line].asserted;
+	return of_din(d)->in[line].newest;
 }
 
 static int STRAND_RT gi_fault(struct hal_din *d, struct hal_fault *f)

@@ -51,7 +51,8 @@
  *
  * Safety, checked every tick:
  *   - an e-stop input: every drive disabled, every trigger deasserted, in
- *     the tick its edge (or asserted level) is seen; the run ends (latched:
+ *     the tick its edge (or asserted level) is seen, even when the contact
+ *     is closed again by then; the run ends (latched:
  *     nothing moves again until strand is started anew with the e-stop
  *     released; a run does not start while it is asserted);
  *   - a device fault, or a following error beyond its bound
@@ -93,6 +94,29 @@
 #include "latency.h"
 #include "rig/rig.h"
 #include "scene/source.h"
+
+/*
+ * Input edges the loop takes from one input device in one tick, at most:
+ * what a tick spends on its inputs is bounded however many edges a line
+ * makes. Edges beyond it stay queued in the device, in order, for the
+ * next tick (a GPIO device whose ring fills faults, which halts the run:
+ * hal/gpio/gpio.h). The e-stop does not wait for them: the loop checks it
+ * by its level every tick as well, and a level is the newest the device
+ * knows, edges still queued included (din.h). So an edge storm on another
+ * line, ahead of the e-stop's own edge, delays the e-stop by nothing; it
+ * only delays the edges of that storm.
+ *
+ * The value: 256 is the GPIO backend's ring (HAL_GPIO_RING_DEFAULT), so
+ * everything the ring held when the tick began is taken in that tick;
+ * edges that come in during the drain wait for the next. A bouncing
+ * contact makes tens of edges in the few milliseconds it bounces (the
+ * event thread passes each change on), so a bounce on every input at once
+ * is still taken whole; more than 256 from one device within one tick is
+ * a line that oscillates, whose edges may as well wait. Each edge costs a
+ * table lookup and a store or two (loop_safety.c): the bound is a few
+ * microseconds of work per device at most.
+ */
+#define LOOP_EDGES_PER_TICK 256
 
 enum loop_mode {
 	LOOP_MODE_CONTINUOUS,
@@ -206,6 +230,9 @@ struct loop_result {
 	int64_t status_dropped; /* status samples the ring had no room for */
 	int64_t cpu_ns;         /* the loop thread's CPU time over the run */
 	const int64_t *limited; /* per output: ticks clamped under --force */
+	int64_t edges;          /* input edges taken from the devices */
+	int64_t edges_tick_max; /* ... the most from one device in one tick */
+	int64_t edges_bound_ticks; /* times a device gave LOOP_EDGES_PER_TICK in a tick */
 	struct lat_stats lat;   /* last: 40 KB of histogram */
 };
 

@@ -31,8 +31,10 @@
 #include "move.h"
 #include "hal/rt.h"
 
-/* Input edges taken per poll of a device; a device with more polls again. */
+/* Input edges taken per poll of a device; a device with more polls again,
+ * up to LOOP_EDGES_PER_TICK in a tick (loop.h). */
 #define LOOP_EDGES_MAX 32
+_Static_assert(LOOP_EDGES_PER_TICK % LOOP_EDGES_MAX == 0, "whole polls per tick");
 
 /* One output: what a tick reads and writes for it, besides its setpoints. */
 struct loop_out {
@@ -90,11 +92,19 @@ struct loop_step {
 	bool ready_since_fire;  /* ...at some tick since the trigger rose */
 };
 
+/*
+ * What each line of each input device is for, made at [init] so that an
+ * edge costs one lookup: input device d's lines are in_of[in_first[d]] to
+ * in_of[in_first[d + 1] - 1], each the index of its input in rig->in, or
+ * -1 for a line no input has.
+ */
 struct loop_safety {
 	_Atomic int stop_req;   /* level (0, 1 controlled, 2 immediate) | cause << 2 */
 	bool *dev_off;          /* rig->naxes: axis devices disabled */
-	bool estop_edge;        /* an e-stop edge asserted during the run... */
-	int64_t estop_edge_ns;  /* ...at this time (the last one) */
+	uint32_t *in_first;     /* rig->ndins + 1 */
+	int32_t *in_of;         /* in_first[ndins] */
+	int32_t estop_in;       /* this tick: the input of the first asserted e-stop edge, or -1... */
+	int64_t estop_edge_ns;  /* ...and its time */
 	struct hal_edge edges[LOOP_EDGES_MAX]; /* the input poll's buffer */
 };
 

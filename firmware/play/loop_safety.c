@@ -101,71 +101,105 @@ void STRAND_RT loop_fault_device(struct loop *L, uint32_t dev, const struct hal_
 
 /* ---- inputs ---- */
 
-/* The edges of device d's lines, each to what its line is for. */
-static void STRAND_RT input_edges(struct loop *L, uint32_t d, const struct hal_edge *ev, uint32_t n)
+/* Line `line` of input device d: its input's index in rig->in, or -1. */
+static int32_t STRAND_RT input_of(const struct loop *L, uint32_t d, uint32_t line)
 {
-	const struct rig *r = L->rig;
-	uint32_t e, i;
+	const struct loop_safety *s = &L->safety;
+	uint32_t first = s->in_first[d];
 
-	for (e = 0; e < n; e++) {
-		for (i = 0; i < r->nin; i++) {
-			const struct rig_in *in = &r->in[i];
+	return line < s->in_first[d + 1] - first ? s->in_of[first + line] : -1;
+}
 
-			if (in->dev != d || in->line != ev[e].line)
-				continue;
-			if (in->role == RIG_INPUT_CAMERA_READY) {
-				L->step.ready = ev[e].asserted;
-				if (L->step.ready)
-					L->step.ready_since_fire = true;
-			} else if (in->role == RIG_INPUT_ESTOP && ev[e].asserted &&
-				   ev[e].ts_ns >= 0) {
-				/* (a simulated edge "before the run" is dated
-				 * INT64_MIN: not one) */
-				L->safety.estop_edge_ns = ev[e].ts_ns;
-				L->safety.estop_edge = true;
-			} else if (in->role == RIG_INPUT_STOP && ev[e].asserted) {
-				loop_request_stop(L, 1, LOOP_CAUSE_STOP_INPUT);
-			}
+/* One edge of input device d, to what its line is for. An asserted e-stop
+ * edge is kept (the first of the tick) for loop_inputs to act on. */
+static void STRAND_RT input_edge(struct loop *L, uint32_t d, const struct hal_edge *e)
+{
+	int32_t i = input_of(L, d, e->line);
+
+	if (i < 0)
+		return;
+	switch (L->rig->in[i].role) {
+	case RIG_INPUT_CAMERA_READY:
+		L->step.ready = e->asserted;
+		if (e->asserted)
+			L->step.ready_since_fire = true;
+		break;
+	case RIG_INPUT_ESTOP:
+		/* (a simulated edge "before the run" is dated INT64_MIN: not
+		 * one; its level stops the run) */
+		if (e->asserted && e->ts_ns >= 0 && L->safety.estop_in < 0) {
+			L->safety.estop_in = i;
+			L->safety.estop_edge_ns = e->ts_ns;
 		}
+		break;
+	case RIG_INPUT_STOP:
+		if (e->asserted)
+			loop_request_stop(L, 1, LOOP_CAUSE_STOP_INPUT);
+		break;
 	}
+}
+
+/* Input device d's edges, oldest first, LOOP_EDGES_MAX a poll and at most
+ * LOOP_EDGES_PER_TICK in this tick (loop.h): the rest stay queued in the
+ * device for the next tick. */
+static void STRAND_RT input_drain(struct loop *L, uint32_t d, int64_t now)
+{
+	struct hal_edge *ev = L->safety.edges;
+	struct loop_result *res = L->res;
+	uint32_t e, n, got = 0;
+
+	do {
+		n = hal_din_poll(L->rig->dins[d], now, ev, LOOP_EDGES_MAX);
+		for (e = 0; e < n; e++)
+			input_edge(L, d, &ev[e]);
+		got += n;
+	} while (n == LOOP_EDGES_MAX && got < LOOP_EDGES_PER_TICK);
+	res->edges += got;
+	if (got > res->edges_tick_max)
+		res->edges_tick_max = got;
+	if (got == LOOP_EDGES_PER_TICK)
+		res->edges_bound_ticks++;
 }
 
 void STRAND_RT loop_inputs(struct loop *L, int64_t now)
 {
 	const struct rig *r = L->rig;
-	struct hal_edge *ev = L->safety.edges;
 	struct hal_fault f;
-	uint32_t d, i, n;
+	struct loop_where w;
+	int32_t hit;
+	uint32_t d, i;
 
+	L->safety.estop_in = -1;
 	for (d = 0; d < r->ndins; d++) {
-		while ((n = hal_din_poll(r->dins[d], now, ev, LOOP_EDGES_MAX)) > 0) {
-			input_edges(L, d, ev, n);
-			if (n < LOOP_EDGES_MAX)
-				break;
-		}
+		input_drain(L, d, now);
 		if (hal_din_fault(r->dins[d], &f)) {
-			struct loop_where w = loop_where_fault(r->dins[d]->name, &f);
-
+			w = loop_where_fault(r->dins[d]->name, &f);
 			loop_halt(L, LOOP_END_FAULT, LOOP_CAUSE_DEVICE, &w);
 			return;
 		}
 	}
-	/* the e-stop by level, not only by edge: an input asserted before the
-	 * run, or an edge lost, still stops it */
-	for (i = 0; i < r->nin; i++) {
-		const struct rig_in *in = &r->in[i];
-
-		if (in->role == RIG_INPUT_ESTOP && hal_din_level(r->dins[in->dev], in->line)) {
-			struct loop_where w = {
-				.device = in->name, .channel = (int32_t)in->line, .out = -1,
-				.has_edge = L->safety.estop_edge,
-				.edge_ns = L->safety.estop_edge_ns, .acted_ns = now,
-			};
-
-			loop_halt(L, LOOP_END_ESTOP, LOOP_CAUSE_ESTOP, &w);
-			return;
-		}
-	}
+	/*
+	 * The e-stop by its edge, or by its level. An asserted edge stops
+	 * the run even when the level is deasserted again by now (a contact
+	 * that opened for less than a tick). The level stops it when the
+	 * input was asserted before the run or an edge was lost; and since a
+	 * level is the newest the device knows, edges still queued behind
+	 * the drain's bound included (din.h), an edge storm ahead of the
+	 * e-stop's own edge cannot delay it past this tick.
+	 */
+	hit = L->safety.estop_in;
+	for (i = 0; hit < 0 && i < r->nin; i++)
+		if (r->in[i].role == RIG_INPUT_ESTOP &&
+		    hal_din_level(r->dins[r->in[i].dev], r->in[i].line))
+			hit = (int32_t)i;
+	if (hit < 0)
+		return;
+	w = (struct loop_where){
+		.device = r->in[hit].name, .channel = (int32_t)r->in[hit].line, .out = -1,
+		.has_edge = L->safety.estop_in >= 0, .edge_ns = L->safety.estop_edge_ns,
+		.acted_ns = now,
+	};
+	loop_halt(L, LOOP_END_ESTOP, LOOP_CAUSE_ESTOP, &w);
 }
 
 /* ---- feedback ---- */

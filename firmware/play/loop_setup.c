@@ -67,6 +67,36 @@ static void *carve_array(struct mot_arena *a, size_t n, size_t size, size_t alig
 
 #define CARVE(a, type, n) ((type *)carve_array((a), (n), sizeof(type), _Alignof(type)))
 
+/* The lines of input device d that the line table covers: up to its
+ * inputs' highest line (rig_build numbers a device's lines from 0). */
+static uint32_t input_lines(const struct rig *rig, uint32_t d)
+{
+	uint32_t i, n = 0;
+
+	for (i = 0; i < rig->nin; i++)
+		if (rig->in[i].dev == d && rig->in[i].line >= n)
+			n = rig->in[i].line + 1;
+	return n;
+}
+
+/* What each input line is for (struct loop_safety), filled in the block
+ * carved for it. */
+static void input_table(struct loop *L)
+{
+	const struct rig *rig = L->rig;
+	struct loop_safety *s = &L->safety;
+	uint32_t d, i;
+
+	s->in_first[0] = 0;
+	for (d = 0; d < rig->ndins; d++)
+		s->in_first[d + 1] = s->in_first[d] + input_lines(rig, d);
+	for (i = 0; i < s->in_first[rig->ndins]; i++)
+		s->in_of[i] = -1;
+	for (i = 0; i < rig->nin; i++)
+		s->in_of[s->in_first[rig->in[i].dev] + rig->in[i].line] = (int32_t)i;
+	s->estop_in = -1;
+}
+
 /*
  * The loop's block, laid out in the order a tick touches it: struct loop,
  * the per-output state and poses, the per-device and per-trigger flags,
@@ -76,8 +106,12 @@ static void *carve_array(struct mot_arena *a, size_t n, size_t size, size_t alig
  */
 static struct loop *carve(struct mot_arena *a, const struct rig *rig)
 {
-	uint32_t n = rig->nout;
-	struct loop *L = CARVE(a, struct loop, 1);
+	uint32_t d, n = rig->nout, nlines = 0;
+	struct loop *L;
+
+	for (d = 0; d < rig->ndins; d++)
+		nlines += input_lines(rig, d);
+	L = CARVE(a, struct loop, 1);
 	struct loop_out *out = CARVE(a, struct loop_out, n);
 	mot_q32 *val = CARVE(a, mot_q32, n);
 	mot_q32 *prev = CARVE(a, mot_q32, n);
@@ -90,6 +124,8 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig)
 	struct loop_pulse *pulse = CARVE(a, struct loop_pulse, rig->ntrig);
 	bool *dout_dirty = CARVE(a, bool, rig->ndouts);
 	int64_t *limited = CARVE(a, int64_t, n);
+	uint32_t *in_first = CARVE(a, uint32_t, rig->ndins + 1);
+	int32_t *in_of = CARVE(a, int32_t, nlines);
 	struct loop_result *res = carve_array(a, 1, sizeof(*res), 64);
 
 	if (!L || a->failed)
@@ -104,6 +140,8 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig)
 	L->seq.vmax = vmax;
 	L->seq.amax = amax;
 	L->safety.dev_off = dev_off;
+	L->safety.in_first = in_first;
+	L->safety.in_of = in_of;
 	L->trig.pulse = pulse;
 	L->trig.dout_dirty = dout_dirty;
 	L->limited = limited;
@@ -249,6 +287,7 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	L->res->ferr_worst_out = -1;
 	L->res->rep.channel = -1;
 	L->res->rep.out = -1;
+	input_table(L);
 	for (i = 0; i < rig->nin; i++)
 		L->step.has_ready_input |= rig->in[i].role == RIG_INPUT_CAMERA_READY;
 	for (i = 0; i < rig->ntrig; i++) {

@@ -103,8 +103,12 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 		p->o.rt.pm_qos = false;
 	}
 	p->failed_at = PLAY_STAGE_RIG;
-	/* GPIO edges (an e-stop) must not wait behind ordinary work either */
-	p->o.rig.gpio_priority = p->o.rt.priority;
+	/* one plan for every thread, before the devices start theirs */
+	rt_plan_make(&p->plan, &p->o.rt);
+	p->o.rig.events = p->plan.events;
+	p->o.rig.io = p->plan.io;
+	if (!p->o.rig.warn)
+		p->o.rig.warn = stderr;
 	rc = rig_build(&p->rig, rd, src, &p->clk, &p->o.rig, err, errsize);
 	if (rc)
 		return rc;
@@ -254,23 +258,23 @@ static void serve(struct play *p, bool last)
 
 int play_run(struct play *p)
 {
-	pthread_attr_t attr;
 	struct timespec nap;
 	int64_t start;
 	int rc;
 
 	STRAND_ASSERT_NOT_RT();
 	rt_lock_memory(&p->o.rt, &p->rt);
-	pthread_attr_init(&attr);
-	pthread_attr_setstacksize(&attr, RT_STACK_BYTES);
 	start = hal_mono_ns();
-	rc = pthread_create(&p->thread, &attr, rt_main, p);
-	pthread_attr_destroy(&attr);
+	rc = rt_thread_start(&p->thread, &p->o.rt, &p->plan, &p->rt, rt_main, p);
 	if (rc) {
 		rt_release(&p->rt);
-		fprintf(stderr, "strand: cannot start the loop thread: %s\n", strerror(rc));
-		return -rc;
+		fprintf(stderr, "strand: cannot start the loop thread: %s\n", strerror(-rc));
+		return rc;
 	}
+	/* every thread is up: what each runs at, once (none is real-time on
+	 * the virtual clock) */
+	if (!p->clk.is_virtual)
+		rt_plan_report(&p->plan, stderr);
 	/* The virtual clock may wait for the journal: serve it briskly. On the
 	 * wall clock, 20 rounds a second keep the status line at 10 Hz and the
 	 * journal's chunks ahead; waking more often measurably disturbed the
@@ -281,7 +285,7 @@ int play_run(struct play *p)
 		serve(p, false);
 		nanosleep(&nap, NULL);
 	}
-	pthread_join(p->thread, NULL);
+	hal_thread_join(&p->thread);
 	p->wall_ns = hal_mono_ns() - start;
 	rt_release(&p->rt);
 	serve(p, true);
@@ -441,6 +445,10 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 		if (res->limited[i])
 			fprintf(f, "  --force: %s clamped to its limits on %lld ticks\n",
 				p->rig.out[i].channel, (long long)res->limited[i]);
+	if (res->edges_bound_ticks)
+		fprintf(f, "  input edges: %lld; on %lld ticks a device gave the most a tick takes "
+			"(%d), the rest waited for the next tick\n", (long long)res->edges,
+			(long long)res->edges_bound_ticks, LOOP_EDGES_PER_TICK);
 	rig_report(&p->rig, f);
 	if (res->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",

@@ -66,7 +66,8 @@ struct play {
 	struct hal_ring status;
 	struct loop_status *status_buf;
 	FILE *telemetry;
-	pthread_t thread;
+	struct hal_thread thread; /* strand-rt */
+	struct rt_plan plan;      /* every thread's scheduling */
 	struct rt_result rt;
 	_Atomic bool done;
 	struct loop_status last; /* the newest status sample */

@@ -3,15 +3,140 @@
 #define _GNU_SOURCE
 #include "rt.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <sched.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
 #include <unistd.h>
+
+#include "hal/rt.h"
+
+/* Threads rt_plan_report lists, at most (strand starts a handful). */
+#define RT_REPORT_THREADS 64
+
+static void *probe_main(void *arg)
+{
+	return arg;
+}
+
+void rt_plan_make(struct rt_plan *pl, const struct rt_opts *o)
+{
+	struct sched_param none = { .sched_priority = 0 };
+	enum hal_cpus off = o->cpu >= 0 ? HAL_CPUS_BUT : HAL_CPUS_ANY;
+	int p = o->priority > 0 ? o->priority : 0;
+
+	STRAND_ASSERT_NOT_RT();
+	memset(pl, 0, sizeof(*pl));
+	pl->service_policy = sched_getscheduler(0) & ~SCHED_RESET_ON_FORK;
+	if (pl->service_policy != SCHED_OTHER)
+		pthread_setschedparam(pthread_self(), SCHED_OTHER, &none);
+	if (p) {
+		struct hal_sched s = { .priority = p };
+		struct hal_thread probe;
+		int rc = hal_thread_start(&probe, "strand-probe", &s, 0, probe_main, NULL);
+
+		pl->sched_err = rc ? -rc : probe.sched_err;
+		hal_thread_join(&probe);
+		if (pl->sched_err)
+			p = 0;
+	}
+	pl->loop = (struct hal_sched){ .priority = p, .cpu = o->cpu,
+				       .cpus = o->cpu >= 0 ? HAL_CPUS_ONLY : HAL_CPUS_ANY };
+	pl->events = (struct hal_sched){ .priority = p, .cpus = off, .cpu = o->cpu };
+	pl->io = (struct hal_sched){ .priority = p > RT_IO_BELOW ? p - RT_IO_BELOW : 0,
+				     .cpus = off, .cpu = o->cpu };
+}
+
+/* "0", "0-3", "0,2-3" into buf. */
+static void cpu_list(char *buf, size_t size, const cpu_set_t *set)
+{
+	size_t used = 0;
+	int c, first;
+
+	buf[0] = 0;
+	for (c = 0; c < CPU_SETSIZE && used < size; c++) {
+		if (!CPU_ISSET(c, set))
+			continue;
+		for (first = c; c + 1 < CPU_SETSIZE && CPU_ISSET(c + 1, set); c++)
+			;
+		used += (size_t)snprintf(buf + used, size - used, first == c ? "%s%d" : "%s%d-%d",
+					 used ? "," : "", first, c);
+	}
+}
+
+static int by_tid(const void *a, const void *b)
+{
+	pid_t x = *(const pid_t *)a, y = *(const pid_t *)b;
+
+	return (x > y) - (x < y);
+}
+
+/* One thread as the kernel schedules it: ", NAME SCHED_FIFO 80 on CPU 1". */
+static void report_one(FILE *f, pid_t tid, bool first, const cpu_set_t *all)
+{
+	struct sched_param sp = { 0 };
+	char path[64], name[32] = "?", cpus[128];
+	int policy = sched_getscheduler(tid) & ~SCHED_RESET_ON_FORK;
+	cpu_set_t set;
+	FILE *c;
+
+	snprintf(path, sizeof(path), "/proc/self/task/%d/comm", (int)tid);
+	c = fopen(path, "r");
+	if (c) {
+		if (fgets(name, sizeof(name), c))
+			name[strcspn(name, "\n")] = 0;
+		fclose(c);
+	}
+	sched_getparam(tid, &sp);
+	fprintf(f, "%s%s%s %s", first ? "" : ", ", name, tid == getpid() ? " (service)" : "",
+		policy == SCHED_FIFO ? "SCHED_FIFO" : policy == SCHED_RR ? "SCHED_RR" :
+		policy == SCHED_OTHER ? "SCHED_OTHER" : "SCHED_BATCH/IDLE");
+	if (policy == SCHED_FIFO || policy == SCHED_RR)
+		fprintf(f, " %d", sp.sched_priority);
+	if (!sched_getaffinity(tid, sizeof(set), &set) && !CPU_EQUAL(&set, all)) {
+		cpu_list(cpus, sizeof(cpus), &set);
+		fprintf(f, " on CPU%s %s", CPU_COUNT(&set) == 1 ? "" : "s", cpus);
+	}
+}
+
+void rt_plan_report(const struct rt_plan *pl, FILE *f)
+{
+	pid_t tid[RT_REPORT_THREADS];
+	cpu_set_t all;
+	struct dirent *de;
+	size_t n = 0, i;
+	DIR *d;
+
+	STRAND_ASSERT_NOT_RT();
+	d = opendir("/proc/self/task");
+	if (!d)
+		return;
+	while ((de = readdir(d)) && n < RT_REPORT_THREADS)
+		if (de->d_name[0] >= '0' && de->d_name[0] <= '9')
+			tid[n++] = (pid_t)atoi(de->d_name);
+	closedir(d);
+	qsort(tid, n, sizeof(tid[0]), by_tid);
+	/* the service thread's CPUs are the process's */
+	if (sched_getaffinity(getpid(), sizeof(all), &all))
+		CPU_ZERO(&all);
+	fprintf(f, "strand: threads: ");
+	for (i = 0; i < n; i++)
+		report_one(f, tid[i], i == 0, &all);
+	if (pl->sched_err)
+		fprintf(f, "; SCHED_FIFO refused (%s), so every thread runs SCHED_OTHER",
+			strerror(pl->sched_err));
+	if (pl->service_policy != SCHED_OTHER)
+		fprintf(f, "; the service thread was started %s and now runs SCHED_OTHER",
+			pl->service_policy == SCHED_FIFO ? "SCHED_FIFO" :
+			pl->service_policy == SCHED_RR ? "SCHED_RR" : "SCHED_BATCH/IDLE");
+	fprintf(f, "\n");
+}
 
 void rt_lock_memory(const struct rt_opts *o, struct rt_result *r)
 {
@@ -53,31 +178,26 @@ static __attribute__((noinline)) void prefault_stack(void)
 		buf[i] = 0;
 }
 
+int rt_thread_start(struct hal_thread *t, const struct rt_opts *o, const struct rt_plan *pl,
+		    struct rt_result *r, void *(*fn)(void *), void *arg)
+{
+	int rc;
+
+	STRAND_ASSERT_NOT_RT();
+	rc = hal_thread_start(t, o->name ? o->name : "strand-rt", &pl->loop, RT_STACK_BYTES, fn,
+			      arg);
+	/* (rt_thread_setup, on the new thread, writes slack_err only) */
+	r->sched_err = pl->sched_err ? pl->sched_err : t->sched_err;
+	r->cpu_err = t->cpu_err;
+	r->fifo = t->fifo;
+	return rc;
+}
+
 void rt_thread_setup(const struct rt_opts *o, struct rt_result *r)
 {
-	pthread_t self = pthread_self();
-
-	r->sched_err = 0;
-	r->cpu_err = 0;
 	r->slack_err = 0;
-	r->fifo = false;
-	if (o->name)
-		pthread_setname_np(self, o->name);
-	if (o->cpu >= 0) {
-		cpu_set_t set;
-
-		CPU_ZERO(&set);
-		CPU_SET(o->cpu, &set);
-		r->cpu_err = pthread_setaffinity_np(self, sizeof(set), &set);
-	}
-	if (o->priority > 0) {
-		struct sched_param sp = { .sched_priority = o->priority };
-
-		/* a positive error number on failure, never -1 */
-		r->sched_err = pthread_setschedparam(self, SCHED_FIFO, &sp);
-		r->fifo = r->sched_err == 0;
-	}
-	if (!r->fifo && prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0))
+	if ((sched_getscheduler(0) & ~SCHED_RESET_ON_FORK) != SCHED_FIFO &&
+	    prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0))
 		r->slack_err = errno;
 	prefault_stack();
 }

@@ -11,17 +11,22 @@
 #include "rig.h"
 #include "yaml/yml.h"
 
+/* What a request has to say at start (a chip that sleeps), at most. */
+#define GPIO_WARNING 512
+
 /* One request of a device's output or input lines, made at start. */
 struct gpio_plan {
 	struct hal_gpio_cfg cfg;
 	struct hal_gpio_line *lines;
+	char warning[GPIO_WARNING];
 };
 
 struct gpio_dev {
 	struct gpio_plan out, in;
+	FILE *warn; /* where the warnings go, or NULL */
 };
 
-static const char *const device_keys[] = { "chip", NULL };
+static const char *const device_keys[] = { "chip", "allow_sleeping_chip", NULL };
 
 static int gpio_parse_device(const struct rig_parse *p, struct rig_device_desc *dev)
 {
@@ -31,13 +36,15 @@ static int gpio_parse_device(const struct rig_parse *p, struct rig_device_desc *
 	if (!g)
 		return yml_nomem(p->y);
 	err = p->v[0] ? yml_str(p->y, p->v[0], &g->chip) : 0;
+	if (!err && p->v[1])
+		err = yml_bool(p->y, p->v[1], &g->allow_sleeping_chip);
 	dev->priv = g;
 	return err;
 }
 
 /* Device k's trigger (trig) or input lines, in the order rig_trig.line and
  * rig_in.line number them (the rig-ready line after the triggers). The
- * loop's thread priority goes to the input event thread. */
+ * plan's scheduling of input event threads goes to the event thread. */
 static int plan(struct rig_make *m, uint32_t k, bool trig, uint32_t n, struct gpio_plan *pl)
 {
 	const struct rig_device_desc *dd = m->r->dev[k].desc;
@@ -71,9 +78,14 @@ static int plan(struct rig_make *m, uint32_t k, bool trig, uint32_t n, struct gp
 		pl->lines[j] = (struct hal_gpio_line){ .name = dd->ready_line_name,
 						       .offset = dd->ready_line,
 						       .active_low = dd->ready_active_low };
+	/* a rig-ready line alone changes at start and at the end: on a chip
+	 * that sleeps it costs the loop nothing */
 	pl->cfg = (struct hal_gpio_cfg){ .device = dd->name, .chip = g ? g->chip : NULL,
-					 .nlines = n, .lines = pl->lines,
-					 .priority = m->o->gpio_priority };
+					 .nlines = n, .lines = pl->lines, .sched = m->o->events,
+					 .sleep_ok = (g && g->allow_sleeping_chip) || j == 0,
+					 .warning = j ? pl->warning : NULL,
+					 .warning_size = sizeof(pl->warning),
+					 .sysfs = m->o->gpio_sysfs };
 	return 0;
 }
 
@@ -84,6 +96,8 @@ static int gpio_make_lines(struct rig_make *m, uint32_t k, uint32_t nt, uint32_t
 	int rc = g ? 0 : -ENOMEM;
 
 	m->r->dev[k].priv = g;
+	if (g)
+		g->warn = m->o->warn;
 	if (!rc && nt)
 		rc = plan(m, k, true, nt, &g->out);
 	if (!rc && ni)
@@ -105,6 +119,10 @@ static int gpio_start(struct rig *r, uint32_t k, char *err, size_t errsize)
 		rc = hal_gpio_dout_open(&r->douts[dv->dout], &g->out.cfg, err, errsize);
 	if (g && !rc && dv->din >= 0)
 		rc = hal_gpio_din_open(&r->dins[dv->din], &g->in.cfg, err, errsize);
+	if (g && !rc && g->warn && g->out.warning[0])
+		fprintf(g->warn, "strand: warning: %s\n", g->out.warning);
+	if (g && !rc && g->warn && g->in.warning[0])
+		fprintf(g->warn, "strand: warning: %s\n", g->in.warning);
 	return rc;
 }
 
@@ -132,7 +150,7 @@ static void gpio_free(struct rig *r, uint32_t k)
 const struct rig_driver rig_drv_gpio = {
 	.name = "gpio",
 	.device_keys = device_keys,
-	.device_foreign = "chip: is for a device with driver gpio",
+	.device_foreign = "chip: and allow_sleeping_chip: are for a device with driver gpio",
 	.parse_device = gpio_parse_device,
 	.make_lines = gpio_make_lines,
 	.start = gpio_start,

@@ -6,6 +6,13 @@
  * of the start naming the chip and the line.
  *
  *   - {name: io, driver: gpio, chip: gpiochip0}   # chip: optional
+ *     allow_sleeping_chip: true    # optional: triggers on a chip that sleeps
+ *
+ * A chip that sleeps (an expander behind I2C or SPI: hal/gpio/gpio.h) is
+ * refused for trigger lines unless the device allows it, and said at
+ * start when it is allowed or carries inputs; a device with no trigger
+ * (a rig-ready lamp alone, set at start and at the end) costs the loop
+ * nothing there, and is taken without a word.
  */
 #ifndef STRAND_DRV_GPIO_H
 #define STRAND_DRV_GPIO_H
@@ -18,6 +25,7 @@ extern const struct rig_driver rig_drv_gpio;
 struct rig_gpio_desc {
 	const char *chip; /* gpiochip0, /dev/gpiochip0 or a label; NULL: the
 			   * lines by name, on whichever chip */
+	bool allow_sleeping_chip; /* triggers on a chip that sleeps, with a warning */
 };
 
 #endif /* STRAND_DRV_GPIO_H */

@@ -428,7 +428,8 @@ static int mb_make_axes(struct rig_make *m, uint32_t k, char *err, size_t errsiz
 	uint32_t ax = (uint32_t)dv->axis, i;
 	struct modbus_cfg c = { .name = dv->desc->name, .d = dv->desc->priv,
 				.tick_hz = m->t->tick_hz, .lockstep = m->clk->is_virtual,
-				.nch = rig_axis_channels(r, ax), .cancel = m->o->cancel };
+				.nch = rig_axis_channels(r, ax), .cancel = m->o->cancel,
+				.sched = m->o->io };
 	int64_t *initial = calloc(c.nch ? c.nch : 1, sizeof(*initial));
 	bool *velocity = calloc(c.nch ? c.nch : 1, sizeof(*velocity));
 	int rc = -ENOMEM;

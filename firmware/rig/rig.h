@@ -25,6 +25,7 @@
 #include "hal/clock.h"
 #include "hal/din.h"
 #include "hal/dout.h"
+#include "hal/thread.h"
 #include "rig_desc.h"
 #include "scale.h"
 #include "scene/source.h"
@@ -89,7 +90,11 @@ struct rig_opts {
 	bool sim;               /* every device by its simulated twin */
 	const char *camera_log; /* the first simulated camera's log file, or NULL */
 	uint64_t camera_cap;    /* exposures each simulated camera keeps */
-	int gpio_priority;      /* the GPIO input event thread's SCHED_FIFO priority, 0: none */
+	/* the scheduling of the threads devices start (play/rt.h's plan):
+	 * input event threads (GPIO), bus I/O threads (Modbus); zero: SCHED_OTHER */
+	struct hal_sched events, io;
+	FILE *warn;             /* what a device has to say at start, or NULL: nothing */
+	const char *gpio_sysfs; /* where GPIO chips are looked up, NULL: /sys (tests) */
 	/* A stop asked for while the devices start (a signal): rig_start()
 	 * and the backends' waits give up (hal/cancel.h). NULL: never. */
 	const struct hal_cancel *cancel;

@@ -13,12 +13,24 @@
  * changes in one set-values ioctl, nothing when nothing changed. Edges
  * thus come from the loop's own schedule; no thread sleeps per pulse.
  *
- * Inputs: a thread of the backend's own waits in poll() on the lines'
- * event descriptors and hands each edge, with the kernel's CLOCK_MONOTONIC
+ * Inputs: a thread of the backend's own (strand-gpio-DEVICE, scheduled as
+ * cfg.sched says: at the loop's priority in strand's plan) waits in poll()
+ * on the lines' event descriptors and hands each edge, with the kernel's CLOCK_MONOTONIC
  * timestamp, to the loop through a lock-free ring (ring.h); poll() in the
  * loop only drains that ring. A full ring is a latched fault, since a lost
  * e-stop edge must not pass silently (the loop also checks the e-stop by
  * level).
+ *
+ * A chip that sleeps: a GPIO expander behind I2C or SPI (MCP23017,
+ * PCA9555, ...) or a USB bridge, which the kernel reaches through a bus
+ * transaction in get-values and set-values, hundreds of microseconds on
+ * I2C, in the calling thread. Found at open from sysfs (gpio_chip.c says
+ * how, and why no libgpiod call can tell). Its output lines would make the
+ * loop wait in every tick a trigger changes: refused, unless the device
+ * accepts it (sleep_ok), with a warning then. Its input lines only delay
+ * the edges the event thread passes on (the kernel reads the chip when it
+ * interrupts), never the loop: a warning. Each message says what a set or
+ * a read took at start.
  *
  * Polarity is per line and done here, so the loop sees logical levels:
  * active-low lines are asserted at physical 0 (an e-stop chain wired
@@ -33,6 +45,7 @@
 
 #include "hal/din.h"
 #include "hal/dout.h"
+#include "hal/thread.h"
 
 #define HAL_GPIO_CONSUMER "strand"
 /* Edges in flight between the event thread and the loop, by default. */
@@ -50,7 +63,15 @@ struct hal_gpio_cfg {
 	uint32_t nlines;     /* 1 .. GPIO_LINE_MAX */
 	const struct hal_gpio_line *lines;
 	uint32_t ring_cap;   /* inputs: a power of two, 0: HAL_GPIO_RING_DEFAULT */
-	int priority;        /* inputs: the event thread's SCHED_FIFO priority, 0: none */
+	struct hal_sched sched; /* inputs: the event thread's (zero: SCHED_OTHER) */
+	/* A chip that sleeps (below): outputs are refused unless sleep_ok;
+	 * what to say at start goes into warning (warning_size bytes, empty
+	 * when nothing; NULL: nowhere). sysfs: where sysfs is mounted, NULL
+	 * for /sys (tests give a tree of their own). */
+	bool sleep_ok;
+	char *warning;
+	size_t warning_size;
+	const char *sysfs;
 };
 
 /*

@@ -5,17 +5,17 @@
  * The event thread is the ring's only producer and the loop its only
  * consumer. The thread blocks in poll() on the lines' event descriptors
  * and an eventfd that stop() writes to end it; it never touches the
- * loop's state (level[] is the loop's, sent[] the thread's). What it must tell the loop besides edges (events lost, a
- * read failing) it latches in one atomic fault code.
+ * loop's state. It publishes each line's newest level (newest[], atomic)
+ * as it pushes the line's edge, so that the loop sees an e-stop by level
+ * even while its edge waits in the ring behind others (din.h). What it
+ * must tell the loop besides edges (events lost, a read failing) it
+ * latches in one atomic fault code.
  */
-#define _GNU_SOURCE /* pthread_setname_np */
 #include "gpio_priv.h"
 
 #include <errno.h>
 #include <poll.h>
 #include <pthread.h>
-#include <sched.h>
-#include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,17 +37,16 @@ struct gpio_din {
 	struct gpio_req *req;
 	uint32_t n;
 	bool active_low[GPIO_LINE_MAX];
-	bool level[GPIO_LINE_MAX]; /* logical, the loop's: after the edges polled */
 	bool sent[GPIO_LINE_MAX];  /* logical, the thread's: after the edges pushed */
+	atomic_bool newest[GPIO_LINE_MAX]; /* sent[], for the loop to read */
 	uint64_t corrected;        /* the thread's: edges made from a read-back */
 	struct hal_ring ring;      /* struct hal_edge, thread -> loop */
 	struct hal_edge *ring_buf;
 	int wake_fd;               /* eventfd: stop() ends the thread */
 	int fds[GPIO_LINE_MAX];
 	uint32_t nfds;
-	int priority;
-	pthread_t thread;
-	bool running;
+	struct hal_sched sched;
+	struct hal_thread thread;
 	_Atomic int fault;         /* negative errno, 0: healthy; the thread's */
 	char name[];
 };
@@ -74,6 +73,7 @@ static void push(struct gpio_din *g, uint32_t line, bool asserted, int64_t ts_ns
 	g->sent[line] = asserted;
 	if (!hal_ring_push(&g->ring, &e))
 		latch(g, -ENOBUFS);
+	atomic_store(&g->newest[line], asserted);
 }
 
 /* Read what waits on fds[k] and pass it on; false when the thread must end. */
@@ -144,12 +144,9 @@ static void *event_thread(void *arg)
 {
 	struct gpio_din *g = arg;
 	struct pollfd pfd[GPIO_LINE_MAX + 1];
-	sigset_t all;
 	uint32_t k;
 
-	/* signals are the service thread's business */
-	sigfillset(&all);
-	pthread_sigmask(SIG_BLOCK, &all, NULL);
+	/* (started with every signal blocked: hal/thread.h) */
 	for (k = 0; k < g->nfds; k++)
 		pfd[k] = (struct pollfd){ .fd = g->fds[k], .events = POLLIN };
 	pfd[g->nfds] = (struct pollfd){ .fd = g->wake_fd, .events = POLLIN };
@@ -194,44 +191,30 @@ static int initial_levels(struct gpio_din *g)
 	rc = gpio_req_get(g->req, high);
 	if (rc)
 		return rc;
-	for (i = 0; i < g->n; i++)
-		g->level[i] = g->sent[i] = high[i] != g->active_low[i];
+	for (i = 0; i < g->n; i++) {
+		g->sent[i] = high[i] != g->active_low[i];
+		atomic_store(&g->newest[i], g->sent[i]);
+	}
 	return 0;
 }
 
+/* The event thread, as the plan schedules it (at the loop's priority: the
+ * e-stop must not wait behind ordinary work). SCHED_FIFO refused, it runs
+ * SCHED_OTHER; the plan's report says so. */
 static int din_start(struct hal_din *d)
 {
 	struct gpio_din *g = to_din(d);
-	struct sched_param sp = { .sched_priority = g->priority };
-	pthread_attr_t attr;
+	char name[HAL_THREAD_NAME_MAX + 1];
 	int rc;
 
 	STRAND_ASSERT_NOT_RT();
-	if (!g->req || g->running)
+	if (!g->req || g->thread.running)
 		return g->req ? 0 : -EBADF;
 	rc = initial_levels(g);
 	if (rc)
 		return rc;
-	pthread_attr_init(&attr);
-	if (g->priority > 0) {
-		/* as the loop: the e-stop must not wait behind ordinary work.
-		 * pthread_* return a positive error number, not -1. */
-		pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
-		pthread_attr_setschedpolicy(&attr, SCHED_FIFO);
-		pthread_attr_setschedparam(&attr, &sp);
-	}
-	rc = pthread_create(&g->thread, &attr, event_thread, g);
-	if (rc == EPERM && g->priority > 0) {
-		/* refused real-time: the loop reports that for itself */
-		pthread_attr_setinheritsched(&attr, PTHREAD_INHERIT_SCHED);
-		rc = pthread_create(&g->thread, &attr, event_thread, g);
-	}
-	pthread_attr_destroy(&attr);
-	if (rc)
-		return -rc;
-	pthread_setname_np(g->thread, "strand-gpio");
-	g->running = true;
-	return 0;
+	hal_thread_name(name, "strand-gpio-", g->name);
+	return hal_thread_start(&g->thread, name, &g->sched, 0, event_thread, g);
 }
 
 static uint32_t STRAND_RT din_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev,
@@ -240,10 +223,8 @@ static uint32_t STRAND_RT din_poll(struct hal_din *d, int64_t now_ns, struct hal
 	struct gpio_din *g = to_din(d);
 	uint32_t n = 0;
 
-	while (n < max && hal_ring_pop(&g->ring, &ev[n])) {
-		g->level[ev[n].line] = ev[n].asserted;
+	while (n < max && hal_ring_pop(&g->ring, &ev[n]))
 		n++;
-	}
 	return n;
 }
 
@@ -251,7 +232,7 @@ static bool STRAND_RT din_level(struct hal_din *d, uint32_t line)
 {
 	struct gpio_din *g = to_din(d);
 
-	return line < g->n && g->level[line];
+	return line < g->n && atomic_load(&g->newest[line]);
 }
 
 static int STRAND_RT din_fault(struct hal_din *d, struct hal_fault *f)
@@ -284,12 +265,9 @@ static int din_stop(struct hal_din *d)
 	uint64_t one = 1;
 
 	STRAND_ASSERT_NOT_RT();
-	if (g->running) {
-		if (write(g->wake_fd, &one, sizeof(one)) != sizeof(one))
-			pthread_cancel(g->thread);
-		pthread_join(g->thread, NULL);
-		g->running = false;
-	}
+	if (g->thread.running && write(g->wake_fd, &one, sizeof(one)) != sizeof(one))
+		pthread_cancel(g->thread.id);
+	hal_thread_join(&g->thread);
 	gpio_req_close(g->req);
 	g->req = NULL;
 	return 0;
@@ -357,8 +335,11 @@ int hal_gpio_din_open(struct hal_din **out, const struct hal_gpio_cfg *cfg, char
 	g->n = cfg->nlines;
 	for (i = 0; i < g->n; i++)
 		g->active_low[i] = cfg->lines[i].active_low;
+	rc = hal_gpio_sleep_check(g->req, cfg, GPIO_REQ_INPUT_EDGES, NULL, err, errsize);
+	if (rc)
+		goto fail;
 	g->nfds = gpio_req_fds(g->req, g->fds, GPIO_LINE_MAX);
-	g->priority = cfg->priority;
+	g->sched = cfg->sched;
 	atomic_init(&g->fault, 0);
 	g->base = (struct hal_din){ .ops = &gpio_din_ops, .name = g->name, .nlines = g->n };
 	*out = &g->base;
@@ -368,6 +349,7 @@ nomem:
 	snprintf(err, errsize, "device '%s': out of memory", cfg->device);
 fail:
 	if (g) {
+		gpio_req_close(g->req);
 		if (g->wake_fd >= 0)
 			close(g->wake_fd);
 		free(g->ring_buf);

@@ -153,6 +153,12 @@ int hal_gpio_dout_open(struct hal_dout **out, const struct hal_gpio_cfg *cfg, ch
 		g->active_low[i] = cfg->lines[i].active_low;
 		g->high[i] = rq.initial[i]; /* deasserted from the request on */
 	}
+	e = hal_gpio_sleep_check(g->req, cfg, GPIO_REQ_OUTPUT, g->high, err, errsize);
+	if (e) {
+		gpio_req_close(g->req);
+		free(g);
+		return e;
+	}
 	g->base = (struct hal_dout){ .ops = &gpio_dout_ops, .name = g->name, .nlines = g->n };
 	*out = &g->base;
 	return 0;

@@ -77,7 +77,9 @@ const char *gpio_req_chip(const struct gpio_req *r);
 uint32_t gpio_req_offset(const struct gpio_req *r, uint32_t line);
 
 /* [rt] Drive every output line of the request at once (one ioctl, nothing
- * allocated): 0 or a negative errno. */
+ * allocated): 0 or a negative errno. On a chip that sleeps the ioctl
+ * waits for a bus transaction (the backend refuses such a chip for
+ * triggers unless allowed: gpio.h). */
 int gpio_req_set(struct gpio_req *r, const bool *high);
 /* [init] Read every line's level now. */
 int gpio_req_get(struct gpio_req *r, bool *high);

@@ -35,29 +35,17 @@ static int STRAND_RT latch_here(struct modbus_drv *m, int code, int32_t ch, cons
 }
 
 /*
- * The I/O thread runs SCHED_FIFO just below the loop's default priority
- * where the process may (as the loop does): at normal priority on a busy
- * machine it was measured waking late enough that a quarter of the
- * updates at 1 kHz were replaced by newer ones. Refused (EPERM), it runs at
- * normal priority, and the summary says so.
+ * The I/O thread, strand-mb-DEVICE, scheduled as the configuration says
+ * (strand's plan: SCHED_FIFO just below the loop, play/rt.h, which says
+ * why). Refused SCHED_FIFO, it runs at normal priority, and the summary
+ * says so.
  */
 static int start_thread(struct modbus_drv *m)
 {
-	struct sched_param sp = { .sched_priority = MB_IO_PRIORITY };
-	pthread_attr_t attr;
-	int rc = EPERM;
+	char name[HAL_THREAD_NAME_MAX + 1];
 
-	if (!m->c.lockstep && !pthread_attr_init(&attr)) {
-		pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
-		pthread_attr_setschedpolicy(&attr, SCHED_FIFO);
-		pthread_attr_setschedparam(&attr, &sp);
-		rc = pthread_create(&m->thread, &attr, mb_io_main, m);
-		pthread_attr_destroy(&attr);
-	}
-	m->io_fifo = rc == 0;
-	if (rc == EPERM || rc == EINVAL)
-		rc = pthread_create(&m->thread, NULL, mb_io_main, m);
-	return -rc;
+	hal_thread_name(name, "strand-mb-", m->ax.name);
+	return hal_thread_start(&m->thread, name, &m->c.sched, 0, mb_io_main, m);
 }
 
 /*
@@ -145,7 +133,6 @@ static int mb_start(struct hal_axis *ax)
 		snprintf(m->msg, sizeof(m->msg), "%s: cannot start its I/O thread", m->where);
 		goto fail;
 	}
-	m->thread_running = true;
 	return 0;
 fail:
 	memcpy(m->fault_text, m->msg, sizeof(m->fault_text));
@@ -189,7 +176,7 @@ static int STRAND_RT mb_input(struct hal_axis *ax, int64_t tick)
 		/* lockstep (virtual clock): no deadline, so wait for the update
 		 * to be answered; yielding, as the loop waits for its journal */
 		if (!m->c.lockstep || m->completed >= m->published || m->fault.code ||
-		    !m->thread_running || atomic_load(&m->thread_done))
+		    !m->thread.running || atomic_load(&m->thread_done))
 			break;
 		sched_yield();
 	}
@@ -275,12 +262,11 @@ static int mb_stop(struct hal_axis *ax)
 	int rc = 0;
 
 	STRAND_ASSERT_NOT_RT();
-	if (m->thread_running) {
+	if (m->thread.running) {
 		mb_disable(ax);
 		atomic_store(&m->quit, true);
 		sem_post(&m->wake);
-		pthread_join(m->thread, NULL);
-		m->thread_running = false;
+		hal_thread_join(&m->thread);
 		m->pending = m->popped;
 		/* the thread may have quit before it saw the disable */
 		if (m->connected && m->d->has_enable && !m->io_disabled) {
@@ -486,7 +472,7 @@ void hal_modbus_report(struct hal_axis *ax, FILE *f)
 		"by a newer one, %lld held at rest, %lld reads; I/O thread %s\n", ax->name,
 		m->where, (long long)s.updates, m->every, m->every == 1 ? "" : "s",
 		(long long)s.written, (long long)s.replaced, (long long)s.held, (long long)s.reads,
-		m->io_fifo ? "SCHED_FIFO" : "SCHED_OTHER");
+		m->thread.fifo ? "SCHED_FIFO" : "SCHED_OTHER");
 	if (s.rtt_n)
 		fprintf(f, "    update round trip us: min %.0f avg %.0f max %.0f\n",
 			s.rtt_min_ns / 1e3, (double)s.rtt_sum_ns / s.rtt_n / 1e3,

@@ -11,7 +11,8 @@
  * registers read every read_every ticks.
  *
  * libmodbus blocks, so it never runs on the loop's thread. Each device has
- * an I/O thread of its own (a bus: one connection, one serial line):
+ * an I/O thread of its own, strand-mb-DEVICE, scheduled as cfg.sched says
+ * (a bus: one connection, one serial line):
  *
  *   strand-rt                          modbus I/O thread
  *   set() stages counts
@@ -45,6 +46,7 @@
 
 #include "hal/axis.h"
 #include "hal/cancel.h"
+#include "hal/thread.h"
 #include "modbus_desc.h"
 
 /* How the backend is opened. */
@@ -60,6 +62,7 @@ struct modbus_cfg {
 	 * write, enable); once set, start() sets nothing more, clears an
 	 * enable it set, and returns -ECANCELED. NULL: never. */
 	const struct hal_cancel *cancel;
+	struct hal_sched sched;       /* the I/O thread's (zero: SCHED_OTHER) */
 };
 
 /* [init] The backend into *out (not connected yet: start() connects). 0,

@@ -20,6 +20,7 @@
 #include "hal/ring.h"
 #include "hal/rt.h"
 #include "hal/slot.h"
+#include "hal/thread.h"
 #include "modbus_dev.h"
 
 /* One update: the loop's tick and every channel's target register value. */
@@ -52,8 +53,6 @@ enum mb_cmd {
 #define MB_DONE_RING 64
 #define MB_CMD_RING 4
 #define MB_FAULT_TEXT 320
-/* The I/O thread's SCHED_FIFO priority: below the loop's default (80). */
-#define MB_IO_PRIORITY 70
 
 struct modbus_drv {
 	struct hal_axis ax; /* first: the HAL view */
@@ -83,8 +82,7 @@ struct modbus_drv {
 	uint32_t cmd_buf[MB_CMD_RING];
 	sem_t wake;
 	bool wake_ready;
-	pthread_t thread;
-	bool thread_running, io_fifo;
+	struct hal_thread thread;
 	_Atomic bool quit;
 	_Atomic bool thread_done;
 

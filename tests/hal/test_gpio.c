@@ -5,21 +5,29 @@
  * no glitch when an active-low trigger is requested, edges through the
  * event thread and the ring with their timestamps, levels at start, lost
  * edges and a vanished chip as faults, and the messages for a held or a
- * missing line. The real chip is tested in the VM (tests/vm/t_gpio_*.sh).
+ * missing line; a chip that sleeps (an expander behind I2C or SPI), found
+ * in a sysfs tree made the way the kernel lays it out: triggers on it
+ * refused unless allowed, inputs on it a warning. The real chip is tested
+ * in the VM (tests/vm/t_gpio_*.sh).
  */
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
 #include "hal/gpio/gpio.h"
+#include "hal/gpio/gpio_priv.h"
 #include "tests/fake/gpio_line_fake.h"
+#include "tests/fake/sysfs_tree.h"
 
-static char err[256];
+static char err[512];
 
 static void fake_lines(void)
 {
@@ -224,6 +232,35 @@ static void test_din_edges(void **state)
 	hal_din_close(d);
 }
 
+/* A line's level is the newest the thread passed on, ahead of the edges
+ * still in the ring: an e-stop shows in the level before the loop has
+ * polled its edge, which may wait behind others (din.h). */
+static void test_din_level_ahead_of_poll(void **state)
+{
+	const struct hal_gpio_line l[2] = { { .name = "estop", .active_low = true },
+					    { .name = "ready" } };
+	struct timespec ms = { 0, 1000000 };
+	struct hal_edge ev[4];
+	struct hal_din *d;
+	int i;
+
+	fake_lines();
+	fake_chip.high[2] = true; /* the chain is closed */
+	d = open_din(l, 2, 0);
+	assert_int_equal(hal_din_start(d), 0);
+	assert_false(hal_din_level(d, 0));
+	fake_edge(0, false, 300); /* it opens */
+	for (i = 0; i < 5000 && !hal_din_level(d, 0); i++)
+		nanosleep(&ms, NULL);
+	assert_true(hal_din_level(d, 0)); /* nothing polled yet */
+	assert_int_equal(poll_edges(d, ev, 1), 1);
+	assert_int_equal(ev[0].line, 0);
+	assert_true(ev[0].asserted);
+	assert_int_equal(ev[0].ts_ns, 300);
+	assert_true(hal_din_level(d, 0));
+	hal_din_close(d);
+}
+
 /* The kernel labelled an edge wrong (the v1 ABI reads the line in its
  * thread, after the fact) or lost one: the read-back after the events
  * sets the level right with an edge of its own. */
@@ -289,6 +326,116 @@ static void test_din_unplugged(void **state)
 	hal_din_close(d);
 }
 
+/* ---- a chip that sleeps ---- */
+
+/* Where each chip is, as sysfs says: the SoC's does not sleep, the I2C
+ * expander and the SPI shift registers do, named by their device and
+ * name or driver; a chip sysfs does not know cannot be told. */
+static void test_chip_bus(void **state)
+{
+	struct hal_gpio_chip_bus b;
+	struct sysfs_tree t;
+
+	sysfs_tree_make(&t, "gpiochip0");
+	assert_int_equal(hal_gpio_chip_bus(t.root, "gpiochip0", &b), 0);
+	assert_false(b.sleeps);
+	assert_int_equal(hal_gpio_chip_bus(t.root, "gpiochip2", &b), 1);
+	assert_true(b.sleeps);
+	assert_string_equal(b.bus, "i2c");
+	assert_string_equal(b.device, "1-0020");
+	assert_string_equal(b.what, "mcp23017");
+	assert_int_equal(hal_gpio_chip_bus(t.root, "gpiochip3", &b), 1);
+	assert_string_equal(b.bus, "spi");
+	assert_string_equal(b.device, "spi0.1");
+	assert_string_equal(b.what, "gpio-74x164");
+	assert_int_equal(hal_gpio_chip_bus(t.root, "gpiochip9", &b), -ENOENT);
+	assert_false(b.sleeps);
+	assert_true(hal_gpio_chip_bus("/nonexistent", "gpiochip0", &b) < 0);
+	sysfs_tree_free(&t);
+}
+
+static int open_dout_on(const char *sysfs, bool sleep_ok, char *warning, size_t size,
+			struct hal_dout **d)
+{
+	const struct hal_gpio_line l[1] = { { .name = "cam", .active_low = true } };
+	struct hal_gpio_cfg cfg = { .device = "io", .chip = "gpiochip7", .nlines = 1, .lines = l,
+				    .sysfs = sysfs, .sleep_ok = sleep_ok, .warning = warning,
+				    .warning_size = size };
+
+	*d = NULL;
+	return hal_gpio_dout_open(d, &cfg, err, sizeof(err));
+}
+
+/* A trigger on the I2C expander is refused, saying where the chip is,
+ * what a set took and what to do; the line is released again. Allowed, it
+ * opens with a warning, the lines where they were. On the SoC's chip, or
+ * where sysfs cannot tell, nothing is said. */
+static void test_dout_on_sleeping_chip(void **state)
+{
+	char warning[512];
+	struct hal_dout *d;
+	struct sysfs_tree t;
+
+	fake_lines();
+	sysfs_tree_make(&t, "gpiochip2");
+	assert_int_equal(open_dout_on(t.root, false, warning, sizeof(warning), &d), -EOPNOTSUPP);
+	assert_null(d);
+	printf("%s\n", err);
+	assert_non_null(strstr(err, "device 'io': chip gpiochip7 is on the i2c bus (1-0020, "
+				    "mcp23017): the kernel sleeps in every set of its lines"));
+	assert_non_null(strstr(err, "the longest of 4 sets at start: "));
+	assert_non_null(strstr(err, "`allow_sleeping_chip: true`"));
+	assert_null(fake_chip.holder[0]);
+
+	fake_lines();
+	assert_int_equal(open_dout_on(t.root, true, warning, sizeof(warning), &d), 0);
+	printf("%s\n", warning);
+	assert_non_null(strstr(warning, "device 'io': chip gpiochip7 is on the i2c bus (1-0020, "
+					"mcp23017): every change of its trigger lines makes the "
+					"loop wait for a bus transaction"));
+	assert_int_equal(fake_chip.sets, 4); /* the probes, at the levels the lines had */
+	assert_true(fake_chip.high[0]);      /* active low: deasserted high */
+	hal_dout_close(d);
+	sysfs_tree_free(&t);
+
+	fake_lines();
+	sysfs_tree_make(&t, "gpiochip0");
+	strcpy(warning, "x");
+	assert_int_equal(open_dout_on(t.root, false, warning, sizeof(warning), &d), 0);
+	assert_string_equal(warning, "");
+	assert_int_equal(fake_chip.sets, 0);
+	hal_dout_close(d);
+	sysfs_tree_free(&t);
+	fake_lines();
+	assert_int_equal(open_dout_on("/nonexistent", false, warning, sizeof(warning), &d), 0);
+	assert_string_equal(warning, "");
+	hal_dout_close(d);
+}
+
+/* Inputs on a chip that sleeps: opened, with a warning (the loop never
+ * waits for them; their edges come late). */
+static void test_din_on_sleeping_chip(void **state)
+{
+	const struct hal_gpio_line l[1] = { { .name = "estop", .active_low = true } };
+	char warning[512] = "";
+	struct sysfs_tree t;
+	struct hal_gpio_cfg cfg = { .device = "io", .chip = "gpiochip7", .nlines = 1, .lines = l,
+				    .warning = warning, .warning_size = sizeof(warning) };
+	struct hal_din *d = NULL;
+
+	fake_lines();
+	sysfs_tree_make(&t, "gpiochip3");
+	cfg.sysfs = t.root;
+	assert_int_equal(hal_gpio_din_open(&d, &cfg, err, sizeof(err)), 0);
+	printf("%s\n", warning);
+	assert_non_null(strstr(warning, "device 'io': chip gpiochip7 is on the spi bus (spi0.1, "
+					"gpio-74x164): the kernel reads such a chip in a thread"));
+	assert_non_null(strstr(warning, "the longest of 4 reads at start: "));
+	assert_non_null(strstr(warning, "The loop itself never waits for the chip"));
+	hal_din_close(d);
+	sysfs_tree_free(&t);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -298,6 +445,10 @@ int main(void)
 		cmocka_unit_test(test_open_errors),
 		cmocka_unit_test(test_din_edges),
 		cmocka_unit_test(test_din_read_back),
+		cmocka_unit_test(test_din_level_ahead_of_poll),
+		cmocka_unit_test(test_chip_bus),
+		cmocka_unit_test(test_dout_on_sleeping_chip),
+		cmocka_unit_test(test_din_on_sleeping_chip),
 		cmocka_unit_test(test_din_lost_edges),
 		cmocka_unit_test(test_din_unplugged),
 	};

@@ -232,15 +232,15 @@ static void test_truncated(void **state)
 	assert_true(errors > 0);
 }
 
-/* A GPIO device: its chip, its rig-ready line, lines by offset and by
- * name, each kept apart. */
+/* A GPIO device: its chip, whether it may sleep, its rig-ready line, lines
+ * by offset and by name, each kept apart. */
 static void test_gpio_lines(void **state)
 {
 	struct scene_file sf;
 	const struct rig_desc *r;
 
 	parse_ok(&sf, "timing: {frame_rate: 24, frames: [0, 10]}\n"
-		      "devices: [{name: io, driver: gpio, chip: gpiochip2},\n"
+		      "devices: [{name: io, driver: gpio, chip: gpiochip2, allow_sleeping_chip: true},\n"
 		      "          {name: any, driver: gpio, ready: {line: LAMP, active_low: true}}]\n"
 		      "triggers: [{name: cam, device: io, line: 5, active_low: true},\n"
 		      "           {name: cam2, device: any, line: CAM2_TRIG}]\n"
@@ -252,6 +252,8 @@ static void test_gpio_lines(void **state)
 	assert_ptr_equal(r->devices[1].driver, rig_driver_find("gpio"));
 	assert_string_equal(((const struct rig_gpio_desc *)r->devices[0].priv)->chip, "gpiochip2");
 	assert_null(((const struct rig_gpio_desc *)r->devices[1].priv)->chip);
+	assert_true(((const struct rig_gpio_desc *)r->devices[0].priv)->allow_sleeping_chip);
+	assert_false(((const struct rig_gpio_desc *)r->devices[1].priv)->allow_sleeping_chip);
 	assert_false(r->devices[0].has_ready);
 	assert_true(r->devices[1].has_ready);
 	assert_string_equal(r->devices[1].ready_line_name, "LAMP");

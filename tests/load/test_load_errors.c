@@ -699,7 +699,7 @@ static const struct err_case cases[] = {
 	{ "rig: chip on a simulated device",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "devices: [{name: io, driver: sim, chip: gpiochip0}]\n",
-	  "t.yaml:2:41: chip: is for a device with driver gpio" },
+	  "t.yaml:2:41: chip: and allow_sleeping_chip: are for a device with driver gpio" },
 	{ "rig: a named line twice",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"

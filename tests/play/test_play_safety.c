@@ -112,6 +112,225 @@ static void test_estop_before_start(void **state)
 	play_free(&p);
 }
 
+/* An e-stop that opens for less than a tick and is closed again when the
+ * loop looks: its edge stops the run all the same, in that tick. */
+static void test_estop_short_pulse(void **state)
+{
+	struct pu_source ps;
+	struct pu_rig r;
+	struct play_opts o;
+	struct play p;
+	struct sim_gpio *g;
+	const struct loop_report *rep;
+	int64_t opened;
+
+	prepare(&p, &r, &ps, &o, PU_ESTOP);
+	g = rig_sim_gpio(&p.rig, "io");
+	opened = loop_due(p.L, 2999) + 1000;
+	assert_int_equal(sim_gpio_schedule(g, 0, opened, true), 0);
+	assert_int_equal(sim_gpio_schedule(g, 0, opened + 1000, false), 0);
+	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
+	rep = &loop_result(p.L)->rep;
+	assert_int_equal(rep->cause, LOOP_CAUSE_ESTOP);
+	assert_int_equal(rep->tick, 3000);
+	assert_true(rep->has_edge);
+	assert_int_equal(rep->edge_ns, opened);
+	assert_string_equal(rep->device, "estop");
+	assert_int_equal(watch(&p, 0)->disabled_tick, 3000);
+	assert_int_equal(watch(&p, 0)->last_commit_tick, 2999);
+	play_free(&p);
+}
+
+/* The simulated chip's level is the newest too: edges due but left for
+ * the next poll count (din.h). */
+static void test_sim_level_ahead_of_poll(void **state)
+{
+	struct hal_clock clk;
+	struct sim_gpio *g;
+	struct hal_edge ev[4];
+	struct hal_din *d;
+	char err[128];
+	int i;
+
+	hal_clock_init(&clk, true);
+	assert_int_equal(sim_gpio_new(&g, "io", 0, 2, &clk, 16, err, sizeof(err)), 0);
+	d = sim_gpio_din(g);
+	for (i = 0; i < 4; i++)
+		assert_int_equal(sim_gpio_schedule(g, 1, 100 + i, i % 2 == 0), 0);
+	assert_int_equal(sim_gpio_schedule(g, 0, 200, true), 0);
+	assert_int_equal(sim_gpio_schedule(g, 0, 900, false), 0); /* not due yet */
+	assert_int_equal(hal_din_poll(d, 500, ev, 2), 2);
+	assert_true(hal_din_level(d, 0));   /* its edge is still queued */
+	assert_false(hal_din_level(d, 1));  /* after all four */
+	assert_int_equal(hal_din_poll(d, 500, ev, 4), 3);
+	assert_int_equal(ev[2].line, 0);
+	assert_true(hal_din_level(d, 0));
+	sim_gpio_free(g);
+}
+
+/*
+ * An input device that queues far more edges than a tick takes: `n`
+ * edges of a chattering line, then one asserted edge on line `last`, all
+ * due at at_ns, handed out in that order, as a GPIO device's ring would.
+ * It counts what each tick took; its level is the newest (din.h): every
+ * edge due counts, handed out or not.
+ */
+struct storm {
+	struct hal_din base; /* first */
+	struct hal_din *orig;
+	int64_t at_ns;
+	uint32_t chatter, last, n, given;
+	int64_t now_ns;           /* the tick being polled (virtual: its due time) */
+	uint32_t tick_got, tick_max;
+	int64_t ticks_with_edges;
+	int64_t last_at_tick_ns;  /* when `last`'s own edge was handed out, or -1 */
+};
+
+static uint32_t storm_poll(struct hal_din *d, int64_t now_ns, struct hal_edge *ev, uint32_t max)
+{
+	struct storm *s = (struct storm *)d;
+	uint32_t k = 0;
+
+	if (now_ns != s->now_ns) {
+		s->now_ns = now_ns;
+		s->tick_got = 0;
+	}
+	while (now_ns >= s->at_ns && k < max && s->given <= s->n) {
+		if (s->given < s->n)
+			ev[k] = (struct hal_edge){ s->chatter, s->given % 2 == 0, s->at_ns };
+		else
+			ev[k] = (struct hal_edge){ s->last, true, s->at_ns + 1 };
+		if (s->given == s->n)
+			s->last_at_tick_ns = now_ns;
+		s->given++;
+		k++;
+	}
+	if (k && !s->tick_got)
+		s->ticks_with_edges++;
+	s->tick_got += k;
+	if (s->tick_got > s->tick_max)
+		s->tick_max = s->tick_got;
+	return k;
+}
+
+static bool storm_level(struct hal_din *d, uint32_t line)
+{
+	struct storm *s = (struct storm *)d;
+
+	/* n is even: the chattering line ends where it began, deasserted */
+	return line == s->last && s->now_ns >= s->at_ns;
+}
+
+static int storm_fault(struct hal_din *d, struct hal_fault *f)
+{
+	return 0;
+}
+
+static int storm_nothing(struct hal_din *d)
+{
+	return 0;
+}
+
+static void storm_close(struct hal_din *d)
+{
+}
+
+static const struct hal_din_ops storm_ops = {
+	.start = storm_nothing, .poll = storm_poll, .level = storm_level,
+	.fault = storm_fault, .stop = storm_nothing, .close = storm_close,
+};
+
+/* In place of device io's inputs from now on. */
+static void storm_install(struct storm *s, struct play *p, uint32_t n, uint32_t chatter,
+			  uint32_t last, int64_t at_ns)
+{
+	int32_t din = p->rig.dev[rig_device(&p->rig, "io")].din;
+
+	assert_true(din >= 0);
+	memset(s, 0, sizeof(*s));
+	s->base = (struct hal_din){ .ops = &storm_ops, .name = "io", .nlines = 3 };
+	s->orig = p->rig.dins[din];
+	s->n = n;
+	s->chatter = chatter;
+	s->last = last;
+	s->at_ns = at_ns;
+	s->now_ns = INT64_MIN;
+	s->last_at_tick_ns = -1;
+	p->rig.dins[din] = &s->base;
+}
+
+static void storm_remove(struct storm *s, struct play *p)
+{
+	p->rig.dins[p->rig.dev[rig_device(&p->rig, "io")].din] = s->orig;
+}
+
+/* 4000 edges of a chattering camera-ready line, and the e-stop's edge
+ * behind them, all due in tick 3000: the tick takes LOOP_EDGES_PER_TICK of
+ * them and no more, and the e-stop, seen by its level, stops the run in
+ * that very tick. */
+static void test_estop_behind_edge_storm(void **state)
+{
+	struct pu_source ps;
+	struct pu_rig r;
+	struct play_opts o;
+	struct play p;
+	struct storm s;
+	const struct loop_result *res;
+
+	prepare(&p, &r, &ps, &o, PU_ESTOP | PU_READY);
+	storm_install(&s, &p, 4000, 1, 0, loop_due(p.L, 3000) - 1);
+	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_ESTOP);
+	res = loop_result(p.L);
+	assert_int_equal(res->rep.cause, LOOP_CAUSE_ESTOP);
+	assert_int_equal(res->rep.tick, 3000);
+	assert_false(res->rep.has_edge); /* its edge is still queued */
+	assert_int_equal(s.tick_max, LOOP_EDGES_PER_TICK);
+	assert_int_equal(s.ticks_with_edges, 1);
+	assert_int_equal(res->edges, LOOP_EDGES_PER_TICK);
+	assert_int_equal(res->edges_tick_max, LOOP_EDGES_PER_TICK);
+	assert_int_equal(res->edges_bound_ticks, 1);
+	assert_int_equal(watch(&p, 0)->disabled_tick, 3000);
+	assert_int_equal(watch(&p, 0)->last_commit_tick, 2999);
+	storm_remove(&s, &p);
+	play_free(&p);
+}
+
+/* 1000 chattering edges and a stop input's edge behind them: each tick
+ * takes LOOP_EDGES_PER_TICK, the rest wait for the next, in order, so the
+ * stop edge (the 1001st) is acted on in the fourth tick, 3003. */
+static void test_edges_beyond_the_bound_wait(void **state)
+{
+	struct pu_source ps;
+	struct pu_rig r;
+	struct play_opts o;
+	struct play p;
+	struct storm s;
+	const struct loop_result *res;
+	char msg[1024];
+	FILE *f;
+
+	prepare(&p, &r, &ps, &o, PU_ESTOP | PU_READY | PU_STOP);
+	storm_install(&s, &p, 1000, 1, 2, loop_due(p.L, 3000));
+	assert_int_equal(pu_finish(&p, true), STRAND_EXIT_STOPPED);
+	res = loop_result(p.L);
+	assert_int_equal(res->rep.cause, LOOP_CAUSE_STOP_INPUT);
+	assert_int_equal(res->rep.tick, 3003);
+	assert_int_equal(s.last_at_tick_ns, loop_due(p.L, 3003));
+	assert_int_equal(s.tick_max, LOOP_EDGES_PER_TICK);
+	assert_int_equal(s.ticks_with_edges, 4);
+	assert_int_equal(res->edges, 1001);
+	assert_int_equal(res->edges_bound_ticks, 3);
+	assert_int_equal(sim_camera_missed(rig_sim_camera(&p.rig, 0)), 0);
+	f = fmemopen(msg, sizeof(msg), "w");
+	play_summary(&p, f, false);
+	fclose(f);
+	printf("%s", msg);
+	assert_non_null(strstr(msg, "input edges: 1001; on 3 ticks a device gave the most a tick "
+				    "takes (256), the rest waited for the next tick"));
+	storm_remove(&s, &p);
+	play_free(&p);
+}
+
 /* A stop input: every axis to rest within its limits, no frame after. */
 static void test_stop_input(void **state)
 {
@@ -364,6 +583,10 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_estop),
 		cmocka_unit_test(test_estop_before_start),
+		cmocka_unit_test(test_estop_short_pulse),
+		cmocka_unit_test(test_sim_level_ahead_of_poll),
+		cmocka_unit_test(test_estop_behind_edge_storm),
+		cmocka_unit_test(test_edges_beyond_the_bound_wait),
 		cmocka_unit_test(test_stop_input),
 		cmocka_unit_test(test_sigint),
 		cmocka_unit_test(test_drive_trip),
