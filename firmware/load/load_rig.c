@@ -576,9 +576,11 @@ static int validate(struct rl *rl)
 
 	if (!err)
 		return 0;
-	if (e.output >= 0)
+	if (e.output >= 0) {
 		at = ld_node(l, rl->out_it[e.output]);
-	else if (e.device >= 0)
+		if (e.key && yml_value(&l->y, at, e.key))
+			at = yml_value(&l->y, at, e.key);
+	} else if (e.device >= 0)
 		at = e.key ? yml_value(&l->y, rl->dev_map[e.device], e.key) : NULL;
 	if (!at && e.device >= 0)
 		at = rl->dev_map[e.device];

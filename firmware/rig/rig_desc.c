@@ -78,8 +78,8 @@ int rig_sim_check(const struct rig_sim_desc *s, const char **key, char *msg, siz
 		if (v == 0 || (v >= r[i].min && v <= r[i].max))
 			continue;
 		*key = r[i].key;
-		snprintf(msg, size, "%s %.6g is outside %g%s to %g%s", r[i].key, v, r[i].min,
-			 r[i].unit, r[i].max, r[i].unit);
+		snprintf(msg, size, "%s %.6g is %s %g%s", r[i].key, v, v > r[i].max ? "above" :
+			 "below", v > r[i].max ? r[i].max : r[i].min, r[i].unit);
 		return -ERANGE;
 	}
 	return 0;
@@ -151,8 +151,8 @@ int rig_output_check_limits(const char *channel, const struct sd_limits *lim, bo
 		return -EINVAL;
 	}
 	if (lim->vel < RIG_LIMIT_RATE_MIN || lim->acc < RIG_LIMIT_RATE_MIN) {
-		snprintf(msg, size, "output '%s': %s limit %.6g is below %g a second%s (too slow "
-			 "to plan a move with)", channel, lim->vel < RIG_LIMIT_RATE_MIN ?
+		snprintf(msg, size, "%s limit %.6g is below %g a second%s (too slow to plan a "
+			 "move with)", lim->vel < RIG_LIMIT_RATE_MIN ?
 			 "velocity" : "acceleration", lim->vel < RIG_LIMIT_RATE_MIN ? lim->vel :
 			 lim->acc, RIG_LIMIT_RATE_MIN, lim->vel < RIG_LIMIT_RATE_MIN ? "" :
 			 " squared");
