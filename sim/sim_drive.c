@@ -2,9 +2,6 @@
 /* sim_drive.c - the simulated servo drive (see sim_drive.h). */
 #include "sim_drive.h"
 
-/* The most plant steps a tick: a bound on the simulated drive's work */
-#define SIM_DRIVE_NSUB_MAX 1e7
-
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +9,9 @@
 #include <string.h>
 
 #include "hal/rt.h"
+
+/* The most plant steps a tick: a bound on the simulated drive's work. */
+#define SIM_DRIVE_NSUB_MAX 1e7
 
 struct sim_chan {
 	struct sim_drive_channel p;

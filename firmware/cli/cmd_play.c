@@ -405,7 +405,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	/* in range since on_opt: only a timeout or a duration below a tick is
 	 * refused (--settle and --exposure may round to none) */
 	rc = STRAND_EXIT_USAGE;
-	if (play_ticks(&c, "--settle", NULL, c.settle_ms, true, hz, 0, &c.o.loop.settle_ticks) ||
+	if (play_ticks(&c, "--settle", "", c.settle_ms, true, hz, 0, &c.o.loop.settle_ticks) ||
 	    play_ticks(&c, "--exposure", "", c.exposure_ms, true, hz, 0,
 		       &c.o.loop.exposure_ticks) ||
 	    play_ticks(&c, "--timeout", c.timeout_arg, c.timeout_s, false, hz, 1,

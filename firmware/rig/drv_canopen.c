@@ -190,8 +190,9 @@ static int co_validate(const struct rig_desc *d, uint32_t hz, struct rig_desc_er
 		if (fabs(rig_output_home_counts(&d->outputs[i])) > INT32_MAX) {
 			e->output = (int32_t)i;
 			e->key = "home";
-			snprintf(e->msg, sizeof(e->msg), "home %.10g is %.6g counts, beyond a CiA 402 "
-				 "drive's 32-bit position", d->outputs[i].home,
+			snprintf(e->msg, sizeof(e->msg),
+				 "home %.10g is %.6g counts, beyond a CiA 402 drive's 32-bit "
+				 "position", d->outputs[i].home,
 				 rig_output_home_counts(&d->outputs[i]));
 			return -ERANGE;
 		}
@@ -283,8 +284,9 @@ static int simulated(struct rig_make *m, uint32_t k, const struct co_drive_cfg *
 		rig_sim_channel(o, &dd->sim, &c.model);
 		/* co_validate held home to 32 bits; rounding can still reach past */
 		if (c.model.initial < INT32_MIN || c.model.initial > INT32_MAX) {
-			snprintf(err, size, "outputs[%u] (%s): home is %lld counts, beyond a CiA 402 "
-				 "drive's 32-bit position", i, o->channel,
+			snprintf(err, size,
+				 "outputs[%u] (%s): home is %lld counts, beyond a CiA 402 drive's "
+				 "32-bit position", i, o->channel,
 				 (long long)c.model.initial);
 			return -ERANGE;
 		}

@@ -319,8 +319,8 @@ static int section(struct yml *y, uint32_t tick_hz, yaml_node_t *map,
 	/* at most tick_hz (check_bus); an update every 100 s is the slowest
 	 * that still streams setpoints */
 	if (!err && v[M_HZ])
-		err = yml_range(y, v[M_HZ], "update_hz", MODBUS_UPDATE_HZ_MIN, MOT_TICK_HZ_MAX, " Hz",
-				&m->update_hz);
+		err = yml_range(y, v[M_HZ], "update_hz", MODBUS_UPDATE_HZ_MIN, MOT_TICK_HZ_MAX,
+				" Hz", &m->update_hz);
 	if (!err && v[M_READ] && !(err = yml_int(y, v[M_READ], 0, 1000000, &n)))
 		m->read_every = (uint32_t)n;
 	if (!err && v[M_MAXF] && !(err = yml_int(y, v[M_MAXF], 1, 1000000, &n)))

@@ -284,8 +284,8 @@ int yml_range(struct yml *y, const yaml_node_t *n, const char *key, double min, 
 	int err = yml_num(y, n, out);
 
 	if (!err && !(*out >= min && *out <= max))
-		err = yml_fail(y, n, -ERANGE, "%s %.6g is outside %.10g to %.10g%s", key, *out, min, max,
-			       unit);
+		err = yml_fail(y, n, -ERANGE, "%s %.6g is outside %.10g to %.10g%s", key, *out,
+			       min, max, unit);
 	return err;
 }
 
