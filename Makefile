@@ -42,8 +42,10 @@ CORE_CFLAGS := -std=c11 -ffreestanding -nostdinc -isystem $(GCC_INC) -fno-builti
                $(WARN) -Werror
 # The sanitized build, which the tests run, is the debug build: STRAND_DEBUG
 # turns on what a release does without (hal/rt.h: STRAND_ASSERT_NOT_RT).
-SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer \
-           -DSTRAND_DEBUG
+# float-cast-overflow is not part of GCC's "undefined": a double converted
+# to an integer that cannot hold it (C11 6.3.1.4) is caught only with it.
+SAN     := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all \
+           -fno-omit-frame-pointer -DSTRAND_DEBUG
 
 # ---- the rooms ------------------------------------------------------------------
 # A folder's name as mk/layers.txt and the includes spell it ("scene") and where

@@ -35,7 +35,7 @@ FUZZ_DIR    := $(BUILD)/fuzz
 # sees the project from its roots, as the tests do (the layers are the main
 # build's to enforce).
 FUZZ_CFLAGS := -std=gnu11 -g -O1 -ffp-contract=off \
-               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+               -fsanitize=fuzzer,address,undefined,float-cast-overflow -fno-sanitize-recover=all \
                -iquote . -iquote firmware
 FUZZ_SRC    := tests/fuzz/fuzz_load.c $(LIB_SRC) $(CLI_LIB_SRC) $(MOTION_SRC)
 

@@ -10,6 +10,9 @@
 
 #include "hal/rt.h"
 
+/* The most plant steps a tick: a bound on the simulated drive's work. */
+#define SIM_DRIVE_NSUB_MAX 1e7
+
 struct sim_chan {
 	struct sim_drive_channel p;
 	struct sim_drive_watch w;
@@ -230,7 +233,7 @@ int sim_drive_new(struct sim_drive **out, const char *name, uint32_t nch, uint32
 		  const struct sim_drive_channel *ch, char *err, size_t errsize)
 {
 	struct sim_drive *d;
-	double wmax = 0;
+	double wmax = 0, nsub;
 	uint32_t i;
 
 	STRAND_ASSERT_NOT_RT();
@@ -271,9 +274,17 @@ int sim_drive_new(struct sim_drive **out, const char *name, uint32_t nch, uint32
 		c->fault_tick = -1;
 		wmax = fmax(wmax, c->omega);
 	}
-	d->nsub = (uint32_t)ceil(wmax * d->dt / 0.05);
-	if (d->nsub < 1)
-		d->nsub = 1;
+	nsub = ceil(wmax * d->dt / 0.05);
+	/* a scene's bandwidth is at most 10 kHz (rig_desc.h): at 1 Hz ticks,
+	 * 1.3 million steps; more is a description made in code gone wrong */
+	if (!(nsub <= SIM_DRIVE_NSUB_MAX)) {
+		snprintf(err, errsize, "device '%s': simulated drive: a bandwidth of %g Hz needs "
+			 "%.3g plant steps a tick at %u Hz, more than %g", name, wmax / (2 * M_PI),
+			 nsub, tick_hz, SIM_DRIVE_NSUB_MAX);
+		free(d);
+		return -ERANGE;
+	}
+	d->nsub = nsub < 1 ? 1 : (uint32_t)nsub;
 	*out = d;
 	return 0;
 }

@@ -22,7 +22,16 @@
 #include "play/frames.h"
 #include "play/play.h"
 #include "rig/rig_auto.h"
+#include "scene/num.h"
 #include "scene/source_scene.h"
+
+/*
+ * The longest time an option may give, 1e9 s (31 years; --settle and
+ * --exposure: 1e12 ms): longer than any shoot, and at the fastest tick
+ * rate a scene may have (2^20 Hz) 1.05e15 ticks, far inside NUM_TICKS_MAX,
+ * so no count of ticks the loop keeps against it can overflow.
+ */
+#define PLAY_TIME_MAX_S 1e9
 
 enum {
 	OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_FRAMES, OPT_LOOP, OPT_PING_PONG,
@@ -67,13 +76,42 @@ struct cli {
 	bool have_from, have_to, no_journal, quiet, step;
 	long long from, to;
 	double duration_s, settle_ms, exposure_ms, timeout_s;
+	const char *duration_arg, *timeout_arg; /* as given, for their messages */
 	char journal[PATH_MAX];
 };
+
+static int play_time_bad(struct cli *c, const char *name, const char *arg)
+{
+	return cli_usage(c->cmd, c->err, "%s %s: a non-negative number", name, arg);
+}
+
+/* A time option against PLAY_TIME_MAX_S; per_s: its unit's count a second. */
+static int play_time_max(struct cli *c, const char *name, const char *arg, double v, double per_s)
+{
+	if (v > PLAY_TIME_MAX_S * per_s)
+		return cli_usage(c->cmd, c->err, "%s %s: at most %s (31 years)", name, arg,
+				 per_s == 1 ? "1e9 seconds" : "1e12 ms");
+	return -1;
+}
+
+/* A time option as ticks at hz, at least min: 1 for a duration or a
+ * timeout, which would otherwise round to none (for a duration, none means
+ * no limit at all). 0, or the usage error's exit code. */
+static int play_ticks(struct cli *c, const char *name, const char *arg, double v, bool ms,
+		      uint32_t hz, int64_t min, int64_t *out)
+{
+	int rc = ms ? num_ms_to_ticks(v, hz, NUM_ROUND_NEAREST, min, NUM_TICKS_MAX, out) :
+		      num_s_to_ticks(v, hz, NUM_ROUND_NEAREST, min, NUM_TICKS_MAX, out);
+
+	if (!rc)
+		return 0;
+	return cli_usage(c->cmd, c->err, "%s %s: shorter than a tick (%.6g ms at tick_hz %u)",
+			 name, arg, 1000.0 / hz, hz);
+}
 
 static int on_opt(void *ctx, int opt, const char *arg)
 {
 	struct cli *c = ctx;
-	const char *name = NULL;
 	long long v;
 
 	switch (opt) {
@@ -113,21 +151,23 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		c->o.loop.passes = v;
 		return -1;
 	case OPT_DURATION:
+		c->duration_arg = arg;
 		if (!opt_double(arg, 0, DBL_MAX, &c->duration_s) || c->duration_s == 0)
-			name = "--duration";
-		break;
+			return play_time_bad(c, "--duration", arg);
+		return play_time_max(c, "--duration", arg, c->duration_s, 1);
 	case OPT_SETTLE:
 		if (!opt_double(arg, 0, DBL_MAX, &c->settle_ms))
-			name = "--settle";
-		break;
+			return play_time_bad(c, "--settle", arg);
+		return play_time_max(c, "--settle", arg, c->settle_ms, 1000);
 	case OPT_EXPOSURE:
 		if (!opt_double(arg, 0, DBL_MAX, &c->exposure_ms))
-			name = "--exposure";
-		break;
+			return play_time_bad(c, "--exposure", arg);
+		return play_time_max(c, "--exposure", arg, c->exposure_ms, 1000);
 	case OPT_TIMEOUT:
+		c->timeout_arg = arg;
 		if (!opt_double(arg, 0, DBL_MAX, &c->timeout_s) || c->timeout_s == 0)
-			name = "--timeout";
-		break;
+			return play_time_bad(c, "--timeout", arg);
+		return play_time_max(c, "--timeout", arg, c->timeout_s, 1);
 	case OPT_JOURNAL:
 		snprintf(c->journal, sizeof(c->journal), "%s", arg);
 		return -1;
@@ -170,9 +210,6 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
 	}
-	if (name)
-		return cli_usage(c->cmd, c->err, "%s %s: a non-negative number", name, arg);
-	return -1;
 }
 
 /*
@@ -378,6 +415,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	c.settle_ms = 200;
 	c.exposure_ms = 100;
 	c.timeout_s = 10;
+	c.timeout_arg = "10";
 	rc = cli_scene_args(cmd, argc, argv, out, err, play_options, on_opt, &c, &path, &sf, &b);
 	if (rc >= 0)
 		return rc;
@@ -427,11 +465,18 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		rig = &ra.d;
 	}
 	hz = src.s.timing.tick_hz;
-	c.o.loop.settle_ticks = llround(c.settle_ms * hz / 1000);
-	c.o.loop.exposure_ticks = llround(c.exposure_ms * hz / 1000);
-	c.o.loop.in_position_timeout_ticks = llround(c.timeout_s * hz);
-	c.o.loop.ready_timeout_ticks = llround(c.timeout_s * hz);
-	c.o.loop.max_ticks = llround(c.duration_s * hz);
+	/* in range since on_opt: only a timeout or a duration below a tick is
+	 * refused (--settle and --exposure may round to none) */
+	rc = STRAND_EXIT_USAGE;
+	if (play_ticks(&c, "--settle", "", c.settle_ms, true, hz, 0, &c.o.loop.settle_ticks) ||
+	    play_ticks(&c, "--exposure", "", c.exposure_ms, true, hz, 0,
+		       &c.o.loop.exposure_ticks) ||
+	    play_ticks(&c, "--timeout", c.timeout_arg, c.timeout_s, false, hz, 1,
+		       &c.o.loop.in_position_timeout_ticks) ||
+	    (c.duration_s > 0 && play_ticks(&c, "--duration", c.duration_arg, c.duration_s,
+					    false, hz, 1, &c.o.loop.max_ticks)))
+		goto out;
+	c.o.loop.ready_timeout_ticks = c.o.loop.in_position_timeout_ticks;
 	c.o.loop.status_every = hz / 10 ? hz / 10 : 1;
 	if (c.step) {
 		c.o.loop.mode = LOOP_MODE_STEP;

@@ -105,12 +105,21 @@ int ld_limits(struct ld *l, yaml_node_t *n, bool degrees, struct sd_limits *lim)
 		lim->has_vel = true;
 		if (!err && !(lim->vel > 0))
 			err = ld_fail(l, v[2], -EINVAL, "velocity limit must be above zero");
+		else if (!err && lim->vel < RIG_LIMIT_RATE_MIN)
+			err = ld_fail(l, v[2], -ERANGE,
+				      "velocity limit %.6g is below %g %s a second (too slow to "
+				      "plan a move with)", lim->vel, RIG_LIMIT_RATE_MIN, unit);
 	}
 	if (!err && v[3]) {
 		err = ld_q32(l, v[3], scale, unit, &lim->acc);
 		lim->has_acc = true;
 		if (!err && !(lim->acc > 0))
 			err = ld_fail(l, v[3], -EINVAL, "acceleration limit must be above zero");
+		else if (!err && lim->acc < RIG_LIMIT_RATE_MIN)
+			err = ld_fail(l, v[3], -ERANGE,
+				      "acceleration limit %.6g is below %g %s a second squared "
+				      "(too slow to plan a move with)", lim->acc,
+				      RIG_LIMIT_RATE_MIN, unit);
 	}
 	if (!err && lim->has_min && lim->has_max && lim->min > lim->max)
 		err = ld_fail(l, v[1], -EINVAL, "limit max %.10g is below min %.10g", lim->max,

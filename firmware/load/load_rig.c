@@ -134,11 +134,19 @@ static int sim_params(struct ld *l, yaml_node_t *map, struct rig_sim_desc *s)
 			   &s->exposure_ms, &s->readout_ms };
 	int i, err = ld_map(l, map, "sim", keys, v);
 
+	const char *key;
+	char msg[160];
+
 	for (i = 0; !err && i < 6; i++)
 		if (v[i])
 			err = ld_positive(l, v[i], out[i]);
 	if (!err && v[2] && s->feedforward > 1)
 		err = ld_fail(l, v[2], -EINVAL, "feedforward is a fraction, 0 to 1");
+	/* the ranges rig_build() holds a description to (rig_desc.h) */
+	if (!err && (err = rig_sim_check(s, &key, msg, sizeof(msg))))
+		for (i = 0; i < 6; i++)
+			if (!strcmp(keys[i], key))
+				return ld_fail(l, v[i], err, "%s", msg);
 	return err;
 }
 
@@ -352,11 +360,14 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 		err = ld_fail(l, v[O_OFF], err, "%s", msg);
 	if (!err && v[O_LIM])
 		err = ld_limits(l, v[O_LIM], deg, &o->limits);
+	/* distances, in the core's range as every distance of a scene */
 	for (k = 0; !err && k < 4; k++)
 		if (v[O_FE + k])
-			err = k < 3 ? ld_num(l, v[O_FE + k], num[k]) :
-				      ld_q32(l, v[O_FE + k], deg ? 1.0 / 360 : 1.0,
-					     deg ? "degrees" : "scene units", num[k]);
+			err = ld_q32(l, v[O_FE + k], deg ? 1.0 / 360 : 1.0,
+				     deg ? "degrees" : c->kind == CHAN_RPM ? "rpm" : "scene units",
+				     num[k]);
+	if (!err && v[O_HOME] && (err = rig_output_check_home(o, msg, sizeof(msg))))
+		err = ld_fail(l, v[O_HOME], err, "%s", msg);
 	if (err)
 		return err;
 	err = rig_output_check_ferror(o, &at_min, msg, sizeof(msg));
@@ -565,9 +576,11 @@ static int validate(struct rl *rl)
 
 	if (!err)
 		return 0;
-	if (e.output >= 0)
+	if (e.output >= 0) {
 		at = ld_node(l, rl->out_it[e.output]);
-	else if (e.device >= 0)
+		if (e.key && yml_value(&l->y, at, e.key))
+			at = yml_value(&l->y, at, e.key);
+	} else if (e.device >= 0)
 		at = e.key ? yml_value(&l->y, rl->dev_map[e.device], e.key) : NULL;
 	if (!at && e.device >= 0)
 		at = rl->dev_map[e.device];

@@ -9,8 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A non-negative decimal at *p; advances *p. */
-static bool number(const char **p, int64_t *out)
+/* Frame numbers as --from and --to take them, and as many shots of one:
+ * the core's frames are below 2^31 (README, "Numbers"). */
+#define FRAMES_NUMBER_MAX INT32_MAX
+
+/* A non-negative decimal at *p, at most FRAMES_NUMBER_MAX (*big when it
+ * is more); advances *p. */
+static bool number(const char **p, int64_t *out, bool *big)
 {
 	const char *s = *p;
 	int64_t v = 0;
@@ -18,9 +23,11 @@ static bool number(const char **p, int64_t *out)
 	if (!isdigit((unsigned char)*s))
 		return false;
 	while (isdigit((unsigned char)*s)) {
-		if (v > (INT64_MAX - 9) / 10)
-			return false;
 		v = v * 10 + (*s++ - '0');
+		if (v > FRAMES_NUMBER_MAX) {
+			*big = true;
+			return false;
+		}
 	}
 	*p = s;
 	*out = v;
@@ -30,6 +37,7 @@ static bool number(const char **p, int64_t *out)
 int frames_parse(struct frame_list *fl, const char *spec, char *err, unsigned errsize)
 {
 	const char *p = spec;
+	bool big = false;
 	uint32_t n = 1, i = 0;
 
 	fl->items = NULL;
@@ -44,18 +52,18 @@ int frames_parse(struct frame_list *fl, const char *spec, char *err, unsigned er
 	for (;;) {
 		struct frame_item *it = &fl->items[i];
 
-		if (!number(&p, &it->first))
+		if (!number(&p, &it->first, &big))
 			goto bad;
 		it->last = it->first;
 		it->repeat = 1;
 		if (p[0] == '.' && p[1] == '.') {
 			p += 2;
-			if (!number(&p, &it->last))
+			if (!number(&p, &it->last, &big))
 				goto bad;
 		}
 		if (*p == 'x') {
 			p++;
-			if (!number(&p, &it->repeat) || it->repeat < 1)
+			if (!number(&p, &it->repeat, &big) || it->repeat < 1)
 				goto bad;
 		}
 		i++;
@@ -68,7 +76,11 @@ int frames_parse(struct frame_list *fl, const char *spec, char *err, unsigned er
 	fl->n = i;
 	return 0;
 bad:
-	snprintf(err, errsize,
+	if (big)
+		snprintf(err, errsize, "--frames '%s': frame numbers and repeats go up to %d, at "
+			 "column %u", spec, FRAMES_NUMBER_MAX, (unsigned)(p - spec) + 1);
+	else
+		snprintf(err, errsize,
 		 "--frames '%s': expected N, A..B or NxK items separated by commas, at column %u",
 		 spec, (unsigned)(p - spec) + 1);
 	frames_free(fl);
@@ -103,7 +115,9 @@ int64_t frames_count(const struct frame_list *fl)
 		const struct frame_item *it = &fl->items[i];
 		int64_t span = it->last >= it->first ? it->last - it->first : it->first - it->last;
 
-		total += (span + 1) * it->repeat;
+		/* each term is below 2^62; only a very long list can overflow */
+		if (__builtin_add_overflow(total, (span + 1) * it->repeat, &total))
+			return INT64_MAX;
 	}
 	return total;
 }

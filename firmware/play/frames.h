@@ -38,7 +38,7 @@ int frames_parse(struct frame_list *fl, const char *spec, char *err, unsigned er
 int frames_range(struct frame_list *fl, int64_t first, int64_t last);
 void frames_free(struct frame_list *fl);
 
-/* Shots in the whole list. */
+/* Shots in the whole list; INT64_MAX when there are more. */
 int64_t frames_count(const struct frame_list *fl);
 
 /* The next frame to shoot: true and *frame, or false at the end. [rt] */

@@ -11,6 +11,9 @@
 
 #include <math.h>
 
+/* Ramps shorter than this (2^31 ticks) sum their steps in int64_t, exactly. */
+#define LOOP_RUNUP_EXACT (INT64_C(1) << 31)
+
 void STRAND_RT loop_eval_at(struct loop *L, int64_t scene_tick, mot_q32 *out)
 {
 	src_eval(L->src, mot_timing_tick_frame(L->tm, scene_tick), out, &L->sat);
@@ -18,9 +21,12 @@ void STRAND_RT loop_eval_at(struct loop *L, int64_t scene_tick, mot_q32 *out)
 
 void STRAND_RT loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to)
 {
-	/* limits were checked positive and finite when the rig was built */
-	move_plan(&L->seq.mv, L->seq.mv.ch, L->n, from, to, L->seq.vmax, L->seq.amax,
-		  L->tm->tick_hz);
+	/* limits were checked positive and finite when the rig was built; a
+	 * move longer than NUM_TICKS_MAX is not played: the run ends as one
+	 * whose arithmetic saturated (loop_init refuses such a pre-roll) */
+	if (move_plan(&L->seq.mv, L->seq.mv.ch, L->n, from, to, L->seq.vmax, L->seq.amax,
+		      L->tm->tick_hz))
+		L->sat |= MOT_SAT_OVERFLOW;
 	L->seq.mv_j = 0;
 }
 
@@ -74,9 +80,14 @@ int STRAND_RT loop_entry_plan(struct loop *L, int32_t *bad)
 		const struct rig_out *o = &L->rig->out[i];
 		struct loop_out *lo = &L->out[i];
 		double v = (move_q2d(s->target[i]) - move_q2d(s->ru_end[i])) * hz;
-		double back, start;
-		int64_t n = (int64_t)ceil(fabs(v) * hz / o->amax * (1 + 1e-9));
+		double back, start, nd = ceil(fabs(v) * hz / o->amax * (1 + 1e-9));
+		int64_t n;
 
+		/* a ramp longer than NUM_TICKS_MAX (a crawl of an acceleration
+		 * limit) starts beyond the core's range: refused below */
+		if (!(nd < (double)NUM_TICKS_MAX))
+			nd = (double)NUM_TICKS_MAX;
+		n = (int64_t)nd;
 		lo->ru_v = v;
 		lo->ru_n = n;
 		if (n > s->ru_ticks)
@@ -85,7 +96,7 @@ int STRAND_RT loop_entry_plan(struct loop *L, int32_t *bad)
 		back = v * dt * (double)(n + 1) / 2;
 		s->target[i] = n ? s->ru_end[i] - move_d2q(back) : s->ru_end[i];
 		start = move_q2d(s->target[i]);
-		if (start < o->min - 1e-9 || start > o->max + 1e-9) {
+		if (start < o->min - 1e-9 || start > o->max + 1e-9 || n >= NUM_TICKS_MAX) {
 			*bad = (int32_t)i;
 			return -1;
 		}
@@ -104,8 +115,13 @@ mot_q32 STRAND_RT loop_runup_at(const struct loop *L, uint32_t i, int64_t j)
 		return L->seq.ru_end[i];
 	if (m < 0)
 		m = 0;
-	/* the distance still to go after step m: sum of v k / n dt, k = m+1..n */
-	left = lo->ru_v / n / L->tm->tick_hz * (double)(n * (n + 1) - m * (m + 1)) / 2;
+	/* the distance still to go after step m: sum of v k / n dt, k = m+1..n;
+	 * n (n + 1) overflows int64_t from n = 3e9 on: such ramps in doubles */
+	if (n < LOOP_RUNUP_EXACT)
+		left = lo->ru_v / n / L->tm->tick_hz * (double)(n * (n + 1) - m * (m + 1)) / 2;
+	else
+		left = lo->ru_v / n / L->tm->tick_hz *
+		       ((double)n * (double)(n + 1) - (double)m * (double)(m + 1)) / 2;
 	return L->seq.ru_end[i] - move_d2q(left);
 }
 

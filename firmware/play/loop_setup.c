@@ -209,7 +209,12 @@ static int plan_step(struct loop *L, char *err, size_t errsize)
 		snprintf(err, errsize, "step mode: no frames to shoot");
 		return -EINVAL;
 	}
-	L->res->total_frames = frames_count(cfg->frames) * L->rig->ntrig;
+	if (__builtin_mul_overflow(frames_count(cfg->frames), (int64_t)L->rig->ntrig,
+				   &L->res->total_frames)) {
+		snprintf(err, errsize, "--frames: more shots times %u triggers than a run counts",
+			 L->rig->ntrig);
+		return -EINVAL;
+	}
 	L->seq.state = LOOP_STEP_NEXT;
 	return 0;
 }
@@ -234,9 +239,22 @@ static int plan_continuous(struct loop *L, char *err, size_t errsize)
 	} else {
 		int64_t per = cfg->to - cfg->from + 1, p = (cfg->loop || cfg->ping_pong) ?
 							   cfg->passes : 1;
+		int64_t f;
+		bool over;
 
-		L->res->total_frames = (cfg->ping_pong ? per + (p - 1) * (per - 1) : per * p) *
-				       rig->ntrig;
+		/* --from, --to and --passes are below 2^31, so from the command
+		 * line only the triggers can make this overflow */
+		if (cfg->ping_pong)
+			over = __builtin_mul_overflow(p - 1, per - 1, &f) ||
+			       __builtin_add_overflow(f, per, &f);
+		else
+			over = __builtin_mul_overflow(per, p, &f);
+		if (over || __builtin_mul_overflow(f, (int64_t)rig->ntrig, &L->res->total_frames)) {
+			snprintf(err, errsize, "--passes %lld: that many passes of %lld frames, "
+				 "%u triggers each, are more frames than a run counts (2^63)",
+				 (long long)p, (long long)per, rig->ntrig);
+			return -EINVAL;
+		}
 	}
 	L->seq.pass = 0;
 	loop_pass_setup(L);
@@ -254,6 +272,13 @@ static int plan_continuous(struct loop *L, char *err, size_t errsize)
 		return -ERANGE;
 	}
 	loop_move_plan(L, L->prev, L->seq.target);
+	if (L->seq.mv.ticks >= NUM_TICKS_MAX) {
+		snprintf(err, errsize, "the pre-roll to frame %lld would take more than 2^53 ticks "
+			 "(%.3g years) at the outputs' velocity and acceleration limits",
+			 (long long)L->seq.pass_first, (double)NUM_TICKS_MAX / L->tm->tick_hz /
+			 (365.25 * 86400));
+		return -ERANGE;
+	}
 	L->seq.state = LOOP_PREROLL;
 	return 0;
 }

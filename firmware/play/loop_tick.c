@@ -151,7 +151,7 @@ static bool STRAND_RT scale_outputs(struct loop *L)
 			lo->sp.vel = hal_scale_counts(&o->scale, L->val[i], &sat);
 		} else {
 			lo->sp.pos = hal_scale_counts(&o->scale, L->val[i], &sat);
-			lo->sp.vel = hal_scale_rate(&o->scale, lo->vel_now);
+			lo->sp.vel = hal_scale_rate(&o->scale, lo->vel_now, &sat);
 		}
 	}
 	L->sat |= sat;

@@ -8,13 +8,7 @@
 
 mot_q32 STRAND_RT move_d2q(double x)
 {
-	double r = x * 4294967296.0;
-
-	if (r >= 9.2233720368547748e18)
-		return MOT_Q32_MAX;
-	if (r <= -9.2233720368547748e18)
-		return MOT_Q32_MIN;
-	return (mot_q32)llround(r);
+	return num_sat_i64(x * 4294967296.0, MOT_Q32_MIN, MOT_Q32_MAX, NULL);
 }
 
 /* Shortest time to cover distance d (>= 0) from rest to rest. */
@@ -28,8 +22,9 @@ static double STRAND_RT t_min(double d, double v, double a)
 int STRAND_RT move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mot_q32 *from,
 	      const mot_q32 *to, const double *vmax, const double *amax, uint32_t tick_hz)
 {
-	double t = 0;
+	double t = 0, ticks;
 	uint32_t i;
+	int rc = 0;
 
 	m->n = n;
 	m->ch = ch;
@@ -42,9 +37,13 @@ int STRAND_RT move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mo
 		ch[i].d = move_q2d(to[i]) - move_q2d(from[i]);
 		t = fmax(t, t_min(fabs(ch[i].d), vmax[i], amax[i]));
 	}
-	m->ticks = (int64_t)ceil(t * tick_hz - 1e-9);
-	if (m->ticks < 0)
-		m->ticks = 0;
+	ticks = ceil(t * tick_hz - 1e-9);
+	if (!(ticks < (double)NUM_TICKS_MAX)) {
+		/* the limits allow no shorter move, and no longer one is planned */
+		ticks = (double)NUM_TICKS_MAX;
+		rc = -ERANGE;
+	}
+	m->ticks = ticks > 0 ? (int64_t)ticks : 0;
 	m->t = (double)m->ticks / tick_hz;
 	for (i = 0; i < n; i++) {
 		double d = fabs(ch[i].d), a = amax[i], T = m->t, disc;
@@ -61,7 +60,7 @@ int STRAND_RT move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mo
 		ch[i].v = (a * T - sqrt(fmax(disc, 0))) / 2;
 		ch[i].ta = ch[i].v / a;
 	}
-	return 0;
+	return rc;
 }
 
 mot_q32 STRAND_RT move_at(const struct move *m, uint32_t i, int64_t k)
@@ -92,7 +91,7 @@ bool STRAND_RT move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vma
 
 	if (!vel_ch) {
 		nv = *v > 0 ? fmax(*v - dv, 0) : fmin(*v + dv, 0);
-		*value += move_d2q(nv * dt);
+		*value = mot_add_sat(*value, move_d2q(nv * dt), NULL);
 		*v = nv;
 		return nv == 0;
 	}
@@ -114,7 +113,7 @@ bool STRAND_RT move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vma
 			*v = 0;
 			return true;
 		}
-		*value += move_d2q(r * dt);
+		*value = mot_add_sat(*value, move_d2q(r * dt), NULL);
 		*v = r;
 		return false;
 	}

@@ -35,6 +35,7 @@
 
 #include "motion/fix.h"
 #include "hal/rt.h"
+#include "scene/num.h"
 
 struct move_ch {
 	mot_q32 from, to;
@@ -53,7 +54,11 @@ struct move {
 };
 
 /* Plan a move of n channels (ch: n entries owned by the caller). vmax and
- * amax must be positive and finite. 0, or -EINVAL. */
+ * amax must be positive and finite. 0, or -EINVAL; or -ERANGE when the
+ * move would take more than NUM_TICKS_MAX ticks (a distance near the
+ * core's range at a crawl): it is then planned over NUM_TICKS_MAX ticks,
+ * a plan that is defined but faster than the limits allow, so the caller
+ * must not play it. */
 int move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mot_q32 *from,
 	      const mot_q32 *to, const double *vmax, const double *amax, uint32_t tick_hz);
 
@@ -66,6 +71,7 @@ mot_q32 move_at(const struct move *m, uint32_t i, int64_t k);
  * advances by the new speed over a tick. Velocity channels (vel_ch): the
  * value itself goes to 0 with its rate v bounded by vmax and changing by at
  * most amax / tick_hz per tick. Updates *value and *v; true when at rest.
+ * The value saturates at the ends of Q32.32 rather than wrap.
  */
 bool move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double amax,
 		    uint32_t tick_hz);
@@ -76,6 +82,7 @@ static inline double STRAND_RT move_q2d(mot_q32 x)
 	return (double)x * (1.0 / 4294967296.0);
 }
 
+/* Saturating at the ends of Q32.32; NaN gives 0. */
 mot_q32 move_d2q(double x);
 
 #endif /* STRAND_MOVE_H */

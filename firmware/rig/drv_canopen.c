@@ -185,6 +185,17 @@ static int co_validate(const struct rig_desc *d, uint32_t hz, struct rig_desc_er
 				 d->outputs[i].axis);
 			return -EINVAL;
 		}
+		/* a CiA 402 position (0x607A, 0x6064) is an INTEGER32: a drive,
+		 * and its simulated twin, starts there */
+		if (fabs(rig_output_home_counts(&d->outputs[i])) > INT32_MAX) {
+			e->output = (int32_t)i;
+			e->key = "home";
+			snprintf(e->msg, sizeof(e->msg),
+				 "home %.10g is %.6g counts, beyond a CiA 402 drive's 32-bit "
+				 "position", d->outputs[i].home,
+				 rig_output_home_counts(&d->outputs[i]));
+			return -ERANGE;
+		}
 	}
 	for (k = 0; k < d->ndevices; k++) {
 		const struct rig_canopen_desc *c = d->devices[k].priv;
@@ -271,6 +282,14 @@ static int simulated(struct rig_make *m, uint32_t k, const struct co_drive_cfg *
 		if (o->dev != ax)
 			continue;
 		rig_sim_channel(o, &dd->sim, &c.model);
+		/* co_validate held home to 32 bits; rounding can still reach past */
+		if (c.model.initial < INT32_MIN || c.model.initial > INT32_MAX) {
+			snprintf(err, size,
+				 "outputs[%u] (%s): home is %lld counts, beyond a CiA 402 drive's "
+				 "32-bit position", i, o->channel,
+				 (long long)c.model.initial);
+			return -ERANGE;
+		}
 		c.initial = (int32_t)c.model.initial;
 		rc = co_simbus_add(NULL, cd->sim, &c, false, err, size);
 		if (rc)

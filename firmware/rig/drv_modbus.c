@@ -307,18 +307,30 @@ static int section(struct yml *y, uint32_t tick_hz, yaml_node_t *map,
 	m->byte_timeout_ms = MODBUS_DEFAULT_BYTE_TIMEOUT_MS;
 	m->max_faults = MODBUS_DEFAULT_MAX_FAULTS;
 	m->answer_ms = MODBUS_DEFAULT_ANSWER_MS;
+	/* libmodbus takes timeouts in whole microseconds (a shorter one
+	 * would be none) and whole seconds as uint32_t; a drive silent for a
+	 * minute is lost anyway */
 	if (!err && v[M_RTO])
-		err = yml_positive(y, v[M_RTO], &m->response_timeout_ms);
+		err = yml_range(y, v[M_RTO], "response_timeout_ms", MODBUS_TIMEOUT_MS_MIN,
+				MODBUS_TIMEOUT_MS_MAX, " ms", &m->response_timeout_ms);
 	if (!err && v[M_BTO])
-		err = yml_positive(y, v[M_BTO], &m->byte_timeout_ms);
+		err = yml_range(y, v[M_BTO], "byte_timeout_ms", MODBUS_TIMEOUT_MS_MIN,
+				MODBUS_TIMEOUT_MS_MAX, " ms", &m->byte_timeout_ms);
+	/* at most tick_hz (check_bus); an update every 100 s is the slowest
+	 * that still streams setpoints */
 	if (!err && v[M_HZ])
-		err = yml_positive(y, v[M_HZ], &m->update_hz);
+		err = yml_range(y, v[M_HZ], "update_hz", MODBUS_UPDATE_HZ_MIN, MOT_TICK_HZ_MAX,
+				" Hz", &m->update_hz);
 	if (!err && v[M_READ] && !(err = yml_int(y, v[M_READ], 0, 1000000, &n)))
 		m->read_every = (uint32_t)n;
 	if (!err && v[M_MAXF] && !(err = yml_int(y, v[M_MAXF], 1, 1000000, &n)))
 		m->max_faults = (uint32_t)n;
+	/* at least a tick's worth is made of it (modbus_axis.c); a bus that
+	 * may be silent for more than an hour while setpoints wait is not
+	 * watched at all */
 	if (!err && v[M_SIL])
-		err = yml_positive(y, v[M_SIL], &m->max_silence_ms);
+		err = yml_range(y, v[M_SIL], "max_silence_ms", MODBUS_TIMEOUT_MS_MIN,
+				MODBUS_SILENCE_MS_MAX, " ms", &m->max_silence_ms);
 	if (!err && v[M_ANS])
 		err = yml_num(y, v[M_ANS], &m->answer_ms);
 	if (!err && (m->answer_ms < 0 || m->answer_ms > 10000))

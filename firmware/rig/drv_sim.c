@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* drv_sim.c - the simulated twins (see drv_sim.h). */
 #include "drv_sim.h"
+#include "scene/num.h"
 
 #include <errno.h>
 #include <math.h>
@@ -141,10 +142,19 @@ static int sim_bind(struct rig_make *m, uint32_t k, bool trig, uint32_t i, uint3
 		return 0;
 	}
 	sim_gpio_out_polarity(sd->gpio, line, m->d->triggers[i].active_low);
-	cp.exposure_ns = (int64_t)(or_default(s->exposure_ms, SIM_CAMERA_DEFAULT_EXPOSURE_FRAC *
-						frame_ns / 1e6) * 1e6);
-	cp.readout_ns = (int64_t)(or_default(s->readout_ms, SIM_CAMERA_DEFAULT_READOUT_FRAC *
-					       frame_ns / 1e6) * 1e6);
+	/* a scene's are up to a day each (rig_sim_check), the defaults a
+	 * fraction of a frame; 2^60 ns (36 years) each keeps their sum with a
+	 * trigger's time inside int64_t nanoseconds */
+	if (num_ms_to_ns(or_default(s->exposure_ms, SIM_CAMERA_DEFAULT_EXPOSURE_FRAC *
+				    frame_ns / 1e6), NUM_ROUND_DOWN, 0,
+			 INT64_C(1) << 60, &cp.exposure_ns) ||
+	    num_ms_to_ns(or_default(s->readout_ms, SIM_CAMERA_DEFAULT_READOUT_FRAC *
+				    frame_ns / 1e6), NUM_ROUND_DOWN, 0,
+			 INT64_C(1) << 60, &cp.readout_ns)) {
+		snprintf(err, errsize, "triggers[%u] (%s): the simulated camera's exposure_ms or "
+			 "readout_ms is more than 36 years", i, m->d->triggers[i].name);
+		return -ERANGE;
+	}
 	rc = sim_camera_new(&sd->cam[line], &cp, m->o->camera_cap ? m->o->camera_cap : 1 << 16,
 			    i == 0 ? m->o->camera_log : NULL, why, sizeof(why));
 	if (rc) {

@@ -104,6 +104,8 @@ static int make_output(struct rig_out *o, const struct rig_output_desc *od,
 	if (!rc)
 		rc = rig_output_check_offset(od, msg, sizeof(msg));
 	if (!rc)
+		rc = rig_output_check_home(od, msg, sizeof(msg));
+	if (!rc)
 		rc = rig_output_check_ferror(od, &at_min, msg, sizeof(msg));
 	if (!rc)
 		rc = rig_output_check_limits(od->channel, &lim, true, msg, sizeof(msg));
@@ -203,6 +205,17 @@ int rig_bind(struct rig *r, const struct rig_desc *d, struct play_source *src, c
 					  d->devices[k].name);
 				goto out;
 			}
+	for (k = 0; k < d->ndevices; k++) {
+		const char *key;
+		char msg[160];
+
+		rc = rig_sim_check(&d->devices[k].sim, &key, msg, sizeof(msg));
+		if (rc) {
+			rc = fail(err, errsize, rc, "devices[%u] (%s): sim: %s", k,
+				  d->devices[k].name, msg);
+			goto out;
+		}
+	}
 	/* the devices that carry outputs become axis devices, in file order */
 	for (k = 0; k < d->ndevices; k++) {
 		struct rig_dev *dv = &r->dev[k];

@@ -24,6 +24,64 @@ int rig_output_check_scale(const struct rig_output_desc *o, bool turns, char *ms
 			 turns ? "turn" : "unit");
 		return -ERANGE;
 	}
+	if (scale < RIG_SCALE_MIN) {
+		snprintf(msg, size, "counts_per_unit %.6g is %.6g counts per %s, below %g",
+			 o->counts_per_unit, scale, turns ? "turn" : "unit", RIG_SCALE_MIN);
+		return -ERANGE;
+	}
+	return 0;
+}
+
+double rig_output_home_counts(const struct rig_output_desc *o)
+{
+	return o->home * o->counts_per_unit + o->offset;
+}
+
+int rig_output_check_home(const struct rig_output_desc *o, char *msg, size_t size)
+{
+	double counts = rig_output_home_counts(o);
+
+	/* counts are int64_t (scale.h) */
+	if (!isfinite(counts) || fabs(counts) > 9e18) {
+		snprintf(msg, size, "home %.10g is %.6g counts, beyond +-9e18", o->home, counts);
+		return -ERANGE;
+	}
+	return 0;
+}
+
+int rig_sim_check(const struct rig_sim_desc *s, const char **key, char *msg, size_t size)
+{
+	static const struct {
+		const char *key;
+		size_t at;
+		double min, max;
+		const char *unit;
+	} r[] = {
+		{ "bandwidth", offsetof(struct rig_sim_desc, bandwidth_hz), RIG_SIM_BANDWIDTH_MIN,
+		  RIG_SIM_BANDWIDTH_MAX, " Hz" },
+		{ "damping", offsetof(struct rig_sim_desc, damping), RIG_SIM_DAMPING_MIN,
+		  RIG_SIM_DAMPING_MAX, "" },
+		{ "feedforward", offsetof(struct rig_sim_desc, feedforward), 0, 1, "" },
+		{ "limit_factor", offsetof(struct rig_sim_desc, limit_factor),
+		  RIG_SIM_LIMIT_FACTOR_MIN, RIG_SIM_LIMIT_FACTOR_MAX, "" },
+		{ "exposure_ms", offsetof(struct rig_sim_desc, exposure_ms), 0,
+		  RIG_SIM_CAMERA_MS_MAX, " ms" },
+		{ "readout_ms", offsetof(struct rig_sim_desc, readout_ms), 0, RIG_SIM_CAMERA_MS_MAX,
+		  " ms" },
+	};
+	size_t i;
+
+	for (i = 0; i < sizeof(r) / sizeof(r[0]); i++) {
+		double v = *(const double *)((const char *)s + r[i].at);
+
+		/* 0: not given, the twin's default */
+		if (v == 0 || (v >= r[i].min && v <= r[i].max))
+			continue;
+		*key = r[i].key;
+		snprintf(msg, size, "%s %.6g is %s %g%s", r[i].key, v, v > r[i].max ? "above" :
+			 "below", v > r[i].max ? r[i].max : r[i].min, r[i].unit);
+		return -ERANGE;
+	}
 	return 0;
 }
 
@@ -91,6 +149,14 @@ int rig_output_check_limits(const char *channel, const struct sd_limits *lim, bo
 			 "pre-roll, the moves and every stop are planned with them", channel,
 			 node ? " or on its node" : "");
 		return -EINVAL;
+	}
+	if (lim->vel < RIG_LIMIT_RATE_MIN || lim->acc < RIG_LIMIT_RATE_MIN) {
+		snprintf(msg, size, "%s limit %.6g is below %g a second%s (too slow to plan a "
+			 "move with)", lim->vel < RIG_LIMIT_RATE_MIN ?
+			 "velocity" : "acceleration", lim->vel < RIG_LIMIT_RATE_MIN ? lim->vel :
+			 lim->acc, RIG_LIMIT_RATE_MIN, lim->vel < RIG_LIMIT_RATE_MIN ? "" :
+			 " squared");
+		return -ERANGE;
 	}
 	if (lim->has_min && lim->has_max && lim->min > lim->max) {
 		snprintf(msg, size, "limit max %.10g is below min %.10g", lim->max, lim->min);

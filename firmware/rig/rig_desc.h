@@ -137,13 +137,58 @@ struct rig_desc {
  * soon as the keys it reads are read, so that a file's first mistake is the
  * one reported. */
 
-/* counts_per_unit: non-zero and below 2^31 counts per turn (turns: the
- * channel is an angle) or per unit. -ERANGE */
+/*
+ * The ranges of a rig's numbers (README, "The rig"), chosen so that every
+ * computation made with them later is defined and means something, and so
+ * that no rig a user builds is near them:
+ *
+ * A velocity or acceleration limit is at least RIG_LIMIT_RATE_MIN (per
+ * second, per second squared, in the file's units: degrees, scene units,
+ * rpm): a millionth of a degree a second is a turn in 11 years, and below
+ * it the pre-roll, the moves and the stops (planned in ticks) would take
+ * longer than NUM_TICKS_MAX for any distance. The largest is the core's,
+ * as for every value (|v| < 2^30 core units a second).
+ */
+#define RIG_LIMIT_RATE_MIN 1e-6
+
+/* A scale is at least RIG_SCALE_MIN counts per turn or unit in magnitude:
+ * 10,000 turns a count is coarser than any encoder; below it the Q32.32
+ * scale would round to few significant bits, or to zero. */
+#define RIG_SCALE_MIN 1e-4
+
+/* The simulated twin's plant, as strand-simdrive's options take it: a
+ * bandwidth of 0.01 to 10000 Hz (the plant is stepped 20 times per radian
+ * of its bandwidth, so 10 kHz at tick_hz 1 is 1.3 million steps a tick),
+ * damping 0.01 to 100, a limit factor 0.01 to 1000 (the drive's own limits
+ * from a hundredth to a thousand times the output's), and the simulated
+ * camera's exposure and readout up to a day each (their sum in ns is added
+ * to a trigger's time). */
+#define RIG_SIM_BANDWIDTH_MIN 0.01
+#define RIG_SIM_BANDWIDTH_MAX 10000.0
+#define RIG_SIM_DAMPING_MIN 0.01
+#define RIG_SIM_DAMPING_MAX 100.0
+#define RIG_SIM_LIMIT_FACTOR_MIN 0.01
+#define RIG_SIM_LIMIT_FACTOR_MAX 1000.0
+#define RIG_SIM_CAMERA_MS_MAX 86400000.0
+
+/* A device's sim: settings within those ranges (0: the default), and
+ * feedforward 0 to 1. *key: the key at fault. -ERANGE */
+int rig_sim_check(const struct rig_sim_desc *s, const char **key, char *msg, size_t size);
+
+/* counts_per_unit: at least RIG_SCALE_MIN and below 2^31 counts per turn
+ * (turns: the channel is an angle) or per unit, in magnitude. -ERANGE */
 int rig_output_check_scale(const struct rig_output_desc *o, bool turns, char *msg,
 			   size_t size);
 
 /* offset: within +-9e18 counts. -ERANGE */
 int rig_output_check_offset(const struct rig_output_desc *o, char *msg, size_t size);
+
+/* Where home is in counts: home times counts_per_unit (both per degree
+ * for an angle) plus the offset. */
+double rig_output_home_counts(const struct rig_output_desc *o);
+
+/* home: within +-9e18 counts, as the offset. -ERANGE */
+int rig_output_check_home(const struct rig_output_desc *o, char *msg, size_t size);
 
 /* ferror, min_ferror and in_position not negative (the output's mapping is
  * at fault), min_ferror at most ferror (*at_min: min_ferror is). -EINVAL */
@@ -157,7 +202,8 @@ void rig_output_limits(const struct sd_limits *own, const struct sd_limits *scen
 
 /* Velocity and acceleration limits in lim, above zero (the pre-roll, the
  * moves and every stop are planned with them), and min <= max. node: the
- * channel is a node's, whose limits would have done. -EINVAL */
+ * channel is a node's, whose limits would have done. -EINVAL; or -ERANGE
+ * for a limit below RIG_LIMIT_RATE_MIN. */
 int rig_output_check_limits(const char *channel, const struct sd_limits *lim, bool node,
 			    char *msg, size_t size);
 

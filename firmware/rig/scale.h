@@ -24,6 +24,7 @@
 
 #include "motion/fix.h"
 #include "hal/rt.h"
+#include "scene/num.h"
 
 struct hal_scale {
 	mot_q32 per_unit; /* counts per core unit, Q32.32, non-zero */
@@ -38,16 +39,13 @@ static inline int64_t STRAND_RT hal_scale_counts(const struct hal_scale *s, mot_
 			   sat);
 }
 
-/* Counts per second of a speed in core units per second. */
-static inline int64_t STRAND_RT hal_scale_rate(const struct hal_scale *s, double units_per_s)
+/* Counts per second of a speed in core units per second, rounded to
+ * nearest; beyond int64_t it saturates and NaN gives 0, either ORed into
+ * *sat as hal_scale_counts does. */
+static inline int64_t STRAND_RT hal_scale_rate(const struct hal_scale *s, double units_per_s,
+					       uint32_t *sat)
 {
-	double c = units_per_s * s->per_unit_d;
-
-	if (c > 9.2e18)
-		return INT64_MAX;
-	if (c < -9.2e18)
-		return INT64_MIN;
-	return (int64_t)(c < 0 ? c - 0.5 : c + 0.5);
+	return num_sat_i64(units_per_s * s->per_unit_d, INT64_MIN, INT64_MAX, sat);
 }
 
 /* A count difference (setpoint minus actual) in core units. */

@@ -278,6 +278,17 @@ int yml_positive(struct yml *y, const yaml_node_t *n, double *out)
 	return err;
 }
 
+int yml_range(struct yml *y, const yaml_node_t *n, const char *key, double min, double max,
+	      const char *unit, double *out)
+{
+	int err = yml_num(y, n, out);
+
+	if (!err && !(*out >= min && *out <= max))
+		err = yml_fail(y, n, -ERANGE, "%s %.6g is outside %.10g to %.10g%s", key, *out,
+			       min, max, unit);
+	return err;
+}
+
 int yml_int(struct yml *y, const yaml_node_t *n, long long min, long long max, long long *out)
 {
 	char buf[64];

@@ -77,6 +77,11 @@ int yml_num(struct yml *y, const yaml_node_t *n, double *out);
 /* A number above zero. */
 int yml_positive(struct yml *y, const yaml_node_t *n, double *out);
 
+/* A number in [min, max]; out of it, "<key> V is outside MIN to MAX<unit>"
+ * (unit: "" or with its space, " ms"). -ERANGE */
+int yml_range(struct yml *y, const yaml_node_t *n, const char *key, double min, double max,
+	      const char *unit, double *out);
+
 /* A whole number in [min, max]. */
 int yml_int(struct yml *y, const yaml_node_t *n, long long min, long long max, long long *out);
 

@@ -335,13 +335,16 @@ static void *zalloc(size_t n, size_t size, bool *ok)
 static bool make_texts(struct modbus_drv *m)
 {
 	uint32_t i, nreq = m->wplan.nblocks + m->rplan.nblocks;
-	double period_ms = 1000.0 * m->every / m->c.tick_hz, silence_ms;
+	double period_ms = 1000.0 * m->every / m->c.tick_hz, silence_ms, silence_ticks;
 
 	/* long enough for max_faults timeouts of every request of an update
 	 * (those fault with their own message first) and two updates more */
 	silence_ms = m->d->max_silence_ms > 0 ? m->d->max_silence_ms :
 		     (m->d->max_faults + 1) * m->d->response_timeout_ms * nreq + 2 * period_ms;
-	m->silence_ticks = (int64_t)ceil(silence_ms * m->c.tick_hz / 1000);
+	/* the loader holds max_silence_ms and the timeouts to their ranges
+	 * (modbus_desc.h); a description made in code saturates here */
+	silence_ticks = ceil(silence_ms * m->c.tick_hz / 1000);
+	m->silence_ticks = silence_ticks < 9.2e18 ? (int64_t)silence_ticks : INT64_MAX;
 	snprintf(m->silence_text, sizeof(m->silence_text),
 		 "%s: no update answered for %g ms while setpoints waited (the bus cannot keep up)",
 		 m->where, silence_ms);

@@ -66,6 +66,14 @@ struct modbus_desc {
 #define MODBUS_DEFAULT_MAX_FAULTS 3
 #define MODBUS_DEFAULT_ANSWER_MS 1.0
 
+/* The ranges a scene's modbus: settings are held to (drv_modbus.c says
+ * why): timeouts and max_silence_ms from a microsecond, timeouts up to a
+ * minute, the silence up to an hour; update_hz from 0.01 Hz. */
+#define MODBUS_TIMEOUT_MS_MIN 0.001
+#define MODBUS_TIMEOUT_MS_MAX 60000.0
+#define MODBUS_SILENCE_MS_MAX 3600000.0
+#define MODBUS_UPDATE_HZ_MIN 0.01
+
 /* "tcp HOST:PORT unit U" or "rtu PORT unit U": which unit on which bus,
  * as every message about the device says it. */
 void modbus_where(char *buf, size_t size, const struct modbus_desc *d);

@@ -85,6 +85,53 @@ static void test_usage(void **state)
 	       "/nonexistent/scene.yaml: cannot open: No such file or directory\n");
 }
 
+/* Every number of strand play's options in range where it enters, the
+ * option named (issue 12: --duration 1e16 ended a run at tick 0 with exit
+ * 0, --timeout 1e17 failed at once; a duration below a tick ran forever). */
+static void test_play_ranges(void **state)
+{
+	static const struct {
+		const char *args, *err;
+	} cases[] = {
+		{ "--duration 1e16", "--duration 1e16: at most 1e9 seconds (31 years)" },
+		{ "--duration 0.0001", "--duration 0.0001: shorter than a tick (1 ms at tick_hz 1000)" },
+		{ "--duration -1", "--duration -1: a non-negative number" },
+		{ "--mode step --timeout 1e17", "--timeout 1e17: at most 1e9 seconds (31 years)" },
+		{ "--mode step --timeout 0.0004",
+		  "--timeout 0.0004: shorter than a tick (1 ms at tick_hz 1000)" },
+		{ "--mode step --settle 1e300", "--settle 1e300: at most 1e12 ms (31 years)" },
+		{ "--mode step --exposure 2e12", "--exposure 2e12: at most 1e12 ms (31 years)" },
+		{ "--mode step --exposure nan", "--exposure nan: a non-negative number" },
+		{ "--from 2147483648", "--from 2147483648: a frame number" },
+		{ "--loop --passes 0", "--passes 0: a count of 1 or more" },
+		{ "--priority 100", "--priority 100: 0 to 99" },
+		{ "--cpu 1024", "--cpu 1024: a CPU number" },
+	};
+	char args[256], want[256];
+	size_t i;
+
+	for (i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		snprintf(args, sizeof(args), "play examples/robot_arm.yaml --sim --clock virtual "
+			 "--no-journal --quiet %s", cases[i].args);
+		snprintf(want, sizeof(want), "strand play: %s\nTry 'strand play --help'.\n",
+			 cases[i].err);
+		expect(args, STRAND_EXIT_USAGE, want);
+	}
+	expect("play examples/robot_arm.yaml --sim --clock virtual --no-journal --quiet --mode "
+	       "step --frames 0..99999999999", STRAND_EXIT_USAGE,
+	       "strand play: --frames '0..99999999999': frame numbers and repeats go up to "
+	       "2147483647, at column 4\n");
+	expect("play examples/robot_arm.yaml --sim --clock virtual --no-journal --quiet --mode "
+	       "step --frames 3x9999999999", STRAND_EXIT_USAGE,
+	       "strand play: --frames '3x9999999999': frame numbers and repeats go up to "
+	       "2147483647, at column 3\n");
+	/* in range: a short run, and one of a tick */
+	expect("play examples/robot_arm.yaml --sim --clock virtual --no-journal --quiet "
+	       "--duration 0.5", STRAND_EXIT_OK, "");
+	expect("play examples/robot_arm.yaml --sim --clock virtual --no-journal --quiet "
+	       "--duration 0.0006", STRAND_EXIT_OK, "");
+}
+
 /* A scene error is one line on stderr and exit 2, from every subcommand. */
 static void test_scene_error(void **state)
 {
@@ -242,6 +289,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_version_help), cmocka_unit_test(test_usage),
+		cmocka_unit_test(test_play_ranges),
 		cmocka_unit_test(test_scene_error),  cmocka_unit_test(test_examples),
 		cmocka_unit_test(test_export),	     cmocka_unit_test(test_export_random_access),
 		cmocka_unit_test(test_saturation),

@@ -29,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -638,9 +639,50 @@ static void test_check(void **state)
 	finish(&s);
 }
 
+/* strand-simdrive's numbers are ranged where they enter, as strand's: a
+ * usage error (exit 3) naming the option. */
+static void test_simdrive_ranges(void **state)
+{
+	static const struct {
+		const char *args, *err;
+	} cases[] = {
+		{ "--late-ms 0", "strand-simdrive: --late-ms 0: out of range\n" },
+		{ "--late-ms 1e300", "strand-simdrive: --late-ms 1e300: out of range\n" },
+		{ "--exception 256", "strand-simdrive: --exception 256: out of range\n" },
+		{ "--die-after 0", "strand-simdrive: a fault's count 0: out of range\n" },
+		{ "--can vcan0 --node 0", "strand-simdrive: --node 0: out of range\n" },
+		{ "--can vcan0 --node 1 --bandwidth 1e300",
+		  "strand-simdrive: --bandwidth 1e300: out of range\n" },
+		{ "--can vcan0 --node 1 --initial 3e9",
+		  "strand-simdrive: --initial 3e9: out of range\n" },
+	};
+	const char *bin = getenv("STRAND_SIMDRIVE") ? getenv("STRAND_SIMDRIVE") :
+						      "build/strand-simdrive";
+	char cmd[512], out[512];
+	size_t i, n;
+
+	for (i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		FILE *f;
+		int st;
+
+		snprintf(cmd, sizeof(cmd), "%s %s %s 2>&1", bin, cases[i].args,
+			 strncmp(cases[i].args, "--can", 5) ? "examples/robot_arm.yaml" : "");
+		f = popen(cmd, "r");
+		assert_non_null(f);
+		n = fread(out, 1, sizeof(out) - 1, f);
+		out[n] = '\0';
+		st = pclose(f);
+		if (!WIFEXITED(st) || WEXITSTATUS(st) != STRAND_EXIT_USAGE ||
+		    strcmp(out, cases[i].err))
+			fail_msg("%s: status %d, '%s'; want exit 3, '%s'", cmd, st, out,
+				 cases[i].err);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_simdrive_ranges),
 		cmocka_unit_test(test_tcp_lockstep),
 		cmocka_unit_test(test_tcp_wall),
 		cmocka_unit_test(test_rtu_lockstep),

@@ -707,6 +707,141 @@ static const struct err_case cases[] = {
 	  "triggers: [{name: cam, device: io, line: SHUTTER}]\n"
 	  "inputs: [{name: estop, device: io, line: SHUTTER, role: estop}]\n",
 	  "t.yaml:5:42: line 'SHUTTER' of 'io' is trigger 'cam' already" },
+	/* the edges where numbers come in (README, "Scene files" and "The rig"):
+	 * each range, at the key that leaves it */
+	{ "velocity limit below the least",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 1e-300}}]\n",
+	  "t.yaml:2:72: velocity limit 1e-300 is below 1e-06 degrees a second (too slow to plan a move with)" },
+	{ "acceleration limit below the least",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: prismatic, axis: z}, limits: {velocity: 1, acceleration: 1e-7}}]\n",
+	  "t.yaml:2:90: acceleration limit 1e-07 is below 1e-06 scene units a second squared (too slow to plan a move with)" },
+	{ "velocity limit beyond the core",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 1e300}}]\n",
+	  "t.yaml:2:72: 1e+300 is outside the core's range (|value| < 3.865470566e+11 degrees)" },
+	{ "rig: output velocity limit below the least",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: b.position, device: arm, counts_per_unit: 1, limits: {velocity: 1e-9, acceleration: 1}}]\n",
+	  "t.yaml:5:85: velocity limit 1e-09 is below 1e-06 scene units a second (too slow to plan a move with)" },
+	{ "rig: counts per unit below the least",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 1e-9}]\n",
+	  "t.yaml:5:60: counts_per_unit 1e-09 is 3.6e-07 counts per turn, below 0.0001" },
+	{ "rig: ferror beyond the core",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 10, ferror: 1e300}]\n",
+	  "t.yaml:5:72: 1e+300 is outside the core's range (|value| < 3.865470566e+11 degrees)" },
+	{ "rig: in_position beyond the core",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: b.position, device: arm, counts_per_unit: 1, in_position: 1e300, limits: {velocity: 1, acceleration: 1}}]\n",
+	  "t.yaml:5:79: 1e+300 is outside the core's range (|value| < 1073741824 scene units)" },
+	{ "rig: home beyond int64 counts",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 5000000, offset: 8000000000000000000, home: 300000000000}]\n",
+	  "t.yaml:5:104: home 3e+11 is 9.5e+18 counts, beyond +-9e18" },
+	{ "rig: sim bandwidth above the most",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim, sim: {bandwidth: 1e300}}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:4:53: bandwidth 1e+300 is above 10000 Hz" },
+	{ "rig: sim damping below the least",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim, sim: {damping: 0.001}}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:4:51: damping 0.001 is below 0.01" },
+	{ "rig: sim limit_factor above the most",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim, sim: {limit_factor: 1e6}}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:4:56: limit_factor 1e+06 is above 1000" },
+	{ "rig: sim exposure above a day",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim, sim: {exposure_ms: 1e300}}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:4:55: exposure_ms 1e+300 is above 8.64e+07 ms" },
+	{ "rig: sim readout above a day",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim, sim: {readout_ms: 1e9}}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100}]\n",
+	  "t.yaml:4:54: readout_ms 1e+09 is above 8.64e+07 ms" },
+	{ "rig: pulse beyond a frame",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100}]\n"
+	  "triggers: [{name: cam, device: arm, line: 0, pulse_ms: 1e300}]\n",
+	  "t.yaml:6:56: a 1e+300 ms pulse does not end before the next frame's (frames are 41.6667 ms apart, ticks 1 ms)" },
+	{ "rig: trigger offset beyond a frame",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: arm, driver: sim}]\n"
+	  "outputs: [{channel: a.angle, device: arm, counts_per_unit: 100}]\n"
+	  "triggers: [{name: cam, device: arm, line: 0, offset_ms: -1e300}]\n",
+	  "t.yaml:6:57: offset -1e+300 ms is a frame (41.6667 ms) or more" },
+	{ "modbus: response timeout above a minute",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: d, driver: modbus, modbus: {tcp: {host: h}, unit: 1, response_timeout_ms: 1e300, axes: [{register: 0}]}}]\n"
+	  "outputs: [{channel: a.angle, device: d, counts_per_unit: 100}]\n",
+	  "t.yaml:4:92: response_timeout_ms 1e+300 is outside 0.001 to 60000 ms" },
+	{ "modbus: byte timeout below a microsecond",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: d, driver: modbus, modbus: {tcp: {host: h}, unit: 1, byte_timeout_ms: 1e-9, axes: [{register: 0}]}}]\n"
+	  "outputs: [{channel: a.angle, device: d, counts_per_unit: 100}]\n",
+	  "t.yaml:4:88: byte_timeout_ms 1e-09 is outside 0.001 to 60000 ms" },
+	{ "modbus: update rate below the least",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: d, driver: modbus, modbus: {tcp: {host: h}, unit: 1, update_hz: 1e-300, axes: [{register: 0}]}}]\n"
+	  "outputs: [{channel: a.angle, device: d, counts_per_unit: 100}]\n",
+	  "t.yaml:4:82: update_hz 1e-300 is outside 0.01 to 1048576 Hz" },
+	{ "modbus: silence above an hour",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: d, driver: modbus, modbus: {tcp: {host: h}, unit: 1, max_silence_ms: 1e300, axes: [{register: 0}]}}]\n"
+	  "outputs: [{channel: a.angle, device: d, counts_per_unit: 100}]\n",
+	  "t.yaml:4:87: max_silence_ms 1e+300 is outside 0.001 to 3600000 ms" },
+	{ "canopen: home beyond 32 bits",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}},\n"
+	  "        {name: b, joint: {type: prismatic, axis: x}}]\n"
+	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 1000000}}]\n"
+	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100000, home: 30000}]\n",
+	  "t.yaml:5:83: home 30000 is 3e+09 counts, beyond a CiA 402 drive's 32-bit position" },
 };
 
 #define NCASES (sizeof(cases) / sizeof(cases[0]))

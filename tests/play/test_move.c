@@ -76,6 +76,39 @@ static void test_zero_move(void **state)
 	assert_int_equal(move_plan(&m, ch, 1, &p, &p, &bad, &a, 1000), -EINVAL);
 }
 
+/* Inputs each valid alone, together beyond anything: a crawl over the
+ * core's range. The plan is capped at NUM_TICKS_MAX and refused, and every
+ * sample is defined (the tests run with -fsanitize=float-cast-overflow). */
+static void test_edges(void **state)
+{
+	struct move m;
+	struct move_ch ch[2];
+	mot_q32 from[2] = { MOT_Q32_MIN / 2, 0 }, to[2] = { MOT_Q32_MAX / 2, d2q(1) };
+	double v[2] = { 1e-300, 1 }, a[2] = { 1e-300, 1 }, vs;
+	mot_q32 x;
+	int64_t k;
+
+	assert_int_equal(move_plan(&m, ch, 2, from, to, v, a, 1048576), -ERANGE);
+	assert_true(m.ticks == NUM_TICKS_MAX);
+	for (k = -1; k <= m.ticks + 1; k += m.ticks / 7) {
+		(void)move_at(&m, 0, k);
+		(void)move_at(&m, 1, k);
+	}
+	assert_int_equal(move_at(&m, 0, m.ticks), to[0]);
+	/* a stop at the end of the range saturates rather than wraps */
+	x = MOT_Q32_MAX - 5;
+	vs = 1e12;
+	(void)move_stop_step(&x, &vs, false, 1e12, 1, 1000);
+	assert_true(x == MOT_Q32_MAX);
+	x = MOT_Q32_MIN + 5;
+	vs = -1e12;
+	(void)move_stop_step(&x, &vs, true, 1e12, 1e12, 1000);
+	assert_true(x < 0);
+	assert_true(move_d2q(NAN) == 0);
+	assert_true(move_d2q(1e300) == MOT_Q32_MAX);
+	assert_true(move_d2q(-1e300) == MOT_Q32_MIN);
+}
+
 /* Stops from random speeds: at rest within ceil(|v| / (a dt)) + 1 ticks,
  * every speed change within a dt; a velocity channel's value reaches 0. */
 static void test_stops(void **state)
@@ -126,6 +159,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_random_moves),
 		cmocka_unit_test(test_zero_move),
+		cmocka_unit_test(test_edges),
 		cmocka_unit_test(test_stops),
 	};
 

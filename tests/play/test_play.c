@@ -6,6 +6,7 @@
  * ping-pong, offsets and pulse widths, bit-reproducible runs, and not one
  * allocation by the loop thread.
  */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -63,6 +64,62 @@ static void test_whole_run(void **state)
 	assert_int_equal(loop_result(p.L)->frames_fired, 241);
 	/* the drive followed: worst following error seen, and within bound */
 	assert_true(loop_result(p.L)->ferr_worst > 0);
+	play_free(&p);
+}
+
+/* Values each in range that together would overflow: refused before the
+ * rig moves, with a message naming what to change (issue 12). */
+static void test_edges(void **state)
+{
+	struct pu_source ps;
+	struct pu_rig r;
+	struct play_opts o;
+	struct play p;
+	char err[256];
+
+	/* total frames: passes times frames times triggers beyond int64_t */
+	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
+	pu_rig_init(&r, &ps, 2, 0);
+	pu_opts(&o, &ps);
+	o.loop.loop = true;
+	o.loop.passes = INT64_MAX / 100;
+	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), -EINVAL);
+	printf("%s\n", err);
+	assert_non_null(strstr(err, "more frames than a run counts"));
+	assert_int_equal(p.failed_at, PLAY_STAGE_OPTIONS);
+	play_free(&p);
+	o.loop.loop = false;
+	o.loop.ping_pong = true;
+	o.loop.passes = INT64_MAX / 100;
+	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "more frames than a run counts"));
+	play_free(&p);
+
+	/* a pre-roll of 1e11 degrees at the least velocity limit: 3e20 ticks */
+	pu_arm_source(&ps, 24, 1, 1000, 0, 240);
+	pu_rig_init(&r, &ps, 1, 0);
+	pu_opts(&o, &ps);
+	r.out[0].home = 1e11;
+	r.out[0].limits.has_vel = true;
+	r.out[0].limits.vel = RIG_LIMIT_RATE_MIN;
+	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), -ERANGE);
+	printf("%s\n", err);
+	assert_non_null(strstr(err, "the pre-roll to frame 0 would take more than 2^53 ticks"));
+	play_free(&p);
+	/* below the least: refused as the loader refuses it */
+	r.out[0].home = 0;
+	r.out[0].limits.vel = 1e-300;
+	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), -ERANGE);
+	printf("%s\n", err);
+	assert_string_equal(err, "outputs[0] (a.angle): velocity limit 1e-300 is below 1e-06 a "
+			    "second (too slow to plan a move with)");
+	play_free(&p);
+	/* a simulated camera's exposure beyond a day */
+	pu_rig_init(&r, &ps, 1, 0);
+	r.dev[1].sim.exposure_ms = 1e300;
+	assert_int_equal(play_prepare(&p, &r.d, &ps.s, &o, err, sizeof(err)), -ERANGE);
+	printf("%s\n", err);
+	assert_non_null(strstr(err, "devices[1] (io): sim: exposure_ms 1e+300 is above"));
 	play_free(&p);
 }
 
@@ -462,6 +519,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_whole_run),
+		cmocka_unit_test(test_edges),
 		cmocka_unit_test(test_preroll),
 		cmocka_unit_test(test_rates),
 		cmocka_unit_test(test_24h),
