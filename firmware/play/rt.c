@@ -77,23 +77,28 @@ static int by_tid(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
-/* One thread as the kernel schedules it: ", NAME SCHED_FIFO 80 on CPU 1". */
-static void report_one(FILE *f, pid_t tid, bool first, const cpu_set_t *all)
+/* One thread as the kernel schedules it: ", NAME SCHED_FIFO 80 on CPU 1";
+ * false, and nothing said, for one that ended since the list was read (a
+ * loop that stopped at its first tick). */
+static bool report_one(FILE *f, pid_t tid, bool first, const cpu_set_t *all)
 {
 	struct sched_param sp = { 0 };
 	char path[64], name[32] = "?", cpus[128];
-	int policy = sched_getscheduler(tid) & ~SCHED_RESET_ON_FORK;
+	int policy = sched_getscheduler(tid);
 	cpu_set_t set;
 	FILE *c;
 
 	snprintf(path, sizeof(path), "/proc/self/task/%d/comm", (int)tid);
 	c = fopen(path, "r");
-	if (c) {
-		if (fgets(name, sizeof(name), c))
-			name[strcspn(name, "\n")] = 0;
-		fclose(c);
+	if (!c || policy < 0 || sched_getparam(tid, &sp)) {
+		if (c)
+			fclose(c);
+		return false;
 	}
-	sched_getparam(tid, &sp);
+	if (fgets(name, sizeof(name), c))
+		name[strcspn(name, "\n")] = 0;
+	fclose(c);
+	policy &= ~SCHED_RESET_ON_FORK;
 	fprintf(f, "%s%s%s %s", first ? "" : ", ", name, tid == getpid() ? " (service)" : "",
 		policy == SCHED_FIFO ? "SCHED_FIFO" : policy == SCHED_RR ? "SCHED_RR" :
 		policy == SCHED_OTHER ? "SCHED_OTHER" : "SCHED_BATCH/IDLE");
@@ -103,6 +108,7 @@ static void report_one(FILE *f, pid_t tid, bool first, const cpu_set_t *all)
 		cpu_list(cpus, sizeof(cpus), &set);
 		fprintf(f, " on CPU%s %s", CPU_COUNT(&set) == 1 ? "" : "s", cpus);
 	}
+	return true;
 }
 
 void rt_plan_report(const struct rt_plan *pl, FILE *f)
@@ -110,7 +116,7 @@ void rt_plan_report(const struct rt_plan *pl, FILE *f)
 	pid_t tid[RT_REPORT_THREADS];
 	cpu_set_t all;
 	struct dirent *de;
-	size_t n = 0, i;
+	size_t n = 0, i, shown;
 	DIR *d;
 
 	STRAND_ASSERT_NOT_RT();
@@ -126,8 +132,8 @@ void rt_plan_report(const struct rt_plan *pl, FILE *f)
 	if (sched_getaffinity(getpid(), sizeof(all), &all))
 		CPU_ZERO(&all);
 	fprintf(f, "strand: threads: ");
-	for (i = 0; i < n; i++)
-		report_one(f, tid[i], i == 0, &all);
+	for (i = 0, shown = 0; i < n; i++)
+		shown += report_one(f, tid[i], shown == 0, &all);
 	if (pl->sched_err)
 		fprintf(f, "; SCHED_FIFO refused (%s), so every thread runs SCHED_OTHER",
 			strerror(pl->sched_err));

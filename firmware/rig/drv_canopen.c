@@ -366,6 +366,30 @@ static int co_make_axes(struct rig_make *m, uint32_t k, char *err, size_t size)
 	return co_axis_new(&r->axes[ax], &ac, err, size);
 }
 
+/* The SYNCs by phase: what a record of the bus (candump) is matched
+ * against, since the start-up's cycles and the loop's carry the same
+ * controlword and a start-up takes as many cycles as the drives need to
+ * answer in time. */
+static void co_report(const struct rig *r, uint32_t k, FILE *f)
+{
+	const struct co_master *m;
+	unsigned long long ran, late = 0;
+	uint32_t i;
+
+	if (r->dev[k].axis < 0)
+		return;
+	m = co_axis_master(r->axes[r->dev[k].axis]);
+	if (!m->syncs_started)
+		return;
+	ran = m->syncs_ran ? m->syncs_ran : m->syncs;
+	for (i = 0; i < m->nnodes; i++)
+		late += m->node[i].tpdo_late;
+	fprintf(f, "  canopen '%s': %llu SYNCs: %llu of the start-up, %llu of the run, %llu of "
+		"the stop; %llu TPDOs after the next SYNC\n", r->dev[k].desc->name,
+		(unsigned long long)m->syncs, (unsigned long long)m->syncs_started,
+		ran - m->syncs_started, (unsigned long long)m->syncs - ran, late);
+}
+
 static void co_free(struct rig *r, uint32_t k)
 {
 	struct co_dev *cd = r->dev[k].priv;
@@ -404,5 +428,6 @@ const struct rig_driver rig_drv_canopen = {
 	.validate = co_validate,
 	.check = co_check,
 	.make_axes = co_make_axes,
+	.report = co_report,
 	.free = co_free,
 };

@@ -152,7 +152,6 @@ static void STRAND_RT issue(struct co_master *m, struct co_node *n, int64_t now)
 		co_nmt(m, CO_NMT_START, n->cfg.node);
 		n->phase = CO_NODE_ENABLING;
 		n->deadline = now + m->cfg.enable_timeout_ms * CO_MS;
-		n->tpdo_last = now;
 		return;
 	}
 	if (s->read) {

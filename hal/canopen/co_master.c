@@ -214,7 +214,6 @@ static void STRAND_RT tpdo(struct co_master *m, struct co_node *n, const struct 
 		n->tpdo_late++;
 	n->tpdo_seen = true;
 	n->tpdo_sync = m->syncs;
-	n->tpdo_last = now;
 	s = co402_decode(n->sw);
 	if (n->phase == CO_NODE_ENABLING) {
 		if (n->cfg.mode == CO402_MODE_CSP)
@@ -278,8 +277,13 @@ void STRAND_RT co_master_rx(struct co_master *m, const struct co_frame *f, int64
 
 /* ---- the cyclic exchange ---- */
 
-/* RPDO1 of every node in the sequence, then the SYNC. */
-static void STRAND_RT send_cycle(struct co_master *m)
+/* RPDO1 of every node in the sequence, then the SYNC. A node that had
+ * answered every SYNC before this one starts waiting for an answer now:
+ * the TPDO watchdog (watch()) counts from the oldest SYNC not answered, so
+ * that time without SYNCs (the pause between the start-up and the loop's
+ * first tick, however long a loaded machine makes it) is not taken for a
+ * drive that went silent. */
+static void STRAND_RT send_cycle(struct co_master *m, int64_t now)
 {
 	uint32_t i, k = 0;
 
@@ -293,6 +297,8 @@ static void STRAND_RT send_cycle(struct co_master *m)
 		co_put16(&f->data[0], n->cw);
 		co_put32(&f->data[2], (uint32_t)n->target);
 		m->node[i].sent[(m->syncs + 1) % CO_SENT_KEPT] = n->target;
+		if (n->tpdo_sync == m->syncs)
+			m->node[i].sync_wait = now;
 		k++;
 	}
 	co_frame_init(&m->cycle[k++], m->cfg.sync_id, 0);
@@ -317,7 +323,7 @@ void STRAND_RT co_master_cycle(struct co_master *m, int64_t now)
 	 * motion goes out, not even this tick's */
 	if (m->phase != CO_MASTER_RUNNING || m->fault.kind != CO_FAULT_NONE)
 		return;
-	send_cycle(m);
+	send_cycle(m, now);
 }
 
 void STRAND_RT co_master_disable(struct co_master *m, int64_t now)
@@ -326,11 +332,13 @@ void STRAND_RT co_master_disable(struct co_master *m, int64_t now)
 
 	if (m->phase != CO_MASTER_RUNNING && m->phase != CO_MASTER_STARTING)
 		return;
+	if (m->phase == CO_MASTER_RUNNING)
+		m->syncs_ran = m->syncs;
 	m->phase = CO_MASTER_HALTED;
 	for (i = 0; i < m->nnodes; i++)
 		m->node[i].cw = CO402_CW_QUICK_STOP;
 	/* the RPDOs take effect at a SYNC: one more, and then no more */
-	send_cycle(m);
+	send_cycle(m, now);
 }
 
 /* ---- start ---- */
@@ -389,6 +397,7 @@ static void STRAND_RT poll_start(struct co_master *m, int64_t now, bool *cycling
 		/* the loop's first tick sends the next SYNC: until then the
 		 * TPDOs just received stay the answer to the latest one */
 		m->phase = CO_MASTER_RUNNING;
+		m->syncs_started = m->syncs;
 		*cycling = false;
 	}
 }
@@ -406,6 +415,8 @@ void co_master_stop(struct co_master *m, int64_t now)
 		m->phase = CO_MASTER_FAILED;
 		return;
 	}
+	if (m->phase == CO_MASTER_RUNNING)
+		m->syncs_ran = m->syncs;
 	m->phase = CO_MASTER_STOPPING;
 	m->deadline = now + m->cfg.stop_timeout_ms * CO_MS;
 	m->next_cycle = now;
@@ -481,7 +492,7 @@ static int64_t STRAND_RT watch(struct co_master *m, int64_t now)
 			n->left = false;
 			co_fail(m, CO_FAULT_STATE, -EIO, n, n->sw);
 		}
-		if (!n->lost && now - n->tpdo_last > limit)
+		if (!n->lost && n->tpdo_sync < m->syncs && now - n->sync_wait > limit)
 			co_fail(m, CO_FAULT_TPDO, -ETIMEDOUT, n, m->cfg.heartbeat_timeout_ms);
 	}
 	return next;
@@ -499,7 +510,7 @@ int64_t STRAND_RT co_master_poll(struct co_master *m, int64_t now)
 		poll_stop(m, now, &cycling);
 	if (cycling && !m->mute) {
 		if (now >= m->next_cycle) {
-			send_cycle(m);
+			send_cycle(m, now);
 			/* on time from the last one, or from now when behind */
 			m->next_cycle = m->next_cycle + m->period_ns > now ?
 					m->next_cycle + m->period_ns : now + m->period_ns;

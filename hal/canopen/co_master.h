@@ -150,7 +150,7 @@ struct co_node {
 	uint32_t tpdo_late;  /* TPDOs that came after the next SYNC */
 	int32_t sent[CO_SENT_KEPT]; /* sent[s % CO_SENT_KEPT]: target before SYNC s */
 	int64_t hb_last;     /* the last heartbeat; consumer runs when >= 0 */
-	int64_t tpdo_last;   /* the last TPDO */
+	int64_t sync_wait;   /* the oldest SYNC not answered yet went out */
 	int64_t deadline;    /* of the phase */
 	struct co_sdo sdo;
 	uint8_t xfer[4];     /* the expedited value under way */
@@ -174,6 +174,10 @@ struct co_master {
 	int64_t next_cycle;            /* start and stop: the next SYNC */
 	int64_t deadline;              /* stop */
 	uint64_t syncs;                /* SYNCs sent */
+	/* SYNCs sent when the start-up ended (every drive enabled and
+	 * answering the latest SYNC) and when the run ended (the stop or
+	 * the quick stop began); 0 until then */
+	uint64_t syncs_started, syncs_ran;
 	uint64_t send_errors;
 	struct co_fault fault;         /* the first; kind NONE while healthy */
 	/* frames of one cycle: an RPDO per node and the SYNC */

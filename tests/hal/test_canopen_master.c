@@ -556,6 +556,29 @@ static void test_tpdo_stops(void **state)
 	cu_free(&r);
 }
 
+/* The loop's first tick long after the start-up's last SYNC (a loaded
+ * machine between the start and the loop's thread): no SYNC went out in
+ * the pause, so no TPDO was owed, and the watchdog stays quiet; the
+ * drives that then stop answering are still caught, 50 ms after the
+ * first SYNC they left unanswered. */
+static void test_tpdo_pause(void **state)
+{
+	struct cu_rig r;
+	int64_t seen;
+
+	cu_init(&r, 2, 1000);
+	start_ok(&r);
+	r.t0 += 300000000; /* tick 0 300 ms late: six heartbeat timeouts */
+	assert_int_equal(cu_run(&r, 20), 0);
+	r.t0 += 300000000;
+	assert_int_equal(cu_run(&r, 20), 0);
+	poke(&r, 2, 0x1800, 1, 0xc0000182, 4);
+	seen = run_to_fault(&r, 100, -ETIMEDOUT);
+	assert_true(seen >= 40 + 50 && seen <= 40 + 52);
+	expect_fault(&r, -ETIMEDOUT, CO_FAULT_TPDO, 2, "TPDOs stopped", 0);
+	cu_free(&r);
+}
+
 /* Bus-off: the fault names it, and nothing the master would send after it
  * ever reaches the bus, not even once the controller is back. */
 static void test_bus_off(void **state)
@@ -797,6 +820,7 @@ int main(void)
 		cmocka_unit_test(test_left_enabled),
 		cmocka_unit_test(test_drive_reboots),
 		cmocka_unit_test(test_tpdo_stops),
+		cmocka_unit_test(test_tpdo_pause),
 		cmocka_unit_test(test_bus_off),
 		cmocka_unit_test(test_error_passive),
 		cmocka_unit_test(test_quick_stop),

@@ -3,14 +3,15 @@
 # as the reference:
 #
 #   awk -f can.awk -v nodes="1 2 3" -v cols="pan.angle tilt.angle spin.rpm" \
-#       -v cpu="1000 1000 100" -v hz=250 -v fps=25 -v ticks=N -v max_late_us=U \
-#       journal.csv export.csv bus.log
+#       -v cpu="1000 1000 100" -v hz=250 -v fps=25 -v ticks=N -v startup=S \
+#       -v max_late_us=U journal.csv export.csv bus.log
 #
 # journal.csv: `strand journal` (the loop tick of every frame fired; of a
 # run of several passes, the first pass is compared);
 # export.csv: `strand export --at ticks` (every channel at every scene
 # tick); bus.log: `candump -ta`, in the order the frames were on the bus.
-# ticks: the loop's ticks run (strand's summary). fps: a whole frame rate.
+# ticks: the loop's ticks run, startup: the SYNCs of the master's start-up
+# (both from strand's summary). fps: a whole frame rate.
 #
 # The loop's SYNCs are found by what the frames say, not by their times:
 # the start-up ends with a cycle in which every RPDO says "enable operation"
@@ -24,8 +25,9 @@
 #  1. start-up, per node: NMT reset communication, its boot-up, SDO requests,
 #     NMT start, then RPDO controlwords 0x06, 0x07, 0x0f in this order, and
 #     TPDO statuswords ready, switched on, operation enabled in this order;
-#  2. one SYNC per tick: between the start-up and the stop exactly the loop's
-#     ticks (and the start-up's last cycle), each after one RPDO per node;
+#  2. one SYNC per tick: between the start-up (its SYNCs as strand counts
+#     them; the loop's first comes after every drive said it is enabled)
+#     and the stop exactly the loop's ticks, each after one RPDO per node;
 #  3. each loop tick's RPDO targets are the export's values of its tick times
 #     counts per unit (within the rounding of export's 10 digits), for every
 #     tick the export covers: a SYNC too many or too few would shift them;
@@ -200,10 +202,19 @@ END {
 	}
 	if (!k1 || !k2)
 		fail("no start-up's last cycle (" k1 ") or stop's first (" k2 ") among " ns " SYNCs")
-	off0 = k2 - ticks
-	if (off0 < k1 || off0 > k1 + 1)
-		fail(k2 - k1 " SYNCs between the start-up's last cycle and the stop, for " ticks \
-		     " ticks")
+	# strand's own count of its start-up's cycles (its summary): a
+	# start-up goes on for as many cycles as the drives need to answer
+	# the latest SYNC in time, which the frames alone cannot tell from
+	# the loop's first ticks; the loop's first SYNC must come after the
+	# last drive said it is enabled (k1 is the first that does), and the
+	# loop's ticks fill the rest up to the stop
+	off0 = startup + 1
+	if (off0 < k1)
+		fail("strand counts " startup " SYNCs of the start-up, but the drives were not all " \
+		     "enabled before SYNC " k1)
+	if (k2 - off0 != ticks)
+		fail(k2 - off0 " SYNCs between the start-up's last cycle (SYNC " startup ") and " \
+		     "the stop, for " ticks " ticks")
 	for (k = 0; k < ticks; k++) {
 		s = S[off0 + k]
 		for (q = 1; q <= nn; q++) {
@@ -217,8 +228,9 @@ END {
 				fail("tick " k ": " c " RPDOs for node " node[q] " before its SYNC")
 		}
 	}
-	printf "can: one SYNC per tick: %d SYNCs between the start-up and the stop, for %d " \
-	       "ticks, each after one RPDO per node\n", k2 - k1 - 1 + (off0 == k1), ticks
+	printf "can: one SYNC per tick: %d SYNCs between the start-up's %d (%d after the one " \
+	       "that followed every drive's enabled) and the stop, for %d ticks, each after " \
+	       "one RPDO per node\n", k2 - off0, startup, off0 - k1, ticks
 
 	# 3. the targets: scene tick = loop tick - (frame's loop tick - its scene
 	# tick), over the first pass

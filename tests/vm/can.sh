@@ -24,3 +24,20 @@ can_up() {
 
 # syncs_at_least N: candump has recorded N SYNCs (for wait_for)
 syncs_at_least() { [ "$(grep -c ' 080 ' /tmp/bus.log)" -ge "$1" ]; }
+
+# wait_playing N PID OUT: wait up to 30 s for N SYNCs on the bus while
+# strand play (PID, its output in OUT) runs; fail at once, with its output,
+# when it has ended before them.
+wait_playing() {
+	_end=$(($(uptime_ms) + 30000))
+	while ! syncs_at_least "$1"; do
+		kill -0 "$2" 2>/dev/null || {
+			wait "$2"
+			fail "strand play ended (exit $?) after $(grep -c ' 080 ' /tmp/bus.log) SYNCs:" \
+				"$(cat "$3")"
+		}
+		[ "$(uptime_ms)" -lt $_end ] ||
+			fail "only $(grep -c ' 080 ' /tmp/bus.log) SYNCs in 30 s"
+		sleep 0.02
+	done
+}

@@ -37,13 +37,14 @@ bg() {
 	BG_PIDS="$BG_PIDS $!"
 }
 
-# wait_for SECONDS CMD...: poll CMD every 20 ms until it succeeds; 1 on timeout.
+# wait_for SECONDS CMD...: poll CMD every 20 ms until it succeeds; 1 when
+# SECONDS have passed by the clock (not by a count of polls: on a loaded
+# host one poll can take far longer than 20 ms).
 wait_for() {
-	_n=$(($1 * 50))
+	_end=$(($(uptime_ms) + $1 * 1000))
 	shift
 	while ! "$@" 2>/dev/null; do
-		_n=$((_n - 1))
-		[ $_n -gt 0 ] || return 1
+		[ "$(uptime_ms)" -lt $_end ] || return 1
 		sleep 0.02
 	done
 }

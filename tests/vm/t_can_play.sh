@@ -22,6 +22,13 @@ rc=$?
 cat /tmp/play.out
 [ $rc = 0 ] || fail "strand play exited $rc: $(grep 'strand play:' /tmp/play.out)"
 ticks=$(sed -n 's/.*frames fired [0-9]*, ticks \([0-9]*\).*/\1/p' /tmp/play.out)
+# strand's count of the SYNCs of its start-up and of its run (the summary)
+n='\([0-9]*\)'
+startup=$(sed -n "s/.*canopen 'bus': [0-9]* SYNCs: $n of the start-up, $n of the run.*/\1 \2/p" \
+	/tmp/play.out)
+[ "${startup#* }" = "$ticks" ] ||
+	fail "strand counts SYNCs (start-up, run) '$startup', for $ticks ticks"
+startup=${startup% *}
 # A gap between SYNCs may be as long as the loop was late (the emulated CPU
 # stalls now and then: strand's summary says by how much) plus what
 # candump's timestamps can be off by in this VM (25 ms seen): never more.
@@ -38,7 +45,8 @@ cat /tmp/drive1.out /tmp/drive2.out /tmp/drive3.out
 echo "bus: $(wc -l </tmp/bus.log) frames recorded"
 
 awk -f /tests/can.awk -v nodes="1 2 3" -v cols="pan.angle tilt.angle spin.rpm" \
-	-v cpu="1000 1000 100" -v hz=250 -v fps=25 -v ticks="$ticks" -v max_late_us="$bound" \
+	-v cpu="1000 1000 100" -v hz=250 -v fps=25 -v ticks="$ticks" -v startup="$startup" \
+	-v max_late_us="$bound" \
 	-v synclog=/tmp/sync1.log \
 	/tmp/journal.csv /tmp/export.csv /tmp/bus.log >/tmp/can.out
 rc=$?
