@@ -26,6 +26,22 @@ static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
 }
 
+/* The value of an interpolating curve's piece s at a frame inside it. */
+static inline __attribute__((always_inline)) mot_q32
+piece_value(const struct mot_curve *c, const struct mot_curve_seg *s, mot_q32 f, uint32_t *sat)
+{
+	int64_t u;
+
+	if (c->kind == MOT_INTERP_STEP)
+		return s->vref;
+	u = frac62(f - s->f0, &s->inv_w);
+	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
+		u = mot_ease_apply62(&s->ease, u);
+	if (c->kind == MOT_INTERP_LINEAR)
+		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
+	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+}
+
 static inline __attribute__((always_inline)) mot_q32
 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iters, uint32_t *sat)
 {
@@ -72,23 +88,54 @@ eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iter
 		}
 		return mot_cv_approx_eval(c, cur, frame, iters, sat);
 	}
-	s = &c->seg[locate_seg(c, cur, frame)];
-	if (c->kind == MOT_INTERP_STEP)
-		return s->vref;
-	u = frac62(frame - s->f0, &s->inv_w);
-	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
-		u = mot_ease_apply62(&s->ease, u);
-	if (c->kind == MOT_INTERP_LINEAR)
-		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
-	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+	return piece_value(c, &c->seg[locate_seg(c, cur, frame)], frame, sat);
 }
 
-mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
-		       uint32_t *sat)
+static __attribute__((noinline)) mot_q32 eval_any(const struct mot_curve *c,
+						  struct mot_cursor *cur, mot_q32 frame,
+						  uint32_t *sat)
 {
 	int iters;
 
 	return eval(c, cur, frame, &iters, sat);
+}
+
+/*
+ * Playback's common case first, kept small: the held ends, or a piece of an
+ * interpolating curve that the cursor holds, or the next one.
+ * It is eval()'s own path for that case, step for step, so the bits are
+ * the same; everything else goes the whole way.
+ */
+mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+		       uint32_t *sat)
+{
+	mot_q32 f = frame;
+	uint32_t j;
+
+	if (!c || !c->plain || !cur)
+		return eval_any(c, cur, frame, sat);
+	if (f <= c->span_f0)
+		return c->keys[0].value;
+	if (f >= c->span_f1)
+		return c->keys[c->nkeys - 1].value;
+	if (c->span_ease) {
+		f = span_warp(c, f);
+		if (f <= c->span_f0)
+			return c->keys[0].value;
+		if (f >= c->span_f1)
+			return c->keys[c->nkeys - 1].value;
+	}
+	/* the way back is with the frame as given: eval() warps it again */
+	j = cur->seg;
+	if (j >= c->nseg || f < c->seg[j].f0)
+		return eval_any(c, cur, frame, sat);
+	if (f >= c->seg[j].f1) {
+		/* f < span_f1, the last piece's f1: j + 1 exists */
+		if (f >= c->seg[j + 1].f1)
+			return eval_any(c, cur, frame, sat);
+		cur->seg = ++j;
+	}
+	return piece_value(c, &c->seg[j], f, sat);
 }
 
 int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)
@@ -185,7 +232,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	c->kind = (uint32_t)kind;
 	c->keys = keys;
 	c->seg = seg;
-	c->seg_ease = c->span_ease = c->integral = c->power = false;
+	c->seg_ease = c->span_ease = c->integral = c->power = c->plain = false;
 	if (!opts)
 		opts = &defaults;
 	if (mot_curve_seg_count(kind, 1) == 0 || (nkeys > 0 && !keys))
@@ -248,9 +295,10 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 		if (err)
 			goto fail;
 	}
+	c->plain = kind <= MOT_INTERP_HERMITE && nkeys > 1;
 	return MOT_OK;
 fail:
 	c->nkeys = 0;
-	c->integral = false;
+	c->integral = c->plain = false;
 	return err;
 }

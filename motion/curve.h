@@ -126,6 +126,7 @@ struct mot_curve {
 	bool power;             /* bezier evaluated in power form (curve_bezier.c) */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
+	bool plain;             /* step, linear or hermite with 2 keys or more */
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
 	mot_q32 span_f0, span_f1;    /* first and last key frame */

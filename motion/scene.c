@@ -124,22 +124,31 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 	return MOT_OK;
 }
 
+/* The angle of a spin joint and its speed (kept out of the loop's way). */
+static __attribute__((noinline)) mot_q32 spin_value(const struct mot_scene *sc,
+						    struct mot_eval *ev,
+						    const struct mot_node *n, mot_q32 frame,
+						    mot_q32 *rpm)
+{
+	const struct mot_curve *c = &sc->curves[n->spin];
+	struct mot_cursor *cur = &ev->cursors[n->spin];
+
+	*rpm = mot_curve_eval(c, cur, frame, &ev->sat);
+	return mot_add_sat(n->rest, mot_spin_turns(c, cur, &sc->timing, frame, &ev->sat),
+			   &ev->sat);
+}
+
 /* The joint value of a joint node, and its spin speed. */
-static mot_q32 joint_value(const struct mot_scene *sc, struct mot_eval *ev,
-			   const struct mot_node *n, mot_q32 frame, mot_q32 *rpm)
+static inline __attribute__((always_inline)) mot_q32
+joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_node *n,
+	    mot_q32 frame, mot_q32 *rpm)
 {
 	*rpm = 0;
 	if (n->curve >= 0)
 		return mot_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], frame,
 				      &ev->sat);
-	if (n->spin >= 0) {
-		const struct mot_curve *c = &sc->curves[n->spin];
-		struct mot_cursor *cur = &ev->cursors[n->spin];
-
-		*rpm = mot_curve_eval(c, cur, frame, &ev->sat);
-		return mot_add_sat(n->rest, mot_spin_turns(c, cur, &sc->timing, frame, &ev->sat),
-				   &ev->sat);
-	}
+	if (n->spin >= 0)
+		return spin_value(sc, ev, n, frame, rpm);
 	return n->rest;
 }
 
@@ -219,7 +228,9 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
  * quaternion route costs a half-angle sincos, three roundings of the
  * quaternion and fifteen products.
  */
-static void tilted_rot(struct mot_mat *r, const struct mot_node *n, mot_q32 turns)
+static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
+							     const struct mot_node *n,
+							     mot_q32 turns)
 {
 	mot_q32 s, c, omc;
 	uint64_t ov = 0; /* terms below 2^96: never set */
@@ -310,22 +321,27 @@ static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_m
 	}
 }
 
-/* Any linear part M (free nodes, tilted joints); M must not alias W. */
-static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-		       const struct mot_mat *restrict par, const struct mot_mat *restrict m,
-		       const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
+/* Any linear part M (free nodes, tilted joints); M must not alias W. W's
+ * linear part first, row by row, then the translation sums column by
+ * column, which read it back: few values live at once. */
+static inline __attribute__((always_inline)) void
+node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
+	      const struct mot_mat *restrict m, const mot_q32 p[3], const mot_q32 t[3],
+	      uint32_t *sat)
 {
-	const mot_q32(*y)[3] = par->m;
+	const mot_q32(*restrict y)[3] = par->m;
 	mot_q32 q[3];
 	uint64_t ov = 0;
 	unsigned i, j;
 
 	for (i = 0; i < 3; i++)
 		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
-	for (i = 0; i < 3; i++)
+	for (i = 0; i < 3; i++) {
+		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
+
 		for (j = 0; j < 3; j++)
-			w->m[i][j] = mot_sum3_ov(m->m[i][0], y[0][j], m->m[i][1], y[1][j],
-						 m->m[i][2], y[2][j], 0, 32, &ov);
+			w->m[i][j] = mot_sum3_ov(m0, y[0][j], m1, y[1][j], m2, y[2][j], 0, 32, &ov);
+	}
 	for (j = 0; j < 3; j++) {
 		/* at most three products and an addend, then three more from a
 		 * sum that fits (else ov is set already): no wrap goes unseen */
@@ -342,12 +358,33 @@ static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		node_world_sat(w, pos, par, m, p, t, sat);
 }
 
+static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		       const struct mot_mat *restrict par, const struct mot_mat *restrict m,
+		       const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
+{
+	node_world_in(w, pos, par, m, p, t, sat);
+}
+
+/* A revolute joint about a tilted axis: its rotation, then node_world()
+ * with t = 0. */
+static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			 const struct mot_mat *restrict par, const struct mot_node *n,
+			 mot_q32 turns, uint32_t *sat)
+{
+	static const mot_q32 zero[3] = { 0, 0, 0 };
+	struct mot_mat r;
+
+	tilted_rot(&r, n, turns);
+	node_world_in(w, pos, par, &r, n->pivot, zero, sat);
+}
+
 /* M = I (prismatic joints, free nodes without rotation, scale or shear):
  * W = T(t) . P, P's linear part and translation t . P_lin + P_t, and
  * pos = W_t + p . P_lin. */
-static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-			    const struct mot_mat *restrict par, const mot_q32 p[3],
-			    const mot_q32 t[3], uint32_t *sat)
+static inline __attribute__((always_inline)) void
+translate_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		   const struct mot_mat *restrict par, const mot_q32 p[3], const mot_q32 t[3],
+		   uint32_t *sat)
 {
 	const mot_q32(*y)[3] = par->m;
 	uint64_t ov = 0;
@@ -366,6 +403,30 @@ static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	}
 	if (ov)
 		node_world_sat(w, pos, par, &mat_id, p, t, sat);
+}
+
+static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			    const struct mot_mat *restrict par, const mot_q32 p[3],
+			    const mot_q32 t[3], uint32_t *sat)
+{
+	translate_world_in(w, pos, par, p, t, sat);
+}
+
+/* A prismatic joint along coordinate axis o by v: t = v e_o, and the two
+ * zero products of each column are left out where it is inlined: W_t =
+ * P_t + v P_o, a scaled row. */
+static void prismatic_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			    const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
+			    mot_q32 v, uint32_t *sat)
+{
+	const mot_q32 tx[3] = { v, 0, 0 }, ty[3] = { 0, v, 0 }, tz[3] = { 0, 0, v };
+
+	if (o == MOT_AXIS_X)
+		translate_world_in(w, pos, par, p, tx, sat);
+	else if (o == MOT_AXIS_Y)
+		translate_world_in(w, pos, par, p, ty, sat);
+	else
+		translate_world_in(w, pos, par, p, tz, sat);
 }
 
 /*
@@ -391,35 +452,50 @@ static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
 	m->m[b][b] = c;
 }
 
+/* revolute_world() for rows (a, b) and axis row o, constants where it is
+ * inlined (one copy per axis: the rows sit at fixed offsets). The rotated
+ * rows first, then the translation sums, which read them back: fewer values
+ * live at once than column by column, so none is spilled. */
+static inline __attribute__((always_inline)) void
+revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
+	      const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3], mot_q32 s,
+	      mot_q32 c, uint64_t *ov)
+{
+	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
+	const mot_q32(*restrict y)[3] = par->m;
+	mot_q32(*restrict x)[3] = w->m;
+	unsigned j;
+
+	for (j = 0; j < 3; j++) {
+		x[a][j] = mot_sum2_ov(c, y[a][j], s, y[b][j], 0, 32, ov);
+		x[b][j] = mot_sum2_ov(-s, y[a][j], c, y[b][j], 0, 32, ov);
+		x[o][j] = y[o][j];
+	}
+	for (j = 0; j < 3; j++) {
+		mot_acc u = mot_acc_mac(mot_acc_start(y[3][j], 32), p[a], y[a][j]);
+
+		u = mot_acc_mac(u, p[b], y[b][j]);
+		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
+		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, p[o], y[o][j]), 32, ov);
+		u = mot_acc_sub(u, mot_acc_mul(p[a], x[a][j]));
+		x[3][j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(p[b], x[b][j])), 32, ov);
+	}
+}
+
 static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
 			   mot_q32 turns, uint32_t *sat)
 {
-	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
-	const mot_q32 *restrict ya = par->m[a], *restrict yb = par->m[b];
-	const mot_q32 *restrict yo = par->m[o], *restrict yt = par->m[3];
-	mot_q32 *restrict wa = w->m[a], *restrict wb = w->m[b];
-	mot_q32 *restrict wo = w->m[o], *restrict wt = w->m[3];
-	const mot_q32 pa = p[a], pb = p[b], po = p[o];
 	mot_q32 s, c;
 	uint64_t ov = 0;
-	unsigned j;
 
 	mot_sincos(turns, &s, &c);
-	for (j = 0; j < 3; j++) {
-		mot_q32 ra = mot_sum2_ov(c, ya[j], s, yb[j], 0, 32, &ov);
-		mot_q32 rb = mot_sum2_ov(-s, ya[j], c, yb[j], 0, 32, &ov);
-		mot_acc u = mot_acc_mac(mot_acc_start(yt[j], 32), pa, ya[j]);
-
-		u = mot_acc_mac(u, pb, yb[j]);
-		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
-		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, po, yo[j]), 32, &ov);
-		u = mot_acc_sub(u, mot_acc_mul(pa, ra));
-		wt[j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(pb, rb)), 32, &ov);
-		wa[j] = ra;
-		wb[j] = rb;
-		wo[j] = yo[j];
-	}
+	if (o == MOT_AXIS_X)
+		revolute_cols(w, pos, par, MOT_AXIS_X, p, s, c, &ov);
+	else if (o == MOT_AXIS_Y)
+		revolute_cols(w, pos, par, MOT_AXIS_Y, p, s, c, &ov);
+	else
+		revolute_cols(w, pos, par, MOT_AXIS_Z, p, s, c, &ov);
 	if (ov) {
 		struct mot_mat m;
 		static const mot_q32 zero[3] = { 0, 0, 0 };
@@ -488,14 +564,17 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			if (n->axis_id != MOT_AXIS_VEC) {
 				revolute_world(w, pos, par, n->axis_id, n->pivot, v, &ev->sat);
 			} else {
-				tilted_rot(&local, n, v);
-				node_world(w, pos, par, &local, n->pivot, zero, &ev->sat);
+				tilted_world(w, pos, par, n, v, &ev->sat);
 			}
 			break;
 		case MOT_NODE_PRISMATIC:
 			v = joint_value(sc, ev, n, frame, &r);
-			joint_offset(t, v, n->axis, &ev->sat);
-			translate_world(w, pos, par, n->pivot, t, &ev->sat);
+			if (n->axis_id != MOT_AXIS_VEC) {
+				prismatic_world(w, pos, par, n->axis_id, n->pivot, v, &ev->sat);
+			} else {
+				joint_offset(t, v, n->axis, &ev->sat);
+				translate_world(w, pos, par, n->pivot, t, &ev->sat);
+			}
 			break;
 		default:
 			if (n->strand < 0)
