@@ -110,17 +110,52 @@ int mot_scene_validate(const struct mot_scene *sc)
 	return MOT_OK;
 }
 
+/* The longest chain the bounds of the small case hold for (scene.c's
+ * world kernels): 2^20 levels of rotations grow P_lin's norm by less than
+ * e^(2^20 2^-23) even with the least exact axis mot_scene_validate()
+ * passes. */
+#define SMALL_DEPTH ((uint32_t)1 << 20)
+#define SMALL_PIVOT ((mot_q32)1 << 50)
+
+/* A node whose linear part only rotates: a joint, a free node without
+ * scale or shear channels. */
+static bool rotates_only(const struct mot_scene *sc, const struct mot_node *n)
+{
+	uint32_t k;
+
+	if (n->kind != MOT_NODE_FREE || n->strand < 0)
+		return true;
+	for (k = MOT_FREE_SX; k < MOT_FREE_NCHANNELS; k++)
+		if (sc->free[n->strand].channel[k] >= 0)
+			return false;
+	return true;
+}
+
 int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 {
 	uint32_t i, n = mot_eval_cursor_count(sc);
 
-	if (ev->ncursors < n)
+	if (ev->ncursors < n || ev->nmemo < mot_eval_memo_count(sc))
 		return MOT_E_CAPACITY;
 	for (i = 0; i < n; i++) {
 		ev->cursors[i].seg = 0;
 		ev->cursors[i].key = 0;
 	}
+	for (i = 0; i < sc->nnodes; i++) {
+		const struct mot_node *nd = &sc->nodes[i];
+		struct mot_node_memo *m = &ev->memo[i];
+		uint32_t up = nd->parent >= 0 ? ev->memo[nd->parent].chain : 1;
+		uint32_t k;
+
+		m->value = m->s = m->c = 0;
+		m->moved = 1;
+		m->chain = up && up <= SMALL_DEPTH && rotates_only(sc, nd) ? up + 1 : 0;
+		m->small = m->chain != 0;
+		for (k = 0; k < 3; k++)
+			m->small = m->small && mot_abs(nd->pivot[k]) < SMALL_PIVOT;
+	}
 	ev->sat = 0;
+	ev->memo_world = NULL;
 	return MOT_OK;
 }
 
@@ -229,15 +264,13 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
  * quaternion and fifteen products.
  */
 static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
-							     const struct mot_node *n,
-							     mot_q32 turns)
+							     const struct mot_node *n, mot_q32 s,
+							     mot_q32 c)
 {
-	mot_q32 s, c, omc;
-	uint64_t ov = 0; /* terms below 2^96: never set */
+	mot_q32 omc = ONE - c; /* exact, in [0, 2] */
+	uint64_t ov = 0;       /* terms below 2^96: never set */
 	unsigned k;
 
-	mot_sincos(turns, &s, &c);
-	omc = ONE - c; /* exact, in [0, 2] */
 	for (k = 0; k < 3; k++) {
 		unsigned j = (k + 1) % 3, l = (k + 2) % 3;
 		/* a_k in Q2.62, exactly (|a_k| <= 1 + 2^-25, validated) */
@@ -289,7 +322,35 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  * distance from the origin. Each entry is one sum of exact products rounded
  * once (fix.h's kernel); when a sum does not fit, node_world_sat() redoes
  * the node with the saturating sums, which give the same bits otherwise.
+ *
+ * Known bounds (the small case). Most nodes are known before the products
+ * to need no overflow test at all. Under at most 2^20 parents that only
+ * rotate (no scale or shear channel up the chain; mot_eval_reset() marks
+ * them, struct mot_node_memo's small) every entry of P_lin stays below 2^8
+ * in magnitude: a rotation, rounded, grows P_lin's norm by a factor below
+ * 1 + 2^-23 a level, even with the least exact axis mot_scene_validate()
+ * lets through. With the node's pivot and translation below 2^18 units and
+ * P_t below 2^29 units (tested per node, one test each) every sum stays
+ * below 2^94 and every result below 2^63. The kernels below then drop the
+ * tests, and P_t, whose share of each sum is a whole number of units of
+ * the result, is added after the rounding instead of before: the same bits,
+ * a fifth fewer instructions.
  */
+#define SMALL_TRANS ((uint64_t)1 << 61)
+
+/* Only where 128-bit integers are the compiler's: on the portable two-word
+ * path a copy of every kernel costs more code than its tests cost time (a
+ * Cortex-M4), and it is the one fix.h path the other builds check it
+ * against (make check-cross). */
+static const bool small_kernels = MOT_HAVE_INT128;
+
+/* |x| < lim for the three components, lim a power of two: one test */
+static inline bool below3(const mot_q32 x[3], uint64_t lim)
+{
+	return (((uint64_t)x[0] + lim) | ((uint64_t)x[1] + lim) | ((uint64_t)x[2] + lim)) <
+	       2 * lim;
+}
+
 static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
 			   const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],
 			   uint32_t *sat)
@@ -321,17 +382,37 @@ static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_m
 	}
 }
 
+/*
+ * The sums of one translation entry: start(P_t) + products, rounded, with
+ * the overflow test; or, small, start(0) + products rounded and P_t added
+ * after. Constant `small` where inlined: one of the two remains.
+ */
+static inline __attribute__((always_inline)) mot_acc trans_start(mot_q32 yt, bool small)
+{
+	return mot_acc_start(small ? 0 : yt, 32);
+}
+
+static inline __attribute__((always_inline)) mot_q32 trans_end(mot_acc x, mot_q32 yt, bool small,
+							       uint64_t *ov)
+{
+	uint64_t unused = 0;
+
+	if (small)
+		return mot_acc_floor_ov(x, 32, &unused) + yt;
+	return mot_acc_floor_ov(x, 32, ov);
+}
+
 /* Any linear part M (free nodes, tilted joints); M must not alias W. W's
  * linear part first, row by row, then the translation sums column by
  * column, which read it back: few values live at once. */
 static inline __attribute__((always_inline)) void
 node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
-	      const struct mot_mat *restrict m, const mot_q32 p[3], const mot_q32 t[3],
+	      const struct mot_mat *restrict m, const mot_q32 p[3], const mot_q32 t[3], bool small,
 	      uint32_t *sat)
 {
 	const mot_q32(*restrict y)[3] = par->m;
 	mot_q32 q[3];
-	uint64_t ov = 0;
+	uint64_t ov = 0, unused = 0;
 	unsigned i, j;
 
 	for (i = 0; i < 3; i++)
@@ -340,42 +421,49 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
 
 		for (j = 0; j < 3; j++)
-			w->m[i][j] = mot_sum3_ov(m0, y[0][j], m1, y[1][j], m2, y[2][j], 0, 32, &ov);
+			w->m[i][j] = mot_sum3_ov(m0, y[0][j], m1, y[1][j], m2, y[2][j], 0, 32,
+						 small ? &unused : &ov);
 	}
 	for (j = 0; j < 3; j++) {
 		/* at most three products and an addend, then three more from a
 		 * sum that fits (else ov is set already): no wrap goes unseen */
-		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), q[0], y[0][j]);
+		mot_acc x = mot_acc_mac(trans_start(y[3][j], small), q[0], y[0][j]);
 
 		x = mot_acc_mac(mot_acc_mac(x, q[1], y[1][j]), q[2], y[2][j]);
-		pos[j] = mot_acc_floor_ov(x, 32, &ov);
+		pos[j] = trans_end(x, y[3][j], small, &ov);
 		x = mot_acc_sub(x, mot_acc_mul(p[0], w->m[0][j]));
 		x = mot_acc_sub(x, mot_acc_mul(p[1], w->m[1][j]));
 		x = mot_acc_sub(x, mot_acc_mul(p[2], w->m[2][j]));
-		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+		w->m[3][j] = trans_end(x, y[3][j], small, &ov);
 	}
-	if (ov)
+	if (!small && ov)
 		node_world_sat(w, pos, par, m, p, t, sat);
 }
 
 static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		       const struct mot_mat *restrict par, const struct mot_mat *restrict m,
-		       const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
+		       const mot_q32 p[3], const mot_q32 t[3], bool small, uint32_t *sat)
 {
-	node_world_in(w, pos, par, m, p, t, sat);
+	if (small_kernels && small)
+		node_world_in(w, pos, par, m, p, t, true, sat);
+	else
+		node_world_in(w, pos, par, m, p, t, false, sat);
 }
 
 /* A revolute joint about a tilted axis: its rotation, then node_world()
  * with t = 0. */
 static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-			 const struct mot_mat *restrict par, const struct mot_node *n,
-			 mot_q32 turns, uint32_t *sat)
+			 const struct mot_mat *restrict par, const struct mot_node *n, mot_q32 s,
+			 mot_q32 c, bool small, uint32_t *sat)
 {
 	static const mot_q32 zero[3] = { 0, 0, 0 };
 	struct mot_mat r;
 
-	tilted_rot(&r, n, turns);
-	node_world_in(w, pos, par, &r, n->pivot, zero, sat);
+	tilted_rot(&r, n, s, c);
+	if (small_kernels && small)
+		node_world_in(w, pos, par, &r, n->pivot, zero, true, sat);
+	else
+		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat);
 }
 
 /* M = I (prismatic joints, free nodes without rotation, scale or shear):
@@ -384,49 +472,65 @@ static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 static inline __attribute__((always_inline)) void
 translate_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		   const struct mot_mat *restrict par, const mot_q32 p[3], const mot_q32 t[3],
-		   uint32_t *sat)
+		   bool small, uint32_t *sat)
 {
 	const mot_q32(*y)[3] = par->m;
 	uint64_t ov = 0;
 	unsigned j;
 
 	for (j = 0; j < 3; j++) {
-		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), t[0], y[0][j]);
+		mot_acc x = mot_acc_mac(trans_start(y[3][j], small), t[0], y[0][j]);
 
 		x = mot_acc_mac(mot_acc_mac(x, t[1], y[1][j]), t[2], y[2][j]);
-		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+		w->m[3][j] = trans_end(x, y[3][j], small, &ov);
 		x = mot_acc_mac(mot_acc_mac(x, p[0], y[0][j]), p[1], y[1][j]);
-		pos[j] = mot_acc_floor_ov(mot_acc_mac(x, p[2], y[2][j]), 32, &ov);
+		pos[j] = trans_end(mot_acc_mac(x, p[2], y[2][j]), y[3][j], small, &ov);
 		w->m[0][j] = y[0][j];
 		w->m[1][j] = y[1][j];
 		w->m[2][j] = y[2][j];
 	}
-	if (ov)
+	if (!small && ov)
 		node_world_sat(w, pos, par, &mat_id, p, t, sat);
 }
 
 static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 			    const struct mot_mat *restrict par, const mot_q32 p[3],
-			    const mot_q32 t[3], uint32_t *sat)
+			    const mot_q32 t[3], bool small, uint32_t *sat)
 {
-	translate_world_in(w, pos, par, p, t, sat);
+	if (small_kernels && small)
+		translate_world_in(w, pos, par, p, t, true, sat);
+	else
+		translate_world_in(w, pos, par, p, t, false, sat);
 }
 
 /* A prismatic joint along coordinate axis o by v: t = v e_o, and the two
  * zero products of each column are left out where it is inlined: W_t =
  * P_t + v P_o, a scaled row. */
-static void prismatic_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-			    const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
-			    mot_q32 v, uint32_t *sat)
+static inline __attribute__((always_inline)) void
+prismatic_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
+	     unsigned o, const mot_q32 p[3], mot_q32 v, bool small, uint32_t *sat)
 {
 	const mot_q32 tx[3] = { v, 0, 0 }, ty[3] = { 0, v, 0 }, tz[3] = { 0, 0, v };
 
-	if (o == MOT_AXIS_X)
-		translate_world_in(w, pos, par, p, tx, sat);
+	if (!small_kernels)
+		translate_world_in(w, pos, par, p, o == MOT_AXIS_X ? tx : o == MOT_AXIS_Y ? ty : tz,
+				   small, sat);
+	else if (o == MOT_AXIS_X)
+		translate_world_in(w, pos, par, p, tx, small, sat);
 	else if (o == MOT_AXIS_Y)
-		translate_world_in(w, pos, par, p, ty, sat);
+		translate_world_in(w, pos, par, p, ty, small, sat);
 	else
-		translate_world_in(w, pos, par, p, tz, sat);
+		translate_world_in(w, pos, par, p, tz, small, sat);
+}
+
+static void prismatic_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			    const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
+			    mot_q32 v, bool small, uint32_t *sat)
+{
+	if (small_kernels && small)
+		prismatic_in(w, pos, par, o, p, v, true, sat);
+	else
+		prismatic_in(w, pos, par, o, p, v, false, sat);
 }
 
 /*
@@ -459,50 +563,61 @@ static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
 static inline __attribute__((always_inline)) void
 revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	      const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3], mot_q32 s,
-	      mot_q32 c, uint64_t *ov)
+	      mot_q32 c, bool small, uint64_t *ov)
 {
 	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
 	const mot_q32(*restrict y)[3] = par->m;
 	mot_q32(*restrict x)[3] = w->m;
+	uint64_t unused = 0;
 	unsigned j;
 
 	for (j = 0; j < 3; j++) {
-		x[a][j] = mot_sum2_ov(c, y[a][j], s, y[b][j], 0, 32, ov);
-		x[b][j] = mot_sum2_ov(-s, y[a][j], c, y[b][j], 0, 32, ov);
+		x[a][j] = mot_sum2_ov(c, y[a][j], s, y[b][j], 0, 32, small ? &unused : ov);
+		x[b][j] = mot_sum2_ov(-s, y[a][j], c, y[b][j], 0, 32, small ? &unused : ov);
 		x[o][j] = y[o][j];
 	}
 	for (j = 0; j < 3; j++) {
-		mot_acc u = mot_acc_mac(mot_acc_start(y[3][j], 32), p[a], y[a][j]);
+		mot_acc u = mot_acc_mac(trans_start(y[3][j], small), p[a], y[a][j]);
 
 		u = mot_acc_mac(u, p[b], y[b][j]);
 		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
-		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, p[o], y[o][j]), 32, ov);
+		pos[j] = trans_end(mot_acc_mac(u, p[o], y[o][j]), y[3][j], small, ov);
 		u = mot_acc_sub(u, mot_acc_mul(p[a], x[a][j]));
-		x[3][j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(p[b], x[b][j])), 32, ov);
+		x[3][j] = trans_end(mot_acc_sub(u, mot_acc_mul(p[b], x[b][j])), y[3][j], small, ov);
 	}
 }
 
-static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
-			   mot_q32 turns, uint32_t *sat)
+static inline __attribute__((always_inline)) void
+revolute_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
+	    unsigned o, const mot_q32 p[3], mot_q32 s, mot_q32 c, bool small, uint32_t *sat)
 {
-	mot_q32 s, c;
 	uint64_t ov = 0;
 
-	mot_sincos(turns, &s, &c);
-	if (o == MOT_AXIS_X)
-		revolute_cols(w, pos, par, MOT_AXIS_X, p, s, c, &ov);
+	if (!small_kernels)
+		revolute_cols(w, pos, par, o, p, s, c, small, &ov); /* one copy: less code */
+	else if (o == MOT_AXIS_X)
+		revolute_cols(w, pos, par, MOT_AXIS_X, p, s, c, small, &ov);
 	else if (o == MOT_AXIS_Y)
-		revolute_cols(w, pos, par, MOT_AXIS_Y, p, s, c, &ov);
+		revolute_cols(w, pos, par, MOT_AXIS_Y, p, s, c, small, &ov);
 	else
-		revolute_cols(w, pos, par, MOT_AXIS_Z, p, s, c, &ov);
-	if (ov) {
+		revolute_cols(w, pos, par, MOT_AXIS_Z, p, s, c, small, &ov);
+	if (!small && ov) {
 		struct mot_mat m;
 		static const mot_q32 zero[3] = { 0, 0, 0 };
 
 		axis_rot(&m, o, s, c);
 		node_world_sat(w, pos, par, &m, p, zero, sat);
 	}
+}
+
+static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
+			   mot_q32 s, mot_q32 c, bool small, uint32_t *sat)
+{
+	if (small_kernels && small)
+		revolute_in(w, pos, par, o, p, s, c, true, sat);
+	else
+		revolute_in(w, pos, par, o, p, s, c, false, sat);
 }
 
 /* t = v . axis, the offset of a prismatic joint */
@@ -523,12 +638,11 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 	switch (n->kind) {
 	case MOT_NODE_REVOLUTE:
 		v = joint_value(sc, ev, n, frame, &r);
-		if (n->axis_id == MOT_AXIS_VEC) {
-			tilted_rot(out, n, v);
-		} else {
-			mot_sincos(v, &s, &c);
+		mot_sincos(v, &s, &c);
+		if (n->axis_id == MOT_AXIS_VEC)
+			tilted_rot(out, n, s, c);
+		else
 			axis_rot(out, n->axis_id, s, c);
-		}
 		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
@@ -546,48 +660,89 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 		*rpm = r;
 }
 
+/*
+ * Every node in index order, parents first. With a warm memo (scene.h) a
+ * joint first compares its value with the one its matrix was made with:
+ * equal, it keeps its sine and cosine, and, if its parent did not move
+ * either, its matrix and position in the pose. A free node without a strand
+ * follows its parent alone; one with a strand is made anew. A node of the
+ * small case (above) whose parent's translation and own offset are small
+ * takes the kernels without overflow tests.
+ */
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out)
 {
 	static const mot_q32 zero[3] = { 0, 0, 0 };
+	struct mot_node_memo *memo = ev->memo;
+	const bool warm = ev->memo_world == out->world && out->by == ev && !ev->sat;
 	uint32_t i;
 
 	for (i = 0; i < sc->nnodes; i++) {
 		const struct mot_node *n = &sc->nodes[i];
 		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
+		const bool still = warm && (n->parent < 0 || !memo[n->parent].moved);
+		struct mot_node_memo *m = &memo[i];
 		struct mot_mat *w = &out->world[i], local;
 		mot_q32 *pos = out->pos[i], v = 0, r = 0, t[3];
+		bool small = m->small && below3(par->m[3], SMALL_TRANS);
 
+		m->moved = 1;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
 			v = joint_value(sc, ev, n, frame, &r);
-			if (n->axis_id != MOT_AXIS_VEC) {
-				revolute_world(w, pos, par, n->axis_id, n->pivot, v, &ev->sat);
-			} else {
-				tilted_world(w, pos, par, n, v, &ev->sat);
+			if (!warm || v != m->value) {
+				struct mot_sc p = mot_sincos_pair(v);
+
+				m->value = v;
+				m->s = p.s;
+				m->c = p.c;
+			} else if (still) {
+				m->moved = 0;
+				break;
 			}
+			if (n->axis_id != MOT_AXIS_VEC)
+				revolute_world(w, pos, par, n->axis_id, n->pivot, m->s, m->c, small,
+					       &ev->sat);
+			else
+				tilted_world(w, pos, par, n, m->s, m->c, small, &ev->sat);
 			break;
 		case MOT_NODE_PRISMATIC:
 			v = joint_value(sc, ev, n, frame, &r);
+			if (still && v == m->value) {
+				m->moved = 0;
+				break;
+			}
+			m->value = v;
+			small = small && mot_abs(v) < SMALL_PIVOT;
 			if (n->axis_id != MOT_AXIS_VEC) {
-				prismatic_world(w, pos, par, n->axis_id, n->pivot, v, &ev->sat);
+				prismatic_world(w, pos, par, n->axis_id, n->pivot, v, small, &ev->sat);
 			} else {
 				joint_offset(t, v, n->axis, &ev->sat);
-				translate_world(w, pos, par, n->pivot, t, &ev->sat);
+				translate_world(w, pos, par, n->pivot, t, small, &ev->sat);
 			}
 			break;
 		default:
-			if (n->strand < 0)
-				translate_world(w, pos, par, n->pivot, zero, &ev->sat);
-			else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
-				translate_world(w, pos, par, n->pivot, t, &ev->sat);
-			else
-				node_world(w, pos, par, &local, n->pivot, t, &ev->sat);
+			if (n->strand < 0) {
+				if (still)
+					m->moved = 0;
+				else
+					translate_world(w, pos, par, n->pivot, zero, small, &ev->sat);
+			} else {
+				bool lin = free_linear(&local, t, sc, ev, &sc->free[n->strand], frame);
+
+				small = small && below3(t, SMALL_PIVOT);
+				if (lin)
+					node_world(w, pos, par, &local, n->pivot, t, small, &ev->sat);
+				else
+					translate_world(w, pos, par, n->pivot, t, small, &ev->sat);
+			}
 			break;
 		}
 		out->value[i] = v;
 		out->rpm[i] = r;
 	}
+	ev->memo_world = out->world;
+	out->by = ev;
 	if (sc->camera)
 		mot_camera_eval(&out->cam, sc->camera, sc->curves, ev->cursors, frame, &ev->sat);
 	if (sc->ncycles) {

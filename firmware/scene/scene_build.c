@@ -409,16 +409,22 @@ int scene_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
 	uint32_t n = mot_eval_cursor_count(sc);
 
 	ev->cursors = calloc(n ? n : 1, sizeof(*ev->cursors));
-	if (!ev->cursors)
+	ev->memo = calloc(sc->nnodes ? sc->nnodes : 1, sizeof(*ev->memo));
+	if (!ev->cursors || !ev->memo) {
+		scene_eval_free(ev);
 		return -ENOMEM;
+	}
 	ev->ncursors = n;
+	ev->nmemo = mot_eval_memo_count(sc);
 	return mot_eval_reset(ev, sc);
 }
 
 void scene_eval_free(struct mot_eval *ev)
 {
 	free(ev->cursors);
+	free(ev->memo);
 	ev->cursors = NULL;
+	ev->memo = NULL;
 }
 
 int scene_pose_new(struct mot_pose *p, const struct mot_scene *sc)
