@@ -100,42 +100,82 @@ static __attribute__((noinline)) mot_q32 eval_any(const struct mot_curve *c,
 	return eval(c, cur, frame, &iters, sat);
 }
 
-/*
- * Playback's common case first, kept small: the held ends, or a piece of an
- * interpolating curve that the cursor holds, or the next one.
- * It is eval()'s own path for that case, step for step, so the bits are
- * the same; everything else goes the whole way.
- */
-mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
-		       uint32_t *sat)
+/* The piece of f that the cursor holds, or the next one (moving the
+ * cursor), for an interpolating curve and span_f0 < f < span_f1; NULL for
+ * any other: the way through eval() finds it. */
+static inline __attribute__((always_inline)) const struct mot_curve_seg *
+held_piece(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
 {
-	mot_q32 f = frame;
-	uint32_t j;
+	uint32_t j = cur->seg;
 
-	if (!c || !c->plain || !cur)
-		return eval_any(c, cur, frame, sat);
+	if (j >= c->nseg || f < c->seg[j].f0)
+		return NULL;
+	if (f >= c->seg[j].f1) {
+		/* f < span_f1, the last piece's f1: j + 1 exists */
+		if (f >= c->seg[j + 1].f1)
+			return NULL;
+		cur->seg = ++j;
+	}
+	return &c->seg[j];
+}
+
+/* mot_curve_eval() for a curve with a strand-wide ease, and for an eased
+ * piece: out of the plain path's way, so that it needs no saved register
+ * (the calls below would make it save some). */
+static __attribute__((noinline)) mot_q32 eval_warped(const struct mot_curve *c,
+						     struct mot_cursor *cur, mot_q32 frame,
+						     uint32_t *sat)
+{
+	const struct mot_curve_seg *s;
+	mot_q32 f = span_warp(c, frame);
+
 	if (f <= c->span_f0)
 		return c->keys[0].value;
 	if (f >= c->span_f1)
 		return c->keys[c->nkeys - 1].value;
-	if (c->span_ease) {
-		f = span_warp(c, f);
-		if (f <= c->span_f0)
-			return c->keys[0].value;
-		if (f >= c->span_f1)
-			return c->keys[c->nkeys - 1].value;
-	}
+	s = held_piece(c, cur, f);
 	/* the way back is with the frame as given: eval() warps it again */
-	j = cur->seg;
-	if (j >= c->nseg || f < c->seg[j].f0)
+	return s ? piece_value(c, s, f, sat) : eval_any(c, cur, frame, sat);
+}
+
+static __attribute__((noinline)) mot_q32 eval_eased(const struct mot_curve *c,
+						    const struct mot_curve_seg *s, mot_q32 f,
+						    uint32_t *sat)
+{
+	return piece_value(c, s, f, sat);
+}
+
+/*
+ * Playback's common case first, kept small: the held ends, or a piece of an
+ * interpolating curve that the cursor holds, or the next one. It is
+ * eval()'s own path for that case, step for step, so the bits are the
+ * same; everything else goes the whole way.
+ */
+mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+		       uint32_t *sat)
+{
+	const struct mot_curve_seg *s;
+	int64_t u;
+
+	if (!c || !c->plain || !cur)
 		return eval_any(c, cur, frame, sat);
-	if (f >= c->seg[j].f1) {
-		/* f < span_f1, the last piece's f1: j + 1 exists */
-		if (f >= c->seg[j + 1].f1)
-			return eval_any(c, cur, frame, sat);
-		cur->seg = ++j;
-	}
-	return piece_value(c, &c->seg[j], f, sat);
+	if (frame <= c->span_f0)
+		return c->keys[0].value;
+	if (frame >= c->span_f1)
+		return c->keys[c->nkeys - 1].value;
+	if (c->span_ease)
+		return eval_warped(c, cur, frame, sat);
+	s = held_piece(c, cur, frame);
+	if (!s)
+		return eval_any(c, cur, frame, sat);
+	if (c->kind == MOT_INTERP_STEP)
+		return s->vref;
+	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
+		return eval_eased(c, s, frame, sat);
+	u = frac62(frame - s->f0, &s->inv_w);
+	if (c->kind == MOT_INTERP_LINEAR)
+		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
+	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 }
 
 int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)
@@ -144,6 +184,71 @@ int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)
 
 	eval(c, NULL, frame, &iters, NULL);
 	return iters;
+}
+
+/* ---- bounds ------------------------------------------------------------------------ */
+
+static uint64_t add_sat(uint64_t a, uint64_t b)
+{
+	return a + b < a ? UINT64_MAX : a + b;
+}
+
+static uint64_t mag(int64_t x)
+{
+	return x < 0 ? 0 - (uint64_t)x : (uint64_t)x;
+}
+
+/* |ref + round(P(u) / 2^sh)| for u in [0, 1] and P with coefficients c[0..n)
+ * evaluated with `rounds` roundings (Horner's rule, curve_priv.h: the
+ * partial sums stay within sum |c| + rounds). */
+static uint64_t poly_bound(mot_q32 ref, const int64_t *c, uint32_t n, uint32_t rounds, int sh)
+{
+	uint64_t s = rounds;
+	uint32_t p;
+
+	for (p = 0; p < n; p++)
+		s = add_sat(s, mag(c[p]));
+	if (sh > 0)
+		s = sh >= 64 ? 1 : (s >> sh) + 1;
+	else if (sh < 0)
+		s = -sh >= 64 || s > UINT64_MAX >> -sh ? UINT64_MAX : s << -sh;
+	return add_sat(add_sat(mag(ref), s), 1);
+}
+
+uint64_t mot_curve_bound(const struct mot_curve *c)
+{
+	uint64_t b = 0, off = 0;
+	uint32_t i, m;
+
+	if (!c || c->nkeys == 0)
+		return 0;
+	for (i = 0; i < c->nkeys; i++) {
+		uint64_t v = mag(c->keys[i].value), d = mag(c->keys[i].value - c->keys[0].value);
+
+		b = v > b ? v : b;
+		off = d > off ? d : off;
+	}
+	if (c->nkeys == 1)
+		return b;
+	if (c->kind != MOT_INTERP_BEZIER) {
+		for (i = 0; i < c->nseg; i++) {
+			uint64_t p = poly_bound(c->seg[i].vref, c->seg[i].c, 4, 4, c->seg[i].vsh);
+
+			b = p > b ? p : b;
+		}
+		return b;
+	}
+	m = c->nkeys - 1;
+	if (c->power) {
+		/* the value's coefficients, slots m .. 2m - 1 (power_value) */
+		int64_t a[MOT_BEZIER_MAX_KEYS];
+
+		for (i = 0; i < m; i++)
+			a[i] = *power_slot(c, m + i);
+		return add_sat(b, poly_bound(c->seg[0].vref, a, m, m, c->seg[0].vsh));
+	}
+	/* de Casteljau: convex combinations of the offsets, a rounding a level */
+	return add_sat(add_sat(b, off), poly_bound(0, NULL, 0, c->nkeys, c->seg[0].vsh));
 }
 
 /* ---- preparation ------------------------------------------------------------------- */

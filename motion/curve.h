@@ -190,6 +190,15 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
 int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_cursor *cur,
 		       mot_q32 frame, uint32_t *sat);
 
+/*
+ * A bound on |mot_curve_eval(c, ..)| at any frame, in raw Q32.32 units
+ * (UINT64_MAX when it would not fit; 0 for a curve that failed init): the
+ * keys' values, and for every piece its reference value and the sum of its
+ * coefficients' magnitudes, with a unit for each rounding. The curve stays
+ * inside it whatever its ease or overshoot. Init only.
+ */
+uint64_t mot_curve_bound(const struct mot_curve *c);
+
 /* Diagnostics for tests and benchmarks: the Newton iterations that
  * mot_curve_eval() takes at this frame (0 where it solves nothing: the
  * interpolating kinds, the held ends). Real-time safe. */

@@ -110,25 +110,74 @@ int mot_scene_validate(const struct mot_scene *sc)
 	return MOT_OK;
 }
 
-/* The longest chain the bounds of the small case hold for (scene.c's
- * world kernels): 2^20 levels of rotations grow P_lin's norm by less than
+/* The small case (see node_world below): the longest chain its bounds
+ * hold for (2^20 levels of rotations grow P_lin's norm by less than
  * e^(2^20 2^-23) even with the least exact axis mot_scene_validate()
- * passes. */
+ * passes), the largest offset (2^18 units) and parent translation (2^29
+ * units). */
 #define SMALL_DEPTH ((uint32_t)1 << 20)
-#define SMALL_PIVOT ((mot_q32)1 << 50)
+#define SMALL_OFFSET ((uint64_t)1 << 50)
+#define SMALL_TRANS ((uint64_t)1 << 61)
+#define SMALL_LIN_SHIFT 8 /* |P_lin| entries below 2^8 */
 
-/* A node whose linear part only rotates: a joint, a free node without
- * scale or shear channels. */
-static bool rotates_only(const struct mot_scene *sc, const struct mot_node *n)
+static uint64_t add_sat(uint64_t a, uint64_t b)
 {
+	return a + b < a ? UINT64_MAX : a + b;
+}
+
+/* The largest |t| component of a node over its whole timeline (raw), 0 for
+ * a revolute joint; UINT64_MAX for a free node that scales or shears. */
+static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *n)
+{
+	uint64_t b = 0;
 	uint32_t k;
 
-	if (n->kind != MOT_NODE_FREE || n->strand < 0)
-		return true;
-	for (k = MOT_FREE_SX; k < MOT_FREE_NCHANNELS; k++)
-		if (sc->free[n->strand].channel[k] >= 0)
-			return false;
-	return true;
+	switch (n->kind) {
+	case MOT_NODE_REVOLUTE:
+		return 0;
+	case MOT_NODE_PRISMATIC:
+		/* |v a_k| rounded, |a_k| <= 1 + 2^-25: one unit more than 2 |v| */
+		b = n->curve >= 0 ? mot_curve_bound(&sc->curves[n->curve]) : (uint64_t)mot_abs(n->rest);
+		return add_sat(add_sat(b, b), 1);
+	default:
+		if (n->strand < 0)
+			return 0;
+		for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+			int32_t c = sc->free[n->strand].channel[k];
+			uint64_t v = c >= 0 ? mot_curve_bound(&sc->curves[c]) : 0;
+
+			if (k >= MOT_FREE_SX && c >= 0)
+				return UINT64_MAX;
+			b = k < MOT_FREE_SX && v > b ? v : b;
+		}
+		return b;
+	}
+}
+
+/*
+ * What the memo knows of a node before any evaluation: whether it is of the
+ * small case, and a bound on its translation for its children. Under a
+ * parent whose world translation is below B, with P_lin below 2^8: pos
+ * below B + (|p|_1 + |t|_1) 2^8, W_t below that + |p|_1 2^8, raw.
+ */
+static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
+			 const struct mot_node *n, const struct mot_node_memo *up)
+{
+	uint64_t t = offset_bound(sc, n), p1 = 0, bt;
+	uint32_t chain = up ? up->chain : 1;
+	bool off = t < SMALL_OFFSET;
+	uint32_t k;
+
+	for (k = 0; k < 3; k++) {
+		off = off && (uint64_t)mot_abs(n->pivot[k]) < SMALL_OFFSET;
+		p1 = add_sat(p1, (uint64_t)mot_abs(n->pivot[k]));
+	}
+	m->chain = chain && chain <= SMALL_DEPTH && t != UINT64_MAX ? chain + 1 : 0;
+	bt = up ? up->bound : 0;
+	m->small = m->chain && off && bt < SMALL_TRANS;
+	m->bound = UINT64_MAX;
+	if (m->small) /* p, t below 2^50: (2 |p|_1 + |t|_1) 2^8 < 2^62, no wrap */
+		m->bound = bt + ((2 * p1 + 3 * t) << SMALL_LIN_SHIFT) + 2;
 }
 
 int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
@@ -144,15 +193,10 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 	for (i = 0; i < sc->nnodes; i++) {
 		const struct mot_node *nd = &sc->nodes[i];
 		struct mot_node_memo *m = &ev->memo[i];
-		uint32_t up = nd->parent >= 0 ? ev->memo[nd->parent].chain : 1;
-		uint32_t k;
 
 		m->value = m->s = m->c = 0;
 		m->moved = 1;
-		m->chain = up && up <= SMALL_DEPTH && rotates_only(sc, nd) ? up + 1 : 0;
-		m->small = m->chain != 0;
-		for (k = 0; k < 3; k++)
-			m->small = m->small && mot_abs(nd->pivot[k]) < SMALL_PIVOT;
+		memo_prepare(m, sc, nd, nd->parent >= 0 ? &ev->memo[nd->parent] : NULL);
 	}
 	ev->sat = 0;
 	ev->memo_world = NULL;
@@ -325,31 +369,23 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  *
  * Known bounds (the small case). Most nodes are known before the products
  * to need no overflow test at all. Under at most 2^20 parents that only
- * rotate (no scale or shear channel up the chain; mot_eval_reset() marks
- * them, struct mot_node_memo's small) every entry of P_lin stays below 2^8
- * in magnitude: a rotation, rounded, grows P_lin's norm by a factor below
- * 1 + 2^-23 a level, even with the least exact axis mot_scene_validate()
- * lets through. With the node's pivot and translation below 2^18 units and
- * P_t below 2^29 units (tested per node, one test each) every sum stays
- * below 2^94 and every result below 2^63. The kernels below then drop the
- * tests, and P_t, whose share of each sum is a whole number of units of
- * the result, is added after the rounding instead of before: the same bits,
- * a fifth fewer instructions.
+ * rotate (no scale or shear channel up the chain) every entry of P_lin
+ * stays below 2^8 in magnitude: a rotation, rounded, grows P_lin's norm by a
+ * factor below 1 + 2^-23 a level, even with the least exact axis
+ * mot_scene_validate() lets through. With the node's pivot and translation
+ * below 2^18 units over the whole timeline (the curves' bounds) and P_t
+ * below 2^29 units (its parent's bound, summed down the chain), every sum
+ * stays below 2^94 and every result below 2^63. mot_eval_reset() works that
+ * out once per node (memo_prepare). The kernels below then drop the tests,
+ * and P_t, whose share of each sum is a whole number of units of the
+ * result, is added after the rounding instead of before: the same bits, a
+ * fifth fewer instructions.
  */
-#define SMALL_TRANS ((uint64_t)1 << 61)
-
 /* Only where 128-bit integers are the compiler's: on the portable two-word
  * path a copy of every kernel costs more code than its tests cost time (a
  * Cortex-M4), and it is the one fix.h path the other builds check it
  * against (make check-cross). */
 static const bool small_kernels = MOT_HAVE_INT128;
-
-/* |x| < lim for the three components, lim a power of two: one test */
-static inline bool below3(const mot_q32 x[3], uint64_t lim)
-{
-	return (((uint64_t)x[0] + lim) | ((uint64_t)x[1] + lim) | ((uint64_t)x[2] + lim)) <
-	       2 * lim;
-}
 
 static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
 			   const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],
@@ -684,7 +720,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		struct mot_node_memo *m = &memo[i];
 		struct mot_mat *w = &out->world[i], local;
 		mot_q32 *pos = out->pos[i], v = 0, r = 0, t[3];
-		bool small = m->small && below3(par->m[3], SMALL_TRANS);
+		const bool small = m->small;
 
 		m->moved = 1;
 		switch (n->kind) {
@@ -713,7 +749,6 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 				break;
 			}
 			m->value = v;
-			small = small && mot_abs(v) < SMALL_PIVOT;
 			if (n->axis_id != MOT_AXIS_VEC) {
 				prismatic_world(w, pos, par, n->axis_id, n->pivot, v, small, &ev->sat);
 			} else {
@@ -728,10 +763,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 				else
 					translate_world(w, pos, par, n->pivot, zero, small, &ev->sat);
 			} else {
-				bool lin = free_linear(&local, t, sc, ev, &sc->free[n->strand], frame);
-
-				small = small && below3(t, SMALL_PIVOT);
-				if (lin)
+				if (free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
 					node_world(w, pos, par, &local, n->pivot, t, small, &ev->sat);
 				else
 					translate_world(w, pos, par, n->pivot, t, small, &ev->sat);

@@ -95,8 +95,10 @@ struct mot_node_memo {
 	mot_q32 value;  /* the joint value of the node's matrix */
 	mot_q32 s, c;   /* revolute joints: its sine and cosine */
 	uint32_t moved; /* the matrix was made anew in the last evaluation */
-	uint32_t small; /* set by mot_eval_reset(): its sums are known to fit (scene.c) */
+	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
+	uint32_t small; /* every sum of the node's matrix is known to fit */
 	uint32_t chain; /* 1 + depth under parents that only rotate, 0 else */
+	uint64_t bound; /* bound on |W_t| (raw), UINT64_MAX: none */
 };
 
 /* Mutable evaluation state. cursors has mot_eval_cursor_count() entries,

@@ -16,6 +16,7 @@
 #define mot_curve_eval cvp_curve_eval_
 #define mot_curve_integral cvp_curve_integral_
 #define mot_curve_newton_iterations cvp_curve_newton_iterations_
+#define mot_curve_bound cvp_curve_bound_
 /* what the curve files share (motion/curve_priv.h) */
 #define mot_cv_acc_sar cvp_cv_acc_sar_
 #define mot_cv_acc_bitlen cvp_cv_acc_bitlen_
