@@ -34,6 +34,8 @@ piece_value(const struct mot_curve *c, const struct mot_curve_seg *s, mot_q32 f,
 
 	if (c->kind == MOT_INTERP_STEP)
 		return s->vref;
+	if (s->ush >= 0) /* a hermite piece in s', without ease (curve.h) */
+		return value_of(s->vref, poly_eval(s->c, (f - s->f0) << s->ush), s->vsh, sat);
 	u = frac62(f - s->f0, &s->inv_w);
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
 		u = mot_ease_apply62(&s->ease, u);
@@ -170,6 +172,8 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
 		return eval_any(c, cur, frame, sat);
 	if (c->kind == MOT_INTERP_STEP)
 		return s->vref;
+	if (s->ush >= 0)
+		return value_of(s->vref, poly_eval(s->c, (frame - s->f0) << s->ush), s->vsh, sat);
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
 		return eval_eased(c, s, frame, sat);
 	u = frac62(frame - s->f0, &s->inv_w);
@@ -366,6 +370,8 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 		s->fc[0] = s->fc[1] = s->fc[2] = s->fc[3] = 0;
 		s->vsh = s->fsh = 0;
 		s->start = START_CHORD;
+		s->ush = -1;
+		s->plain = 0;
 		s->inv_w.m = s->inv_h.m = 0;
 		s->inv_w.shift = s->inv_h.shift = 32;
 		s->area = mot_acc_zero();
@@ -401,6 +407,12 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 			goto fail;
 	}
 	c->plain = kind <= MOT_INTERP_HERMITE && nkeys > 1;
+	for (i = 0; c->plain && !c->span_ease && i + 1 < nkeys; i++) {
+		struct mot_curve_seg *s = &c->seg[i];
+
+		s->plain = mot_ease_is_identity(&s->ease) && s->vsh >= 1 && s->vsh <= 62 &&
+			   (kind != MOT_INTERP_HERMITE || s->ush >= 0);
+	}
 	return MOT_OK;
 fail:
 	c->nkeys = 0;

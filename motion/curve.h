@@ -11,7 +11,10 @@
  * and a few products.
  *
  * Interpolating kinds (step, linear, hermite) have one segment per pair of
- * keys, parameter s = (f - f(i)) / h. The approximating kinds (bspline,
+ * keys, parameter s = (f - f(i)) / h; a hermite piece without ease is kept
+ * in s' = (f - f(i)) / 2^e instead, 2^e the power of two above h, whose
+ * Q2.62 value is a shift of the frame (its coefficients prepared for it,
+ * exactly): no product to find the parameter. The approximating kinds (bspline,
  * beta, bezier) are curves on the 2-D control points (frame, value): the
  * value at frame f is taken where the curve's frame coordinate equals f,
  * found by a safeguarded Newton iteration whose starting point depends only
@@ -109,6 +112,10 @@ struct mot_curve_seg {
 	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
 	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
 	uint8_t start;           /* Newton start rule (curve_solve.c) */
+	int8_t ush;              /* hermite without ease: c[], ic[] in u' = (f - f0) 2^ush
+				  * (Q2.62), a shift; -1: in u = (f - f0) / (f1 - f0) */
+	uint8_t plain;           /* step, linear or hermite without any ease, vsh in
+				  * [1, 62]: scene.c's inline path may take it */
 	union {
 		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */

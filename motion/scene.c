@@ -1,10 +1,18 @@
 /* SPDX-License-Identifier: MIT */
 /* scene.c - validating and evaluating a scene (see scene.h). */
+#include "curve_priv.h"
 #include "decomp.h"
 #include "scene.h"
 #include "trig.h"
 
 #define ONE MOT_Q32_ONE
+
+/* The inline paths below (a joint's curve, the kernels of the small case)
+ * only where 128-bit integers are the compiler's: on the portable two-word
+ * path their copies cost more code than they save time (a Cortex-M4), and
+ * it is the one fix.h path the other builds check them against (make
+ * check-cross). */
+static const bool small_kernels = MOT_HAVE_INT128;
 
 static const struct mot_mat mat_id = {
 	{ { ONE, 0, 0 }, { 0, ONE, 0 }, { 0, 0, ONE }, { 0, 0, 0 } },
@@ -217,6 +225,38 @@ static __attribute__((noinline)) mot_q32 spin_value(const struct mot_scene *sc,
 			   &ev->sat);
 }
 
+/*
+ * A joint's curve at a frame: mot_curve_eval() with its plainest case
+ * inline (curve_priv.h's arithmetic): a plain piece (curve.h) that the
+ * cursor holds, step for step as curve.c's piece_value(). The rest, and a
+ * value that would take value_of()'s wide path, go through
+ * mot_curve_eval(): the same bits either way.
+ */
+static inline __attribute__((always_inline)) mot_q32
+curve_at(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f, uint32_t *sat)
+{
+	const uint32_t j = cur->seg;
+
+	if (small_kernels && j < c->nseg) {
+		const struct mot_curve_seg *s = &c->seg[j];
+		int64_t p, q;
+		mot_q32 r;
+
+		if (s->plain && f >= s->f0 && f < s->f1) {
+			if (c->kind == MOT_INTERP_STEP)
+				return s->vref;
+			if (c->kind == MOT_INTERP_LINEAR)
+				p = mul62(s->c[1], frac62(f - s->f0, &s->inv_w));
+			else
+				p = poly_eval(s->c, (f - s->f0) << s->ush);
+			if (!__builtin_add_overflow(p, (int64_t)1 << (s->vsh - 1), &q) &&
+			    !__builtin_add_overflow(s->vref, q >> s->vsh, &r))
+				return r;
+		}
+	}
+	return mot_curve_eval(c, cur, f, sat);
+}
+
 /* The joint value of a joint node, and its spin speed. */
 static inline __attribute__((always_inline)) mot_q32
 joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_node *n,
@@ -224,8 +264,7 @@ joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_no
 {
 	*rpm = 0;
 	if (n->curve >= 0)
-		return mot_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], frame,
-				      &ev->sat);
+		return curve_at(&sc->curves[n->curve], &ev->cursors[n->curve], frame, &ev->sat);
 	if (n->spin >= 0)
 		return spin_value(sc, ev, n, frame, rpm);
 	return n->rest;
@@ -381,11 +420,6 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  * result, is added after the rounding instead of before: the same bits, a
  * fifth fewer instructions.
  */
-/* Only where 128-bit integers are the compiler's: on the portable two-word
- * path a copy of every kernel costs more code than its tests cost time (a
- * Cortex-M4), and it is the one fix.h path the other builds check it
- * against (make check-cross). */
-static const bool small_kernels = MOT_HAVE_INT128;
 
 static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
 			   const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],

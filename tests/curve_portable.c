@@ -23,6 +23,8 @@
 #define mot_cv_acc_round_shift cvp_cv_acc_round_shift_
 #define mot_cv_acc_div_round cvp_cv_acc_div_round_
 #define mot_cv_poly_prep cvp_cv_poly_prep_
+#define mot_cv_poly_prep_pow cvp_cv_poly_prep_pow_
+#define mot_cv_div_pow_round cvp_cv_div_pow_round_
 #define mot_cv_locate cvp_cv_locate_
 #define mot_cv_prep_interp cvp_cv_prep_interp_
 #define mot_cv_prep_spline cvp_cv_prep_spline_
