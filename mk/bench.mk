@@ -13,9 +13,10 @@
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench
 
-bench: $(BENCH_PROGS) $(BUILD)/strand | $(BUILD)/.deps-bench-play
+bench: $(BENCH_PROGS) $(BUILD)/strand $(BUILD)/bench/sleep_tick | $(BUILD)/.deps-bench-play
 	$(Q)for p in $(BENCH_PROGS); do $$p || exit 1; done
-	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play \
+		$(BUILD)/bench/sleep_tick
 
 bench-fixmath: $(BUILD)/bench/fixmath_chain
 	$(Q)$<
@@ -61,12 +62,18 @@ $(BUILD)/bench/motion_bench: $(MB_OBJ) $(MB_LINK)
 # ---- the play loop ------------------------------------------------------------------
 # Its wake-up latency on the wall clock against cyclictest (Debian's
 # rt-tests), taking turns in 3 s rounds for 30 s each at 1 kHz and the same
-# priority, and the CPU time per tick of the robot arm on the simulated rig.
-DEB_BENCH_PLAY := rt-tests
-$(BUILD)/.deps-bench-play: mk/deps.sh $(BUILD)/.deps-build
+# priority, and the CPU time per tick of the robot arm on the simulated rig
+# beside that of a thread that only sleeps (bench/sleep_tick.c).
+# BENCH_PLAY_STRESS=2 runs it all again under stress-ng (Debian's).
+DEB_BENCH_PLAY := rt-tests stress-ng
+$(BUILD)/.deps-bench-play: mk/deps.sh mk/bench.mk $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_BENCH_PLAY) && touch $@
-bench-play: $(BUILD)/strand | $(BUILD)/.deps-bench-play
-	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play
+$(BUILD)/bench/sleep_tick: bench/sleep_tick.c | $(BUILD)/.deps-build
+	@mkdir -p $(@D)
+	$(Q)$(CC) -std=gnu11 -O2 $(WARN) -Werror $< -o $@
+bench-play: $(BUILD)/strand $(BUILD)/bench/sleep_tick | $(BUILD)/.deps-bench-play
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play \
+		$(BUILD)/bench/sleep_tick
 
 # ---- instruction counts ------------------------------------------------------------
 # The scenes of scene_bench.c played once under callgrind, which counts only
