@@ -346,27 +346,36 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
  * quaternion route costs a half-angle sincos, three roundings of the
  * quaternion and fifteen products.
  */
+/* Row k of tilted_rot()'s matrix and the entries (j, l), (l, j) that pair
+ * with it, (k, j, l) = (k, k+1, k+2) mod 3 as constants where inlined. */
+static inline __attribute__((always_inline)) void tilted_entries(struct mot_mat *r,
+								 const struct mot_node *n,
+								 mot_q32 s, mot_q32 omc,
+								 unsigned k, unsigned j,
+								 unsigned l)
+{
+	uint64_t ov = 0; /* terms below 2^96: never set */
+	/* a_k in Q2.62, exactly (|a_k| <= 1 + 2^-25, validated) */
+	int64_t ak = (int64_t)((uint64_t)n->axis[k] << 30);
+	mot_acc x = mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[k]);
+	mot_acc y = mot_acc_mul(s, ak);
+
+	r->m[k][k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
+						  mot_acc_mul(omc, n->rot_sq[k])),
+				      62, &ov);
+	r->m[j][l] = mot_acc_floor_ov(mot_acc_add(x, y), 62, &ov);
+	r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(x, y), 62, &ov);
+}
+
 static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 							     const struct mot_node *n, mot_q32 s,
 							     mot_q32 c)
 {
 	mot_q32 omc = ONE - c; /* exact, in [0, 2] */
-	uint64_t ov = 0;       /* terms below 2^96: never set */
-	unsigned k;
 
-	for (k = 0; k < 3; k++) {
-		unsigned j = (k + 1) % 3, l = (k + 2) % 3;
-		/* a_k in Q2.62, exactly (|a_k| <= 1 + 2^-25, validated) */
-		int64_t ak = (int64_t)((uint64_t)n->axis[k] << 30);
-		mot_acc x = mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[k]);
-		mot_acc y = mot_acc_mul(s, ak);
-
-		r->m[k][k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
-							  mot_acc_mul(omc, n->rot_sq[k])),
-					      62, &ov);
-		r->m[j][l] = mot_acc_floor_ov(mot_acc_add(x, y), 62, &ov);
-		r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(x, y), 62, &ov);
-	}
+	tilted_entries(r, n, s, omc, 0, 1, 2);
+	tilted_entries(r, n, s, omc, 1, 2, 0);
+	tilted_entries(r, n, s, omc, 2, 0, 1);
 	r->m[3][0] = r->m[3][1] = r->m[3][2] = 0;
 }
 
@@ -743,17 +752,18 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		    struct mot_pose *out)
 {
 	static const mot_q32 zero[3] = { 0, 0, 0 };
-	struct mot_node_memo *memo = ev->memo;
+	struct mot_node_memo *memo = ev->memo, *m = memo;
 	const bool warm = ev->memo_world == out->world && out->by == ev && !ev->sat;
+	const struct mot_node *n = sc->nodes, *end = n + sc->nnodes;
+	struct mot_mat *w = out->world;
+	mot_q32(*pos)[3] = out->pos, *val = out->value, *rpm = out->rpm;
 	uint32_t i;
 
-	for (i = 0; i < sc->nnodes; i++) {
-		const struct mot_node *n = &sc->nodes[i];
+	for (; n < end; n++, m++, w++, pos++, val++, rpm++) {
 		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
 		const bool still = warm && (n->parent < 0 || !memo[n->parent].moved);
-		struct mot_node_memo *m = &memo[i];
-		struct mot_mat *w = &out->world[i], local;
-		mot_q32 *pos = out->pos[i], v = 0, r = 0, t[3];
+		struct mot_mat local;
+		mot_q32 v = 0, r = 0, t[3];
 		const bool small = m->small;
 
 		m->moved = 1;
@@ -771,10 +781,10 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 				break;
 			}
 			if (n->axis_id != MOT_AXIS_VEC)
-				revolute_world(w, pos, par, n->axis_id, n->pivot, m->s, m->c, small,
+				revolute_world(w, *pos, par, n->axis_id, n->pivot, m->s, m->c, small,
 					       &ev->sat);
 			else
-				tilted_world(w, pos, par, n, m->s, m->c, small, &ev->sat);
+				tilted_world(w, *pos, par, n, m->s, m->c, small, &ev->sat);
 			break;
 		case MOT_NODE_PRISMATIC:
 			v = joint_value(sc, ev, n, frame, &r);
@@ -784,10 +794,10 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			}
 			m->value = v;
 			if (n->axis_id != MOT_AXIS_VEC) {
-				prismatic_world(w, pos, par, n->axis_id, n->pivot, v, small, &ev->sat);
+				prismatic_world(w, *pos, par, n->axis_id, n->pivot, v, small, &ev->sat);
 			} else {
 				joint_offset(t, v, n->axis, &ev->sat);
-				translate_world(w, pos, par, n->pivot, t, small, &ev->sat);
+				translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
 			}
 			break;
 		default:
@@ -795,17 +805,17 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 				if (still)
 					m->moved = 0;
 				else
-					translate_world(w, pos, par, n->pivot, zero, small, &ev->sat);
+					translate_world(w, *pos, par, n->pivot, zero, small, &ev->sat);
 			} else {
 				if (free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
-					node_world(w, pos, par, &local, n->pivot, t, small, &ev->sat);
+					node_world(w, *pos, par, &local, n->pivot, t, small, &ev->sat);
 				else
-					translate_world(w, pos, par, n->pivot, t, small, &ev->sat);
+					translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
 			}
 			break;
 		}
-		out->value[i] = v;
-		out->rpm[i] = r;
+		*val = v;
+		*rpm = r;
 	}
 	ev->memo_world = out->world;
 	out->by = ev;
