@@ -453,7 +453,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			goto out;
 		}
 		rc = STRAND_EXIT_INTERNAL;
-		if (rig_auto_build(&ra, &sf.desc, &src.s)) {
+		if (rig_auto_build(&ra, &sf.desc, &src.s, c.o.loop.from)) {
 			fprintf(err, "strand play: out of memory\n");
 			goto out;
 		}

@@ -240,7 +240,9 @@ struct loop;
 
 /* [init] Prepare a run in *out: everything the loop touches is allocated
  * here, in one block, and the rig (started) is read for where it stands.
- * 0, or a negative errno with a message (*out is NULL then). */
+ * 0, or a negative errno with a message (*out is NULL then): -EINVAL for
+ * options that contradict the scene, -EDOM for an output that stands
+ * outside its position limits, -ERANGE for a run it cannot plan. */
 int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	      struct play_source *src, struct hal_clock *clk, struct hal_ring *status,
 	      char *err, size_t errsize);

@@ -129,6 +129,8 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, &p->status, err, errsize);
 	if (rc == -EINVAL)
 		p->failed_at = PLAY_STAGE_OPTIONS; /* --from after --to, and the like */
+	if (rc == -EDOM)
+		p->failed_at = PLAY_STAGE_START; /* an output stands outside its limits */
 	if (!rc)
 		rc = given_up(p, err, errsize);
 	if (rc)
