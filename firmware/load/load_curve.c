@@ -122,3 +122,18 @@ int ld_curve_check(struct ld *l, const struct sd_curve *c, const struct sf_curve
 				  c->ease_in, c->ease_out, span);
 	return 0;
 }
+
+int ld_tangent_check(struct ld *l, const struct sd_curve *c, const struct ld_mark *marks,
+		     const char *field)
+{
+	uint32_t i;
+
+	if (c->interp == MOT_INTERP_HERMITE)
+		return 0;
+	for (i = 0; i < c->nkeys; i++)
+		if (c->keys[i].tan_set)
+			return ld_fail_at(l, marks[i], -EINVAL,
+					  "'%s' is a tangent, which only a hermite curve takes (this one is '%s')",
+					  field, interp_names[c->interp]);
+	return 0;
+}

@@ -183,8 +183,9 @@ int ld_strands(struct ld *l, yaml_node_t *n);    /* load_strand.c */
 /* Fields of a strand key of any kind; which ones a node accepts depends on
  * its kind (load_strand.c). */
 enum {
-	K_FRAME, K_EASE_IN, K_EASE_OUT, K_ANGLE, K_RPM, K_POSITION,
-	K_TRANSLATE, K_ROTATE, K_QUAT, K_SCALE, K_SHEAR, K_MATRIX, K_COUNT
+	K_FRAME, K_EASE_IN, K_EASE_OUT, K_ANGLE, K_RPM, K_POSITION, K_IN, K_OUT,
+	K_TRANSLATE, K_ROTATE, K_QUAT, K_SCALE, K_SHEAR, K_MATRIX,
+	K_TRANSLATE_IN, K_TRANSLATE_OUT, K_SCALE_IN, K_SCALE_OUT, K_QUAT_IN, K_QUAT_OUT, K_COUNT
 };
 extern const char *const ld_key_fields[];
 
@@ -195,8 +196,15 @@ int ld_strand_key(struct ld *l, uint32_t node, yaml_node_t *map, yaml_node_t **v
 		  const struct sd_key *prev, struct sd_key *out);
 
 /* The keys of a free node's strand (load_free.c). */
-int ld_free_strand(struct ld *l, uint32_t node, yaml_node_t *interp, yaml_node_t *ease,
-		   yaml_node_t *beta, yaml_node_t *rotation, yaml_node_t *keys);
+struct ld_free_opts {
+	yaml_node_t *interp, *ease, *beta, *rotation, *compact, *keys;
+};
+int ld_free_strand(struct ld *l, uint32_t node, const struct ld_free_opts *o);
+
+/* A key's explicit tangent (tan_set) on a curve that is not hermite: the
+ * error at the key (load_curve.c). */
+int ld_tangent_check(struct ld *l, const struct sd_curve *c, const struct ld_mark *marks,
+		     const char *field);
 int ld_camera(struct ld *l, yaml_node_t *n);     /* load_camera.c */
 int ld_cycles(struct ld *l, yaml_node_t *n);     /* load_cycle.c */
 int ld_attributes(struct ld *l, yaml_node_t *n); /* load_attr.c */
