@@ -18,6 +18,7 @@
 #include "imp.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +37,21 @@ static int order(const struct gltf *g, uint32_t i, int32_t *newidx, uint32_t *ne
 	return 0;
 }
 
+/*
+ * A key's frame: time x fps, except that a time the exporter wrote for a
+ * whole frame n, which float32 could only hold as the float nearest to
+ * n / fps seconds, is frame n exactly. Otherwise a STEP key written for
+ * frame 70 would take effect 2e-6 frames after frame 70's sample, not at
+ * it, and every key would sit off its frame by float32's rounding of its
+ * time (2.4e-7 s at 4 s). Other times stay as the file has them.
+ */
+static double frame_of(double t, double num, double den)
+{
+	double f = t * num / den, n = nearbyint(f);
+
+	return (float)(n * den / num) == (float)t ? n : f;
+}
+
 static int channel(struct imp_node *n, const struct gltf_channel *c, double num, double den)
 {
 	static const int perm[4] = { 3, 0, 1, 2 }; /* w, x, y, z from x, y, z, w */
@@ -48,7 +64,7 @@ static int channel(struct imp_node *n, const struct gltf_channel *c, double num,
 	if (err)
 		return err;
 	for (i = 0; i < c->n; i++) {
-		ch->frame[i] = c->time[i] * num / den;
+		ch->frame[i] = frame_of(c->time[i], num, den);
 		for (k = 0; k < dim; k++) {
 			uint32_t src = dim == 4 ? (uint32_t)perm[k] : k;
 			const double *e = c->v + (size_t)i * per * dim;
@@ -130,8 +146,8 @@ int imp_gltf(struct imp_model *m, const char *path, const uint8_t *buf, size_t l
 	imp_note(m, "imported by strand import from %s (glTF 2.0): %u nodes, animation %u%s%s%s of %u",
 		 path, g.nnodes, g.anim_index, g.anim_name ? " '" : "",
 		 g.anim_name ? g.anim_name : "", g.anim_name ? "'" : "", g.nanims);
-	imp_note(m, "key frames are the file's float32 seconds x %u/%u fps, unrounded", o->rate_num,
-		 o->rate_den);
+	imp_note(m, "key frames: seconds x %u/%u fps; a time float32 holds for a whole frame is that frame",
+		 o->rate_num, o->rate_den);
 	if (warn && (g.nmeshes || g.ncameras || g.nskins || g.nmaterials || g.nweights))
 		fprintf(warn,
 			"%s: left out: %u meshes, %u materials, %u skins' bind matrices, %u cameras, %u morph weight channels (their nodes are kept)\n",

