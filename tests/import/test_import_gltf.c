@@ -390,11 +390,79 @@ static void test_armature(void **state)
 	against_blender("armature");
 }
 
+/* `strand import` of a file written here: one line naming the file and the
+ * JSON path, exit 2. */
+static void expect_error(const char *ext, const void *data, size_t len, const char *want)
+{
+	char path[] = "/tmp/strand-test-gltfe-XXXXXX", named[64], args[128];
+	struct run r;
+	FILE *f;
+	int fd = mkstemp(path);
+
+	close(fd);
+	snprintf(named, sizeof(named), "%s.%s", path, ext);
+	rename(path, named);
+	f = fopen(named, "wb");
+	fwrite(data, 1, len, f);
+	fclose(f);
+	snprintf(args, sizeof(args), "import %s", named);
+	strand(&r, args);
+	unlink(named);
+	if (r.rc != 2 || !strstr(r.err, want))
+		fprintf(stderr, "got %d: %s", r.rc, r.err);
+	assert_int_equal(r.rc, 2);
+	assert_non_null(strstr(r.err, want));
+	assert_true(!strncmp(r.err, named, strlen(named)));
+	assert_int_equal(strchr(r.err, '\n') - r.err + 1, (long)strlen(r.err));
+	run_free(&r);
+}
+
+#define GLTF_HEAD "{\"asset\": {\"version\": \"2.0\"}, "
+/* 8 bytes: the floats 0 and 1 (times) */
+#define BUF8 "\"buffers\": [{\"byteLength\": 8, \"uri\": \"data:application/octet-stream;base64,AAAAAAAAgD8=\"}], "
+
+static void test_errors(void **state)
+{
+	static const char cycle[] = GLTF_HEAD
+		"\"nodes\": [{\"children\": [1]}, {\"children\": [2]}, {\"children\": [1]}]}";
+	static const char past[] = GLTF_HEAD BUF8
+		"\"bufferViews\": [{\"buffer\": 0, \"byteLength\": 8}], "
+		"\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"SCALAR\"},"
+		" {\"bufferView\": 0, \"componentType\": 5126, \"count\": 2, \"type\": \"VEC3\"}], "
+		"\"nodes\": [{}], \"animations\": [{\"samplers\": [{\"input\": 0, \"output\": 1}], "
+		"\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": \"translation\"}}]}]}";
+	/* the times 0 and NaN */
+	static const char nan_key[] = GLTF_HEAD
+		"\"buffers\": [{\"byteLength\": 8, \"uri\": \"data:application/octet-stream;base64,AAAAAAAAwH8=\"}], "
+		"\"bufferViews\": [{\"buffer\": 0, \"byteLength\": 8}], "
+		"\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 2, \"type\": \"SCALAR\"}], "
+		"\"nodes\": [{}], \"animations\": [{\"samplers\": [{\"input\": 0, \"output\": 0}], "
+		"\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": \"translation\"}}]}]}";
+	uint8_t glb[64] = "glTF";
+
+	(void)state;
+	expect_error("gltf", cycle, sizeof(cycle) - 1, ": /nodes/2/children/0: node 1 is already a child of node 0");
+	expect_error("gltf", cycle, 60, ": not valid JSON");
+	expect_error("gltf", past, sizeof(past) - 1,
+		     ": /accessors/0: 4 elements of 4 bytes from byte 0 pass the end of bufferView 0 (8 bytes)");
+	expect_error("gltf", nan_key, sizeof(nan_key) - 1, ": /accessors/0: element 1 is NaN");
+	glb[4] = 2;
+	glb[8] = 200; /* says 200 bytes, has 64 */
+	expect_error("glb", glb, sizeof(glb), ": the .glb says 200 bytes but has 64 (truncated)");
+	{
+		static const char own[] = GLTF_HEAD
+			"\"nodes\": [{\"children\": [1]}, {\"children\": [0]}]}";
+
+		expect_error("gltf", own, sizeof(own) - 1, ": /nodes/0: the node is its own ancestor");
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_hierarchy),
 		cmocka_unit_test(test_armature),
+		cmocka_unit_test(test_errors),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
