@@ -10,7 +10,7 @@
 #                           compares against them.
 #   make fuzz-import        libFuzzer on the glTF and URDF readers for
 #                           FUZZ_SECONDS (default 300); fuzz-import-short, a
-#                           step of `make test`, for FUZZ_IMPORT_SECONDS (10) each
+#                           step of `make test`, for FUZZ_IMPORT_SECONDS (8) each
 
 .PHONY: blender-fixtures fuzz-import fuzz-import-short
 
@@ -35,7 +35,7 @@ blender-fixtures: $(BUILD)/.deps-blender
 	@echo "BLENDER $$(blender --version | head -n 1): tests/import/blender/ written"
 
 # ---- libFuzzer on the readers ---------------------------------------------------------
-FUZZ_IMPORT_SECONDS ?= 10
+FUZZ_IMPORT_SECONDS ?= 8
 FUZZ_IMPORT_DIR := $(BUILD)/fuzz
 IMPORT_SRC := $(wildcard firmware/import/*.c)
 FUZZ_IMPORT_CFLAGS = $(FUZZ_CFLAGS) $(shell pkg-config --cflags jansson libxml-2.0)

@@ -403,6 +403,7 @@ int ld_free_strand(struct ld *l, uint32_t node, const struct ld_free_opts *o)
 	sn->free.ease_out = tmpl[0].ease_out;
 	st->interp = tmpl[0].interp;
 	st->squad = rot == 1;
+	st->rotation = rot_names[rot];
 	st->nkeys = (uint32_t)count;
 	st->key_frames = frames;
 	return 0;
