@@ -110,20 +110,31 @@ static int slurp(const char *path, uint8_t **out, size_t *len)
 	return 0;
 }
 
+/* Whether the scene text has the top-level key `key` ("strands:"). */
+static bool has_section(const char *text, const char *key)
+{
+	const char *line;
+
+	for (line = text; line; line = strchr(line, '\n'), line = line ? line + 1 : NULL)
+		if (!strncmp(line, key, strlen(key)))
+			return true;
+	return false;
+}
+
 /*
- * --merge SCENE.yaml: the existing scene's sections other than the ones the
- * import writes (timing, nodes) follow the imported ones, as the file has
- * them: its strands, camera, cycles, attributes and rig. A top-level key
- * starts a line with no indentation; comments and the rest are kept.
+ * --merge SCENE.yaml: the existing scene's sections other than nodes follow
+ * the imported nodes, as the file has them: its timing (when it has one),
+ * strands, camera, cycles, attributes and rig. A top-level key starts a
+ * line with no indentation; comments and the rest are kept.
  */
 static int merge(FILE *out, const char *path, const char *text)
 {
-	static const char *const own[] = { "timing:", "nodes:", "scene:", NULL };
+	static const char *const own[] = { "nodes:", "scene:", NULL };
 	const char *line = text;
 	bool keep = false;
 	int k;
 
-	fprintf(out, "# merged from %s: its sections other than timing and nodes\n", path);
+	fprintf(out, "# merged from %s: its sections but nodes\n", path);
 	while (*line) {
 		const char *end = strchr(line, '\n');
 		size_t len = end ? (size_t)(end - line) + 1 : strlen(line);
@@ -198,13 +209,20 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		free(mbuf);
 		return rc == -EIO ? STRAND_EXIT_IO : STRAND_EXIT_SCENE;
 	}
+	if (mbuf && imp_has_strands(&m) && has_section((const char *)mbuf, "strands:")) {
+		fprintf(err, "strand import: both %s and %s have strands; merge the nodes of one with the strands of the other\n",
+			path, o.merge);
+		imp_model_free(&m);
+		free(mbuf);
+		return STRAND_EXIT_USAGE;
+	}
 	if (o.outpath && !(f = fopen(o.outpath, "w"))) {
 		fprintf(err, "strand import: %s: %s\n", o.outpath, strerror(errno));
 		imp_model_free(&m);
 		free(mbuf);
 		return STRAND_EXIT_IO;
 	}
-	rc = imp_yaml_write(f, &m);
+	rc = imp_yaml_write(f, &m, !mbuf || !has_section((const char *)mbuf, "timing:"));
 	if (!rc && mbuf)
 		rc = merge(f, o.merge, (const char *)mbuf);
 	if (f != out && fclose(f))
@@ -240,8 +258,8 @@ const struct cli_cmd cmd_import = {
 		"  --fps N|N/D      frames per second (default 24); key frames are seconds x fps\n"
 		"  --tick-hz N      the scene's tick rate (default 1000, or the next multiple of\n"
 		"                   a whole frame rate: 1008 at 24 fps)\n"
-		"  --merge SCENE    append SCENE's sections but timing and nodes (its strands,\n"
-		"                   camera, rig) to the imported nodes\n"
+		"  --merge SCENE    the imported nodes with SCENE's other sections (its timing,\n"
+		"                   strands, camera, rig): a URDF's robot under a scene's motion\n"
 		"\n"
 		"exit codes: 0 ok, 2 the file is invalid (one line: FILE: where: what), 3 usage,\n"
 		"4 a file cannot be read or written.\n",

@@ -84,9 +84,12 @@ void imp_note(struct imp_model *m, const char *fmt, ...) __attribute__((format(p
 int imp_names(struct imp_model *m, const char *file, FILE *warn);
 
 /* The scene file: a comment saying where it came from, timing over the
- * keys' whole frames, nodes, strands (compact where the keys allow), and
- * attributes. */
-int imp_yaml_write(FILE *out, const struct imp_model *m);
+ * keys' whole frames (unless timing is false: a merged scene's own is
+ * kept), nodes, strands (compact where the keys allow), and attributes. */
+int imp_yaml_write(FILE *out, const struct imp_model *m, bool timing);
+
+/* Whether the model writes a strands: section. */
+bool imp_has_strands(const struct imp_model *m);
 
 /* The frame span of every key (0, 0 when there is none). */
 void imp_span(const struct imp_model *m, double *first, double *last);

@@ -223,7 +223,21 @@ static void node_entry(FILE *o, const struct imp_model *m, const struct imp_node
 	}
 }
 
-int imp_yaml_write(FILE *o, const struct imp_model *m)
+bool imp_has_strands(const struct imp_model *m)
+{
+	uint32_t i;
+
+	for (i = 0; i < m->nnodes; i++) {
+		const struct imp_node *n = &m->nodes[i];
+
+		if (n->kind == IMP_FREE ? free_keyed(n) :
+		    (n->mimic >= 0 ? m->nodes[n->mimic].ch[0].n : n->ch[0].n) > 0)
+			return true;
+	}
+	return false;
+}
+
+int imp_yaml_write(FILE *o, const struct imp_model *m, bool timing)
 {
 	double first, last;
 	const char *line;
@@ -238,14 +252,16 @@ int imp_yaml_write(FILE *o, const struct imp_model *m)
 		line += len + (end != NULL);
 	}
 	imp_span(m, &first, &last);
-	fputs("timing:\n", o);
-	fprintf(o, "  tick_hz: %u\n", m->tick_hz);
-	if (m->rate_den == 1)
-		fprintf(o, "  frame_rate: %u\n", m->rate_num);
-	else
-		fprintf(o, "  frame_rate: \"%u/%u\"\n", m->rate_num, m->rate_den);
-	fprintf(o, "  frames: [%.0f, %.0f]\n", floor(first), ceil(last) > floor(first) ?
-		ceil(last) : floor(first) + 1);
+	if (timing) {
+		fputs("timing:\n", o);
+		fprintf(o, "  tick_hz: %u\n", m->tick_hz);
+		if (m->rate_den == 1)
+			fprintf(o, "  frame_rate: %u\n", m->rate_num);
+		else
+			fprintf(o, "  frame_rate: \"%u/%u\"\n", m->rate_num, m->rate_den);
+		fprintf(o, "  frames: [%.0f, %.0f]\n", floor(first),
+			ceil(last) > floor(first) ? ceil(last) : floor(first) + 1);
+	}
 	if (m->nnodes)
 		fputs("nodes:\n", o);
 	for (i = 0; i < m->nnodes; i++)

@@ -23,7 +23,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
 	if (imp_gltf(&m, "/nonexistent-strand-fuzz/input", data, size, &o, NULL, err,
 		     sizeof(err)) == 0 && (out = open_memstream(&text, &len))) {
-		imp_yaml_write(out, &m);
+		imp_yaml_write(out, &m, true);
 		fclose(out);
 		free(text);
 	}

@@ -367,11 +367,66 @@ static void test_errors(void **state)
 		     "</robot>\n", "type 'ball' is not revolute");
 }
 
+/* --merge: the robot's nodes under a scene's timing, strands and rig; a
+ * scene with strands cannot take a glTF's strands too. */
+static void test_merge(void **state)
+{
+	static const char scene[] =
+		"scene: take\n"
+		"timing: {tick_hz: 1000, frame_rate: 25, frames: [0, 100]}\n"
+		"nodes:\n  - {name: pan, joint: {type: revolute, axis: z}}\n"
+		"strands:\n  - node: pan\n"
+		"    keys: [{frame: 0, angle: 0}, {frame: 50, angle: 90}, {frame: 100, angle: 0}]\n"
+		"devices:\n  - {name: drives, driver: sim}\n"
+		"outputs:\n  - {channel: pan.angle, device: drives, counts_per_unit: 100,\n"
+		"     limits: {velocity: 100, acceleration: 500}}\n";
+	char path[] = "/tmp/strand-test-merge-XXXXXX", yaml[] = "/tmp/strand-test-mergeo-XXXXXX";
+	char args[256];
+	struct run r;
+	FILE *f;
+	int fd = mkstemp(path);
+
+	(void)state;
+	close(fd);
+	fd = mkstemp(yaml);
+	close(fd);
+	f = fopen(path, "w");
+	fputs(scene, f);
+	fclose(f);
+	snprintf(args, sizeof(args), "import tests/import/urdf/arm.urdf --merge %s -o %s", path, yaml);
+	strand(&r, args);
+	assert_int_equal(r.rc, 0);
+	run_free(&r);
+	snprintf(args, sizeof(args), "export %s --every 50", yaml);
+	strand(&r, args);
+	assert_int_equal(r.rc, 0);
+	/* frame 50 at 25 fps and 1 kHz is tick 2000: pan at 90 degrees, the
+	 * robot's other joints at rest */
+	assert_non_null(strstr(r.out, "pan.angle,lift.angle,reach.position"));
+	assert_non_null(strstr(r.out, "\n2000,50,"));
+	assert_non_null(strstr(r.out, ",90,0,0,0,0,0\n"));
+	run_free(&r);
+	snprintf(args, sizeof(args), "play %s --sim --clock virtual --no-journal --quiet", yaml);
+	strand(&r, args);
+	if (r.rc)
+		fprintf(stderr, "%s", r.err);
+	assert_int_equal(r.rc, 0);
+	run_free(&r);
+	snprintf(args, sizeof(args), "import tests/import/blender/armature.keys.gltf --merge %s", path);
+	strand(&r, args);
+	assert_int_equal(r.rc, 3);
+	assert_non_null(strstr(r.err, "have strands"));
+	run_free(&r);
+	unlink(path);
+	unlink(yaml);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_generated),
 		cmocka_unit_test(test_errors),
+		cmocka_unit_test(test_merge),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
