@@ -5,7 +5,7 @@
 #                           files, sampled and keyed, and Blender's own world
 #                           positions at every frame. Not a step of `make
 #                           test`: installing Blender (165 MB with numpy) and
-#                           running it costs about 40 s on a fresh machine, so
+#                           running it took 44 s here (more on a fresh machine), so
 #                           the generated files are committed and test_import_gltf
 #                           compares against them.
 #   make fuzz-import        libFuzzer on the glTF and URDF readers for
