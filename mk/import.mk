@@ -40,10 +40,12 @@ FUZZ_IMPORT_DIR := $(BUILD)/fuzz
 IMPORT_SRC := $(wildcard firmware/import/*.c)
 FUZZ_IMPORT_CFLAGS = $(FUZZ_CFLAGS) $(shell pkg-config --cflags jansson libxml-2.0)
 
-$(FUZZ_IMPORT_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(IMPORT_SRC) $(wildcard firmware/import/*.h) | \
+# one program per reader from tests/fuzz/fuzz_import.c
+$(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf: $(FUZZ_IMPORT_DIR)/fuzz_%: \
+		tests/fuzz/fuzz_import.c $(IMPORT_SRC) $(wildcard firmware/import/*.h) | \
 		$(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
-	$(Q)clang $(FUZZ_IMPORT_CFLAGS) $< $(IMPORT_SRC) \
+	$(Q)clang $(FUZZ_IMPORT_CFLAGS) -DFUZZ_READER=imp_$* $< $(IMPORT_SRC) \
 		$(shell pkg-config --libs jansson libxml-2.0) -lm -o $@
 
 # seeds: the Blender files and the URDF test robots

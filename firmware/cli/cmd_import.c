@@ -44,7 +44,8 @@ static int on_opt(void *ctx, int opt, const char *arg)
 			char buf[64];
 
 			snprintf(buf, sizeof(buf), "%.*s", (int)(slash - arg), arg);
-			if (!opt_long(buf, 1, 16777216, &num) || !opt_long(slash + 1, 1, 16777216, &den))
+			if (!opt_long(buf, 1, 16777216, &num) ||
+			    !opt_long(slash + 1, 1, 16777216, &den))
 				return cli_usage(o->cmd, o->err, "--fps takes N or N/D (1 to 16777216), not '%s'", arg);
 		} else if (!opt_long(arg, 1, 16777216, &num)) {
 			return cli_usage(o->cmd, o->err, "--fps takes N or N/D (1 to 16777216), not '%s'", arg);

@@ -340,7 +340,8 @@ static int accessor(struct rd *r, long long idx, uint32_t dim, bool float_only, 
 		return -ENOMEM;
 	for (i = 0; i < (size_t)cnt; i++)
 		for (k = 0; k < dim; k++) {
-			double v = component(base + i * (size_t)stride + k * (size_t)csize, ctype, norm);
+			const uint8_t *p = base + i * (size_t)stride + k * (size_t)csize;
+			double v = component(p, ctype, norm);
 
 			if (!isfinite(v)) {
 				free(*out);

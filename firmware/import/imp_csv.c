@@ -160,7 +160,8 @@ int imp_csv(struct imp_model *m, const char *path, const uint8_t *buf, size_t le
 			ncols = n;
 			rc = header(m, f, n, cols, err, errsize);
 			for (i = 0; !rc && i < m->nnodes; i++)
-				rc = imp_chan_alloc(&m->nodes[i].ch[0], (uint32_t)rows, 1, o->interp);
+				rc = imp_chan_alloc(&m->nodes[i].ch[0], (uint32_t)rows, 1,
+						    o->interp);
 			for (i = 0; !rc && i < m->nattrs; i++)
 				rc = imp_chan_alloc(&m->attrs[i].ch, (uint32_t)rows, 1, o->interp);
 			continue;

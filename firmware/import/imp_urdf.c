@@ -155,7 +155,8 @@ static int read_joint(struct urdf *u, xmlNode *x, struct ujoint *j)
 
 		if ((err = numbers(u, c, "xyz", j->axis, 3)))
 			return err;
-		n = sqrt(j->axis[0] * j->axis[0] + j->axis[1] * j->axis[1] + j->axis[2] * j->axis[2]);
+		n = sqrt(j->axis[0] * j->axis[0] + j->axis[1] * j->axis[1] +
+			 j->axis[2] * j->axis[2]);
 		if (!(n > 1e-9))
 			return fail(u, c, "joint '%s': a zero axis%s", j->name, "");
 		for (k = 0; k < 3; k++)
@@ -241,7 +242,8 @@ static int emit(struct urdf *u, struct imp_model *m, int l, int parent_node, int
 			double(*f)[4] = u->links[c].frame;
 
 			n->pivot[k] = f[k][3];
-			n->axis[k] = f[k][0] * jt->axis[0] + f[k][1] * jt->axis[1] + f[k][2] * jt->axis[2];
+			n->axis[k] = f[k][0] * jt->axis[0] + f[k][1] * jt->axis[1] +
+				     f[k][2] * jt->axis[2];
 		}
 		if (!strcmp(jt->type, "revolute") || !strcmp(jt->type, "continuous"))
 			n->kind = IMP_REVOLUTE;

@@ -121,22 +121,10 @@ static void snap_times(struct gltf *g)
 		}
 }
 
-/* Column-vector 4x4 products: world = parent . local. */
-static void mul4(double o[4][4], double a[4][4], double b[4][4])
-{
-	double r[4][4];
-	int i, j, k;
-
-	for (i = 0; i < 4; i++)
-		for (j = 0; j < 4; j++)
-			for (r[i][j] = 0, k = 0; k < 4; k++)
-				r[i][j] += a[i][k] * b[k][j];
-	memcpy(o, r, sizeof(r));
-}
-
 /* The local matrix T . R . S of node i at t (column vectors). */
-static void local(double m[4][4], const struct gltf *g, uint32_t i, double t)
+static void local(struct ref_mat *lm, const struct gltf *g, uint32_t i, double t)
 {
+	double(*m)[4] = lm->m;
 	const struct gltf_node *n = &g->nodes[i];
 	double tr[3], q[4], sc[3], x, y, z, w;
 	uint32_t c, k;
@@ -157,9 +145,11 @@ static void local(double m[4][4], const struct gltf *g, uint32_t i, double t)
 	}
 	x = q[0], y = q[1], z = q[2], w = q[3];
 	{
-		double r[3][3] = { { 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y) },
-				   { 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x) },
-				   { 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y) } };
+		double r[3][3] = {
+			{ 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y) },
+			{ 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x) },
+			{ 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y) }
+		};
 
 		for (c = 0; c < 3; c++) {
 			for (k = 0; k < 3; k++)
@@ -171,17 +161,19 @@ static void local(double m[4][4], const struct gltf *g, uint32_t i, double t)
 	}
 }
 
-static void world(double m[4][4], const struct gltf *g, uint32_t i, double t)
+/* World = parent . local (column vectors: ref_mul's product is the plain
+ * one). */
+static void world(struct ref_mat *m, const struct gltf *g, uint32_t i, double t)
 {
-	double l[4][4];
+	struct ref_mat l, p;
 
-	local(l, g, i, t);
+	local(&l, g, i, t);
 	if (g->nodes[i].parent < 0) {
-		memcpy(m, l, sizeof(l));
+		*m = l;
 		return;
 	}
-	world(m, g, (uint32_t)g->nodes[i].parent, t);
-	mul4(m, m, l);
+	world(&p, g, (uint32_t)g->nodes[i].parent, t);
+	ref_mul(m, &p, &l);
 }
 
 /* ---- strand's side ------------------------------------------------------------- */
@@ -261,12 +253,10 @@ static void scene_name(char *out, size_t size, const char *name)
 /* `strand import FILE` then `strand export` of it at every frame. */
 static void import_export(const char *file, struct table *tb)
 {
-	char args[512], yaml[] = "/tmp/strand-test-import-XXXXXX";
+	char args[512], yaml[64];
 	struct run r;
-	int fd = mkstemp(yaml);
 
-	assert_true(fd >= 0);
-	close(fd);
+	tmp_file(yaml, sizeof(yaml), ".yaml", "", 0);
 	snprintf(args, sizeof(args), "import %s -o %s", file, yaml);
 	strand(&r, args);
 	assert_int_equal(r.rc, 0);
@@ -316,12 +306,13 @@ static void against_spec(const char *scene, const char *kind, const char *ext)
 		cx = column(&tb, col);
 		assert_true(cx >= 0);
 		for (row = 0; row < tb.nrows; row++) {
-			double frame = tb.v[row * tb.ncols + 1], m[4][4];
+			double frame = tb.v[row * tb.ncols + 1];
+			struct ref_mat m;
 			int k;
 
-			world(m, &g, i, frame / FPS);
+			world(&m, &g, i, frame / FPS);
 			for (k = 0; k < 3; k++)
-				tu_worst_add(&w, tb.v[row * tb.ncols + cx + k] - m[k][3], frame);
+				tu_worst_add(&w, tb.v[row * tb.ncols + cx + k] - m.m[k][3], frame);
 		}
 	}
 	snprintf(bname, sizeof(bname), "gltf_%s_%s_vs_spec", scene, kind);
@@ -390,33 +381,8 @@ static void test_armature(void **state)
 	against_blender("armature");
 }
 
-/* `strand import` of a file written here: one line naming the file and the
- * JSON path, exit 2. */
-static void expect_error(const char *ext, const void *data, size_t len, const char *want)
-{
-	char path[] = "/tmp/strand-test-gltfe-XXXXXX", named[64], args[128];
-	struct run r;
-	FILE *f;
-	int fd = mkstemp(path);
-
-	close(fd);
-	snprintf(named, sizeof(named), "%s.%s", path, ext);
-	rename(path, named);
-	f = fopen(named, "wb");
-	fwrite(data, 1, len, f);
-	fclose(f);
-	snprintf(args, sizeof(args), "import %s", named);
-	strand(&r, args);
-	unlink(named);
-	if (r.rc != 2 || !strstr(r.err, want))
-		fprintf(stderr, "got %d: %s", r.rc, r.err);
-	assert_int_equal(r.rc, 2);
-	assert_non_null(strstr(r.err, want));
-	assert_true(!strncmp(r.err, named, strlen(named)));
-	assert_int_equal(strchr(r.err, '\n') - r.err + 1, (long)strlen(r.err));
-	run_free(&r);
-}
-
+/* Bad files: one line naming the file and the JSON path, exit 2
+ * (cliutil's import_error). */
 #define GLTF_HEAD "{\"asset\": {\"version\": \"2.0\"}, "
 /* 8 bytes: the floats 0 and 1 (times) */
 #define BUF8 "\"buffers\": [{\"byteLength\": 8, \"uri\": \"data:application/octet-stream;base64,AAAAAAAAgD8=\"}], "
@@ -441,19 +407,19 @@ static void test_errors(void **state)
 	uint8_t glb[64] = "glTF";
 
 	(void)state;
-	expect_error("gltf", cycle, sizeof(cycle) - 1, ": /nodes/2/children/0: node 1 is already a child of node 0");
-	expect_error("gltf", cycle, 60, ": not valid JSON");
-	expect_error("gltf", past, sizeof(past) - 1,
+	import_error(".gltf", cycle, sizeof(cycle) - 1, ": /nodes/2/children/0: node 1 is already a child of node 0");
+	import_error(".gltf", cycle, 60, ": not valid JSON");
+	import_error(".gltf", past, sizeof(past) - 1,
 		     ": /accessors/0: 4 elements of 4 bytes from byte 0 pass the end of bufferView 0 (8 bytes)");
-	expect_error("gltf", nan_key, sizeof(nan_key) - 1, ": /accessors/0: element 1 is NaN");
+	import_error(".gltf", nan_key, sizeof(nan_key) - 1, ": /accessors/0: element 1 is NaN");
 	glb[4] = 2;
 	glb[8] = 200; /* says 200 bytes, has 64 */
-	expect_error("glb", glb, sizeof(glb), ": the .glb says 200 bytes but has 64 (truncated)");
+	import_error(".glb", glb, sizeof(glb), ": the .glb says 200 bytes but has 64 (truncated)");
 	{
 		static const char own[] = GLTF_HEAD
 			"\"nodes\": [{\"children\": [1]}, {\"children\": [0]}]}";
 
-		expect_error("gltf", own, sizeof(own) - 1, ": /nodes/0: the node is its own ancestor");
+		import_error(".gltf", own, sizeof(own) - 1, ": /nodes/0: the node is its own ancestor");
 	}
 }
 

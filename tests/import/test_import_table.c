@@ -21,17 +21,9 @@ static char *write_tmp(const char *text, const char *ext)
 {
 	static char named[3][64];
 	static int slot;
-	char path[] = "/tmp/strand-test-table-XXXXXX";
 	char *out = named[slot++ % 3];
-	FILE *f;
-	int fd = mkstemp(path);
 
-	close(fd);
-	snprintf(out, 64, "%s%s", path, ext);
-	rename(path, out);
-	f = fopen(out, "w");
-	fputs(text, f);
-	fclose(f);
+	tmp_file(out, 64, ext, text, strlen(text));
 	return out;
 }
 
@@ -119,28 +111,18 @@ static void test_round_trip(void **state)
 	round_trip("hermite");
 }
 
-static void expect_error(const char *text, const char *want)
+static void bad(const char *text, const char *want)
 {
-	char *csv = write_tmp(text, ".csv"), args[128];
-	struct run r;
-
-	snprintf(args, sizeof(args), "import %s", csv);
-	strand(&r, args);
-	unlink(csv);
-	if (r.rc != 2 || !strstr(r.err, want))
-		fprintf(stderr, "got %d: %s", r.rc, r.err);
-	assert_int_equal(r.rc, 2);
-	assert_non_null(strstr(r.err, want));
-	run_free(&r);
+	import_error(".csv", text, strlen(text), want);
 }
 
 static void test_errors(void **state)
 {
 	(void)state;
-	expect_error("a.angle\n1\n", ": line 1: no 'frame' column");
-	expect_error("frame,a.angle\n0,1\n1,nan\n", ": line 3, column 2: 'nan' is not a finite number");
-	expect_error("frame,a.angle\n0,1\n0,2\n", ": line 3: frame 0 is not after the previous row's");
-	expect_error("frame,a.angle\n0,1,2\n", ": line 2: 3 fields, the header has 2");
+	bad("a.angle\n1\n", ": line 1: no 'frame' column");
+	bad("frame,a.angle\n0,1\n1,nan\n", ": line 3, column 2: 'nan' is not a finite number");
+	bad("frame,a.angle\n0,1\n0,2\n", ": line 3: frame 0 is not after the previous row's");
+	bad("frame,a.angle\n0,1,2\n", ": line 2: 3 fields, the header has 2");
 }
 
 int main(void)

@@ -20,6 +20,7 @@
 
 #include "cliutil.h"
 #include "load/load.h"
+#include "ref_mat.h"
 #include "testutil.h"
 
 #include <cmocka.h>
@@ -130,17 +131,16 @@ static void peer_tree(const char *path, int *parent, int n)
 	assert_int_equal(seen, n - 1);
 }
 
-/* URDF forward kinematics in double: link frames, column vectors. */
+/* URDF forward kinematics in double: link frames, column vectors (ref_mul
+ * is the plain product). */
 static void mul(double o[4][4], double a[4][4], double b[4][4])
 {
-	double t[4][4];
-	int i, j, k;
+	struct ref_mat x, y, r;
 
-	for (i = 0; i < 4; i++)
-		for (j = 0; j < 4; j++)
-			for (t[i][j] = 0, k = 0; k < 4; k++)
-				t[i][j] += a[i][k] * b[k][j];
-	memcpy(o, t, sizeof(t));
+	memcpy(x.m, a, sizeof(x.m));
+	memcpy(y.m, b, sizeof(y.m));
+	ref_mul(&r, &x, &y);
+	memcpy(o, r.m, sizeof(r.m));
 }
 
 static void rot_axis(double m[4][4], const double a[3], double th)
@@ -208,8 +208,7 @@ static int node_of(const struct scene_desc *d, const char *name)
 
 static void one_robot(struct tu_rng *g, int n, struct tu_worst *wpos)
 {
-	char urdf[] = "/tmp/strand-test-urdf-XXXXXX", yaml[] = "/tmp/strand-test-urdfy-XXXXXX";
-	char args[256], name[16];
+	char urdf[64], yaml[64], args[256], name[16];
 	struct robot r;
 	struct run run;
 	struct scene_file sf;
@@ -217,30 +216,21 @@ static void one_robot(struct tu_rng *g, int n, struct tu_worst *wpos)
 	struct load_err le;
 	struct mot_eval ev;
 	struct mot_pose pose;
-	int peer[MAXL], j, trial, fd;
+	int peer[MAXL], j, trial;
 
 	generate(&r, g, n);
-	fd = mkstemp(urdf);
-	close(fd);
-	fd = mkstemp(yaml);
-	close(fd);
+	/* import decides by the name's end: .urdf */
+	tmp_file(urdf, sizeof(urdf), ".urdf", "", 0);
+	tmp_file(yaml, sizeof(yaml), ".yaml", "", 0);
 	write_urdf(&r, urdf);
 	peer_tree(urdf, peer, n);
-	snprintf(args, sizeof(args), "import %s -o %s --fps 24", urdf, yaml);
-	/* the file name must end in .urdf: import decides by it */
-	{
-		char named[64];
-
-		snprintf(named, sizeof(named), "%s.urdf", urdf);
-		assert_int_equal(rename(urdf, named), 0);
-		snprintf(args, sizeof(args), "import %s -o %s", named, yaml);
-		strand(&run, args);
-		if (run.rc)
-			fprintf(stderr, "%s", run.err);
-		assert_int_equal(run.rc, 0);
-		run_free(&run);
-		unlink(named);
-	}
+	snprintf(args, sizeof(args), "import %s -o %s", urdf, yaml);
+	strand(&run, args);
+	if (run.rc)
+		fprintf(stderr, "%s", run.err);
+	assert_int_equal(run.rc, 0);
+	run_free(&run);
+	unlink(urdf);
 	assert_int_equal(scene_file_load(&sf, yaml, &le), 0);
 	unlink(yaml);
 	for (j = 1; j < n; j++) {
@@ -324,27 +314,7 @@ static void test_generated(void **state)
 /* One line, FILE: line N: what, exit 2. */
 static void expect_error(const char *xml, const char *want)
 {
-	char path[] = "/tmp/strand-test-urdfe-XXXXXX", named[64], args[128];
-	struct run r;
-	FILE *f;
-	int fd = mkstemp(path);
-
-	close(fd);
-	snprintf(named, sizeof(named), "%s.urdf", path);
-	rename(path, named);
-	f = fopen(named, "w");
-	fputs(xml, f);
-	fclose(f);
-	snprintf(args, sizeof(args), "import %s", named);
-	strand(&r, args);
-	unlink(named);
-	assert_int_equal(r.rc, 2);
-	if (!strstr(r.err, want))
-		fprintf(stderr, "got: %s", r.err);
-	assert_non_null(strstr(r.err, want));
-	assert_non_null(strstr(r.err, named));
-	assert_int_equal(strchr(r.err, '\n') - r.err + 1, (long)strlen(r.err));
-	run_free(&r);
+	import_error(".urdf", xml, strlen(xml), want);
 }
 
 static void test_errors(void **state)
@@ -380,19 +350,12 @@ static void test_merge(void **state)
 		"devices:\n  - {name: drives, driver: sim}\n"
 		"outputs:\n  - {channel: pan.angle, device: drives, counts_per_unit: 100,\n"
 		"     limits: {velocity: 100, acceleration: 500}}\n";
-	char path[] = "/tmp/strand-test-merge-XXXXXX", yaml[] = "/tmp/strand-test-mergeo-XXXXXX";
-	char args[256];
+	char path[64], yaml[64], args[256];
 	struct run r;
-	FILE *f;
-	int fd = mkstemp(path);
 
 	(void)state;
-	close(fd);
-	fd = mkstemp(yaml);
-	close(fd);
-	f = fopen(path, "w");
-	fputs(scene, f);
-	fclose(f);
+	tmp_file(path, sizeof(path), ".yaml", scene, strlen(scene));
+	tmp_file(yaml, sizeof(yaml), ".yaml", "", 0);
 	snprintf(args, sizeof(args), "import tests/import/urdf/arm.urdf --merge %s -o %s", path, yaml);
 	strand(&r, args);
 	assert_int_equal(r.rc, 0);

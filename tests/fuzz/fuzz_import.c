@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * fuzz_urdf.c - libFuzzer on strand import's URDF reader and the scene file
- * it writes (mk/import.mk): any input gives a model or one error, never a
+ * fuzz_import.c - libFuzzer on one of strand import's readers and the scene
+ * file it writes (mk/import.mk builds it once per reader: FUZZ_READER is
+ * imp_gltf or imp_urdf): any input gives a model or one error, never a
  * crash, a leak or a read outside the input. Relative buffer files resolve
  * under a directory that does not exist.
  */
@@ -21,8 +22,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	size_t len = 0;
 	FILE *out;
 
-	if (imp_urdf(&m, "/nonexistent-strand-fuzz/input", data, size, &o, NULL, err,
-		     sizeof(err)) == 0 && (out = open_memstream(&text, &len))) {
+	if (FUZZ_READER(&m, "/nonexistent-strand-fuzz/input", data, size, &o, NULL, err,
+			sizeof(err)) == 0 && (out = open_memstream(&text, &len))) {
 		imp_yaml_write(out, &m, true);
 		fclose(out);
 		free(text);
