@@ -8,9 +8,9 @@
 #                           running it took 44 s here (more on a fresh machine), so
 #                           the generated files are committed and test_import_gltf
 #                           compares against them.
-#   make fuzz-import        libFuzzer on the glTF and URDF readers for
-#                           FUZZ_SECONDS (default 300); fuzz-import-short, a
-#                           step of `make test`, for FUZZ_IMPORT_SECONDS (8) each
+#   make fuzz-import        libFuzzer on the glTF, URDF and table readers for
+#                           FUZZ_SECONDS (default 300) each; fuzz-import-short, a
+#                           step of `make test`, 6 s each (the table's 3 s)
 
 .PHONY: blender-fixtures fuzz-import fuzz-import-short
 
@@ -35,17 +35,24 @@ blender-fixtures: $(BUILD)/.deps-blender
 	@echo "BLENDER $$(blender --version | head -n 1): tests/import/blender/ written"
 
 # ---- libFuzzer on the readers ---------------------------------------------------------
-FUZZ_IMPORT_SECONDS ?= 8
+FUZZ_IMPORT_SECONDS ?= 6
+FUZZ_IMPORT_CSV_SECONDS ?= 3
 FUZZ_IMPORT_DIR := $(BUILD)/fuzz
 IMPORT_SRC := $(wildcard firmware/import/*.c)
 FUZZ_IMPORT_CFLAGS = $(FUZZ_CFLAGS) $(shell pkg-config --cflags jansson libxml-2.0)
 
-# one program per reader from tests/fuzz/fuzz_import.c
-$(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf: $(FUZZ_IMPORT_DIR)/fuzz_%: \
-		tests/fuzz/fuzz_import.c $(IMPORT_SRC) $(wildcard firmware/import/*.h) | \
-		$(BUILD)/.deps-fuzz
+# the readers compiled once for libFuzzer, then one program per reader from
+# tests/fuzz/fuzz_import.c
+IMPORT_FUZZ_OBJ := $(IMPORT_SRC:%.c=$(FUZZ_IMPORT_DIR)/obj/%.o)
+
+$(FUZZ_IMPORT_DIR)/obj/%.o: %.c $(wildcard firmware/import/*.h) | $(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
-	$(Q)clang $(FUZZ_IMPORT_CFLAGS) -DFUZZ_READER=imp_$* $< $(IMPORT_SRC) \
+	$(Q)clang $(FUZZ_IMPORT_CFLAGS) -c $< -o $@
+
+$(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf $(FUZZ_IMPORT_DIR)/fuzz_csv: \
+		$(FUZZ_IMPORT_DIR)/fuzz_%: tests/fuzz/fuzz_import.c $(IMPORT_FUZZ_OBJ) | \
+		$(BUILD)/.deps-fuzz
+	$(Q)clang $(FUZZ_IMPORT_CFLAGS) -DFUZZ_READER=imp_$* $< $(IMPORT_FUZZ_OBJ) \
 		$(shell pkg-config --libs jansson libxml-2.0) -lm -o $@
 
 # seeds: the Blender files and the URDF test robots
@@ -53,6 +60,8 @@ $(FUZZ_IMPORT_DIR)/seed-gltf: $(wildcard tests/import/blender/*.gl*)
 	$(Q)rm -rf $@ && mkdir -p $@ && cp tests/import/blender/*.gl* $@/
 $(FUZZ_IMPORT_DIR)/seed-urdf: $(wildcard tests/import/urdf/*.urdf)
 	$(Q)rm -rf $@ && mkdir -p $@ && cp tests/import/urdf/*.urdf $@/
+$(FUZZ_IMPORT_DIR)/seed-csv: $(wildcard tests/import/csv/*.csv)
+	$(Q)rm -rf $@ && mkdir -p $@ && cp tests/import/csv/*.csv $@/
 
 define run_fuzz_import
 	$(Q)rm -rf $(FUZZ_IMPORT_DIR)/corpus-$(1) && mkdir -p $(FUZZ_IMPORT_DIR)/corpus-$(1) $(FUZZ_IMPORT_DIR)/crashes && \
@@ -65,15 +74,18 @@ define run_fuzz_import
 		grep -o '[0-9]*$$') inputs in $(2) s, no crash, leak or sanitizer report"
 endef
 
-FUZZ_IMPORT_DEPS := $(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf $(FUZZ_IMPORT_DIR)/seed-gltf \
-                    $(FUZZ_IMPORT_DIR)/seed-urdf
+FUZZ_IMPORT_DEPS := $(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf \
+                    $(FUZZ_IMPORT_DIR)/fuzz_csv $(FUZZ_IMPORT_DIR)/seed-gltf \
+                    $(FUZZ_IMPORT_DIR)/seed-urdf $(FUZZ_IMPORT_DIR)/seed-csv
 
 fuzz-import: $(FUZZ_IMPORT_DEPS)
 	$(call run_fuzz_import,gltf,$(FUZZ_SECONDS))
 	$(call run_fuzz_import,urdf,$(FUZZ_SECONDS))
+	$(call run_fuzz_import,csv,$(FUZZ_SECONDS))
 
 fuzz-import-short: $(FUZZ_IMPORT_DEPS)
 	$(call run_fuzz_import,gltf,$(FUZZ_IMPORT_SECONDS))
 	$(call run_fuzz_import,urdf,$(FUZZ_IMPORT_SECONDS))
+	$(call run_fuzz_import,csv,$(FUZZ_IMPORT_CSV_SECONDS))
 
 fuzz: fuzz-import

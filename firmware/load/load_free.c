@@ -218,7 +218,7 @@ static int group_curves(struct ld *l, uint32_t node, const struct fkey *fk, size
 		cm->at = nm->value.at;
 		cm->key = marks;
 		err = ld_tangent_check(l, c, marks, g == G_T ? "translate_in' or 'translate_out" :
-					       "scale_in' or 'scale_out");
+					       "scale_in' or 'scale_out", 1.0);
 		if (!err)
 			err = ld_curve_check(l, c, cm);
 		if (err)
@@ -266,7 +266,7 @@ static int rotation_curves(struct ld *l, uint32_t node, const struct fkey *fk, s
 		}
 		sf->quat[c] = (struct sd_curve){ .interp = interp, .nkeys = (uint32_t)count,
 						 .keys = keys, .beta1 = 1 };
-		err = ld_tangent_check(l, &sf->quat[c], marks, "quat_in' or 'quat_out");
+		err = ld_tangent_check(l, &sf->quat[c], marks, "quat_in' or 'quat_out", 1.0);
 		if (err)
 			return err;
 	}

@@ -201,10 +201,12 @@ struct ld_free_opts {
 };
 int ld_free_strand(struct ld *l, uint32_t node, const struct ld_free_opts *o);
 
-/* A key's explicit tangent (tan_set) on a curve that is not hermite: the
- * error at the key (load_curve.c). */
+/* A key's explicit tangent (tan_set) on a curve that is not hermite, or one
+ * whose handle over its interval, h x tangent x scale (1/360 for degrees),
+ * reaches 2^31 units or turns, beyond the core's range (curve.h): the error
+ * at the key (load_curve.c). */
 int ld_tangent_check(struct ld *l, const struct sd_curve *c, const struct ld_mark *marks,
-		     const char *field);
+		     const char *field, double scale);
 int ld_camera(struct ld *l, yaml_node_t *n);     /* load_camera.c */
 int ld_cycles(struct ld *l, yaml_node_t *n);     /* load_cycle.c */
 int ld_attributes(struct ld *l, yaml_node_t *n); /* load_attr.c */

@@ -185,7 +185,8 @@ static int joint_strand(struct ld *l, uint32_t node, yaml_node_t **v)
 	if (rpm)
 		err = rpm_rules(l, &c, v, marks);
 	if (!err)
-		err = ld_tangent_check(l, &c, marks, "in' or 'out");
+		err = ld_tangent_check(l, &c, marks, "in' or 'out",
+				       sn->kind == MOT_NODE_REVOLUTE && !rpm ? 1.0 / 360 : 1.0);
 	if (!err)
 		err = ld_curve_check(l, &c, &cm);
 	if (err)

@@ -2,7 +2,7 @@
 /*
  * fuzz_import.c - libFuzzer on one of strand import's readers and the scene
  * file it writes (mk/import.mk builds it once per reader: FUZZ_READER is
- * imp_gltf or imp_urdf): any input gives a model or one error, never a
+ * imp_gltf, imp_urdf or imp_csv): any input gives a model or one error, never a
  * crash, a leak or a read outside the input. Relative buffer files resolve
  * under a directory that does not exist.
  */
