@@ -107,6 +107,68 @@ def armature(s):
     key(arm, 72, location=(0.5, 0, 0))
 
 
+# tests/import/urdf/arm.urdf's joints as `strand import` puts them (axes in
+# the rest pose's coordinates), which the robot scene's empties follow in
+# glTF's axes: Blender's axis is (x, -z, y) of glTF's (x, y, z)
+ARM_JOINTS = (
+    ("pan", "revolute", (0, 0, 1)),
+    ("lift", "revolute", (-0.50953628660839789, 0.81023918587025623, 0.28962947762551555)),
+    ("reach", "prismatic", (0.78764701433531426, 0.30370217994739307, 0.53607570986183151)),
+)
+
+
+def robot(s):
+    """Empties named after the arm's joints, each turning about or sliding
+    along its joint's axis, to drive the URDF's joints by name."""
+    s.frame_end = 48
+    values = {}
+    for name, kind, a in ARM_JOINTS:
+        b = Vector((a[0], -a[2], a[1]))
+        o = empty(name)
+        o.rotation_mode = "QUATERNION"
+        for f in range(0, 49, 4):
+            if kind == "revolute":
+                deg = (400 if name == "pan" else 60) * math.sin(math.pi * f / 96.0)
+                h = math.radians(deg) / 2
+                o.rotation_quaternion = (math.cos(h), b.x * math.sin(h), b.y * math.sin(h),
+                                         b.z * math.sin(h))
+                o.keyframe_insert("rotation_quaternion", frame=f)
+            else:
+                deg = 0.25 * f / 48.0
+                o.location = b * deg
+                o.keyframe_insert("location", frame=f)
+            values[(name, f)] = deg
+        for fc in o.animation_data.action.fcurves:
+            for kp in fc.keyframe_points:
+                kp.interpolation = "LINEAR"
+    return values
+
+
+def joint_values(s, name):
+    """The joints' values at every frame as Blender evaluates the empties."""
+    with open("%s/%s.blender.csv" % (OUT, name), "w") as out:
+        out.write("frame," + ",".join("%s.%s" % (n, "angle" if k == "revolute" else "position")
+                                      for n, k, a in ARM_JOINTS) + "\n")
+        prev = {}
+        for f in range(s.frame_start, s.frame_end + 1):
+            s.frame_set(f)
+            vals = []
+            for n, kind, a in ARM_JOINTS:
+                o = s.objects[n]
+                b = Vector((a[0], -a[2], a[1]))
+                if kind == "revolute":
+                    q = o.matrix_world.to_quaternion()
+                    v = Vector((q.x, q.y, q.z))
+                    deg = math.degrees(2 * math.atan2(v.dot(b), q.w))
+                    if n in prev:  # continuous: the turn nearest the last frame's
+                        deg = prev[n] + math.remainder(deg - prev[n], 360.0)
+                    prev[n] = deg
+                    vals.append(deg)
+                else:
+                    vals.append(o.matrix_world.translation.dot(b))
+            out.write("%d," % f + ",".join("%.9g" % v for v in vals) + "\n")
+
+
 def positions(s, name):
     rows = []
     cols = None
@@ -148,4 +210,9 @@ for name, build in (("hierarchy", hierarchy), ("armature", armature)):
     export(name, True, "GLB")
     export(name, False, "GLTF_EMBEDDED")
     positions(s, name)
+s = reset()
+robot(s)
+s.frame_set(0)  # the nodes' rest transforms: the pose of every joint at 0
+export("robot", True, "GLB")
+joint_values(s, "robot")
 print("blender_fixtures: written to", OUT)

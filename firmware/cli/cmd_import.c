@@ -5,6 +5,7 @@
  */
 #include <errno.h>
 #include <getopt.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,14 +129,14 @@ static bool has_section(const char *text, const char *key)
  * strands, camera, cycles, attributes and rig. A top-level key starts a
  * line with no indentation; comments and the rest are kept.
  */
-static int merge(FILE *out, const char *path, const char *text)
+static int merge(FILE *out, const char *path, const char *text, const char *const *own)
 {
-	static const char *const own[] = { "nodes:", "scene:", NULL };
 	const char *line = text;
 	bool keep = false;
 	int k;
 
-	fprintf(out, "# merged from %s: its sections but nodes\n", path);
+	fprintf(out, "# merged from %s: its sections but %s\n", path,
+		!strcmp(own[0], "nodes:") ? "nodes" : "timing and strands");
 	while (*line) {
 		const char *end = strchr(line, '\n');
 		size_t len = end ? (size_t)(end - line) + 1 : strlen(line);
@@ -154,6 +155,53 @@ static int merge(FILE *out, const char *path, const char *text)
 	return ferror(out) ? -EIO : 0;
 }
 
+/*
+ * A glTF file merged into a scene whose joints its animated nodes name: the
+ * animation drives those joints (import/imp_gltf_joint.c). *onto false when
+ * no animated node has a joint's name (the file is then imported as nodes).
+ * 0, a negative errno with msg, or STRAND_EXIT_SCENE (said on err) when the
+ * scene cannot be read.
+ */
+static int onto_joints(struct imp_model *m, const char *path, const uint8_t *buf, size_t len,
+		       const struct opts *o, FILE *err, char *msg, size_t msgsize, bool *onto)
+{
+	struct scene_file sf;
+	struct load_err le;
+	struct imp_joint *joints;
+	uint32_t i, n = 0, matched = 0;
+	int rc;
+
+	*onto = false;
+	if (scene_file_load(&sf, o->merge, &le))
+		return cli_scene_error(err, o->merge, &le);
+	joints = calloc(sf.desc.nnodes + 1, sizeof(*joints));
+	if (!joints) {
+		scene_file_free(&sf);
+		return -ENOMEM;
+	}
+	for (i = 0; i < sf.desc.nnodes; i++) {
+		const struct sd_node *sn = &sf.desc.nodes[i];
+		double l = sqrt(sn->axis[0] * sn->axis[0] + sn->axis[1] * sn->axis[1] +
+				sn->axis[2] * sn->axis[2]);
+		int k;
+
+		if (sn->kind == MOT_NODE_FREE || !(l > 0))
+			continue;
+		joints[n].name = sn->name;
+		joints[n].kind = sn->kind == MOT_NODE_REVOLUTE ? IMP_REVOLUTE : IMP_PRISMATIC;
+		for (k = 0; k < 3; k++)
+			joints[n].axis[k] = sn->axis[k] / l;
+		n++;
+	}
+	rc = imp_gltf_joints(m, path, buf, len, &o->imp, joints, n, &matched, err, msg, msgsize);
+	if (!rc && !matched)
+		imp_model_free(m);
+	*onto = !rc && matched;
+	free(joints);
+	scene_file_free(&sf);
+	return rc;
+}
+
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
 	static const struct option opts[] = {
@@ -169,6 +217,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	const char *path;
 	char msg[512];
 	FILE *f = out;
+	bool onto = false;
 	int first, rc;
 
 	rc = cli_options(cmd, argc, argv, out, err, "ho:", opts, on_opt, &o, &first);
@@ -201,8 +250,16 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		rc = imp_urdf(&m, path, buf, len, &o.imp, err, msg, sizeof(msg));
 	else if (ends_with(path, ".csv"))
 		rc = imp_csv(&m, path, buf, len, &o.imp, err, msg, sizeof(msg));
-	else
-		rc = imp_gltf(&m, path, buf, len, &o.imp, err, msg, sizeof(msg));
+	else {
+		rc = o.merge ? onto_joints(&m, path, buf, len, &o, err, msg, sizeof(msg), &onto) : 0;
+		if (rc > 0) {
+			free(buf);
+			free(mbuf);
+			return rc;
+		}
+		if (!rc && !onto)
+			rc = imp_gltf(&m, path, buf, len, &o.imp, err, msg, sizeof(msg));
+	}
 	free(buf);
 	if (rc) {
 		fprintf(err, "%s: %s\n", path, rc == -ENOMEM ? "out of memory" : msg);
@@ -210,7 +267,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		free(mbuf);
 		return rc == -EIO ? STRAND_EXIT_IO : STRAND_EXIT_SCENE;
 	}
-	if (mbuf && imp_has_strands(&m) && has_section((const char *)mbuf, "strands:")) {
+	if (mbuf && !onto && imp_has_strands(&m) && has_section((const char *)mbuf, "strands:")) {
 		fprintf(err, "strand import: both %s and %s have strands; merge the nodes of one with the strands of the other\n",
 			path, o.merge);
 		imp_model_free(&m);
@@ -223,9 +280,21 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		free(mbuf);
 		return STRAND_EXIT_IO;
 	}
-	rc = imp_yaml_write(f, &m, !mbuf || !has_section((const char *)mbuf, "timing:"));
-	if (!rc && mbuf)
-		rc = merge(f, o.merge, (const char *)mbuf);
+	if (onto) {
+		/* the animation's timing and strands, the scene's nodes and rig */
+		static const char *const drop[] = { "timing:", "strands:", "scene:", NULL };
+
+		rc = imp_yaml_write(f, &m, IMP_YAML_TIMING | IMP_YAML_STRANDS);
+		if (!rc)
+			rc = merge(f, o.merge, (const char *)mbuf, drop);
+	} else {
+		static const char *const drop[] = { "nodes:", "scene:", NULL };
+		bool timing = !mbuf || !has_section((const char *)mbuf, "timing:");
+
+		rc = imp_yaml_write(f, &m, IMP_YAML_ALL & ~(timing ? 0 : IMP_YAML_TIMING));
+		if (!rc && mbuf)
+			rc = merge(f, o.merge, (const char *)mbuf, drop);
+	}
 	if (f != out && fclose(f))
 		rc = -EIO;
 	imp_model_free(&m);
@@ -260,7 +329,9 @@ const struct cli_cmd cmd_import = {
 		"  --tick-hz N      the scene's tick rate (default 1000, or the next multiple of\n"
 		"                   a whole frame rate: 1008 at 24 fps)\n"
 		"  --merge SCENE    the imported nodes with SCENE's other sections (its timing,\n"
-		"                   strands, camera, rig): a URDF's robot under a scene's motion\n"
+		"                   strands, camera, rig): a URDF's robot under a scene's motion;\n"
+		"                   a glTF whose animated nodes name SCENE's joints drives them\n"
+		"                   (SCENE's nodes and rig, the animation's timing and strands)\n"
 		"\n"
 		"exit codes: 0 ok, 2 the file is invalid (one line: FILE: where: what), 3 usage,\n"
 		"4 a file cannot be read or written.\n",

@@ -83,10 +83,19 @@ void imp_note(struct imp_model *m, const char *fmt, ...) __attribute__((format(p
  */
 int imp_names(struct imp_model *m, const char *file, FILE *warn);
 
-/* The scene file: a comment saying where it came from, timing over the
- * keys' whole frames (unless timing is false: a merged scene's own is
- * kept), nodes, strands (compact where the keys allow), and attributes. */
-int imp_yaml_write(FILE *out, const struct imp_model *m, bool timing);
+/* Every character other than a letter, digit, '_' or '-' turned into '_'. */
+void imp_name_clean(char *s);
+
+/* The scene file: a comment saying where it came from, then the sections
+ * asked for: timing over the keys' whole frames, nodes, strands (compact
+ * where the keys allow) and attributes. */
+enum {
+	IMP_YAML_TIMING = 1,
+	IMP_YAML_NODES = 2,   /* the nodes: section */
+	IMP_YAML_STRANDS = 4, /* strands: and attributes: */
+	IMP_YAML_ALL = 7,
+};
+int imp_yaml_write(FILE *out, const struct imp_model *m, unsigned sections);
 
 /* Whether the model writes a strands: section. */
 bool imp_has_strands(const struct imp_model *m);
@@ -115,5 +124,26 @@ int imp_urdf(struct imp_model *m, const char *path, const uint8_t *buf, size_t l
 	     const struct imp_opts *o, FILE *warn, char *err, size_t errsize);
 int imp_csv(struct imp_model *m, const char *path, const uint8_t *buf, size_t len,
 	    const struct imp_opts *o, FILE *warn, char *err, size_t errsize);
+
+/* A glTF key time's frame: t x num / den, or the whole frame n whose time
+ * float32 holds as t (imp_gltf.c). */
+double imp_gltf_frame(double t, double num, double den);
+
+/* A joint of an existing scene, for a glTF animation to drive by name. */
+struct imp_joint {
+	const char *name;
+	enum imp_kind kind;  /* revolute or prismatic */
+	double axis[3];      /* unit, in the scene's rest coordinates */
+};
+
+/*
+ * A glTF animation onto joints (imp_gltf_joint.c): the model gets one node
+ * per joint that an animated node of the same name drives, with its keys
+ * (the nodes themselves are the scene's). *matched counts them; 0 when no
+ * animated node has a joint's name.
+ */
+int imp_gltf_joints(struct imp_model *m, const char *path, const uint8_t *buf, size_t len,
+		    const struct imp_opts *o, const struct imp_joint *joints, uint32_t njoints,
+		    uint32_t *matched, FILE *warn, char *err, size_t errsize);
 
 #endif /* STRAND_IMP_H */

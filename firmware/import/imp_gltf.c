@@ -45,7 +45,7 @@ static int order(const struct gltf *g, uint32_t i, int32_t *newidx, uint32_t *ne
  * it, and every key would sit off its frame by float32's rounding of its
  * time (2.4e-7 s at 4 s). Other times stay as the file has them.
  */
-static double frame_of(double t, double num, double den)
+double imp_gltf_frame(double t, double num, double den)
 {
 	double f = t * num / den, n = nearbyint(f);
 
@@ -64,7 +64,7 @@ static int channel(struct imp_node *n, const struct gltf_channel *c, double num,
 	if (err)
 		return err;
 	for (i = 0; i < c->n; i++) {
-		ch->frame[i] = frame_of(c->time[i], num, den);
+		ch->frame[i] = imp_gltf_frame(c->time[i], num, den);
 		for (k = 0; k < dim; k++) {
 			uint32_t src = dim == 4 ? (uint32_t)perm[k] : k;
 			const double *e = c->v + (size_t)i * per * dim;

@@ -104,17 +104,22 @@ static bool taken(char *const *names, uint32_t n, const char *name)
 	return false;
 }
 
+void imp_name_clean(char *s)
+{
+	for (; *s; s++)
+		if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-')
+			*s = '_';
+}
+
 /* One name made valid and unique among the first n of names. */
 static int fix_name(char **name, char *const *names, uint32_t n, uint32_t index,
 		    const char *file, FILE *warn)
 {
 	char *s = *name, *u;
-	size_t len = strlen(s), k;
+	size_t len = strlen(s);
 	unsigned suffix;
 
-	for (k = 0; k < len; k++)
-		if (!isalnum((unsigned char)s[k]) && s[k] != '_' && s[k] != '-')
-			s[k] = '_';
+	imp_name_clean(s);
 	if (len == 0) {
 		free(s);
 		if (!(s = malloc(24)))

@@ -237,7 +237,7 @@ bool imp_has_strands(const struct imp_model *m)
 	return false;
 }
 
-int imp_yaml_write(FILE *o, const struct imp_model *m, bool timing)
+int imp_yaml_write(FILE *o, const struct imp_model *m, unsigned sections)
 {
 	double first, last;
 	const char *line;
@@ -252,7 +252,7 @@ int imp_yaml_write(FILE *o, const struct imp_model *m, bool timing)
 		line += len + (end != NULL);
 	}
 	imp_span(m, &first, &last);
-	if (timing) {
+	if (sections & IMP_YAML_TIMING) {
 		fputs("timing:\n", o);
 		fprintf(o, "  tick_hz: %u\n", m->tick_hz);
 		if (m->rate_den == 1)
@@ -262,11 +262,11 @@ int imp_yaml_write(FILE *o, const struct imp_model *m, bool timing)
 		fprintf(o, "  frames: [%.0f, %.0f]\n", floor(first),
 			ceil(last) > floor(first) ? ceil(last) : floor(first) + 1);
 	}
-	if (m->nnodes)
+	if (m->nnodes && (sections & IMP_YAML_NODES))
 		fputs("nodes:\n", o);
-	for (i = 0; i < m->nnodes; i++)
+	for (i = 0; i < m->nnodes && (sections & IMP_YAML_NODES); i++)
 		node_entry(o, m, &m->nodes[i]);
-	for (i = 0; i < m->nnodes; i++) {
+	for (i = 0; i < m->nnodes && (sections & IMP_YAML_STRANDS); i++) {
 		const struct imp_node *n = &m->nodes[i];
 		const struct imp_chan *c = n->mimic >= 0 ? &m->nodes[n->mimic].ch[0] : &n->ch[0];
 		bool keyed = n->kind == IMP_FREE ? free_keyed(n) : c->n > 0;
@@ -287,9 +287,9 @@ int imp_yaml_write(FILE *o, const struct imp_model *m, bool timing)
 		joint_keys(o, c, n->kind == IMP_REVOLUTE ? "angle" : "position",
 			   n->mimic >= 0 ? n->mult : 1, n->mimic >= 0 ? n->offset : 0);
 	}
-	if (m->nattrs)
+	if (m->nattrs && (sections & IMP_YAML_STRANDS))
 		fputs("attributes:\n", o);
-	for (i = 0; i < m->nattrs; i++) {
+	for (i = 0; i < m->nattrs && (sections & IMP_YAML_STRANDS); i++) {
 		const struct imp_attr *a = &m->attrs[i];
 		uint32_t k;
 

@@ -24,7 +24,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
 	if (FUZZ_READER(&m, "/nonexistent-strand-fuzz/input", data, size, &o, NULL, err,
 			sizeof(err)) == 0 && (out = open_memstream(&text, &len))) {
-		imp_yaml_write(out, &m, true);
+		imp_yaml_write(out, &m, IMP_YAML_ALL);
 		fclose(out);
 		free(text);
 	}

@@ -250,6 +250,22 @@ static void scene_name(char *out, size_t size, const char *name)
 			out[k] = '_';
 }
 
+static char *slurp_text(const char *path)
+{
+	FILE *f = fopen(path, "rb");
+	char *text;
+	long len;
+
+	assert_non_null(f);
+	fseek(f, 0, SEEK_END);
+	len = ftell(f);
+	fseek(f, 0, SEEK_SET);
+	text = calloc(1, (size_t)len + 1);
+	assert_int_equal(fread(text, 1, (size_t)len, f), (size_t)len);
+	fclose(f);
+	return text;
+}
+
 /* `strand import FILE` then `strand export` of it at every frame. */
 static void import_export(const char *file, struct table *tb)
 {
@@ -327,21 +343,12 @@ static void against_blender(const char *scene)
 	struct table tb, bl;
 	struct tu_worst w = { 0, 0 };
 	char *text;
-	size_t len;
-	FILE *f;
 	int k, row, compared = 0;
 
 	snprintf(file, sizeof(file), DIR "%s.sampled.glb", scene);
 	import_export(file, &tb);
 	snprintf(text_path, sizeof(text_path), DIR "%s.blender.csv", scene);
-	f = fopen(text_path, "rb");
-	assert_non_null(f);
-	fseek(f, 0, SEEK_END);
-	len = (size_t)ftell(f);
-	fseek(f, 0, SEEK_SET);
-	text = calloc(1, len + 1);
-	assert_int_equal(fread(text, 1, len, f), len);
-	fclose(f);
+	text = slurp_text(text_path);
 	table_parse(&bl, text);
 	free(text);
 	assert_int_equal(bl.nrows, tb.nrows);
@@ -379,6 +386,81 @@ static void test_armature(void **state)
 	against_spec("armature", "keys", "gltf");
 	against_spec("armature", "sampled", "glb");
 	against_blender("armature");
+}
+
+/* `strand import FILE --merge` a scene with one revolute joint: exit 2,
+ * one line naming the file. */
+static void onto_error(const char *joint, const char *axis, const char *file, const char *want)
+{
+	char scene[256], path[64], args[256];
+	struct run r;
+
+	snprintf(scene, sizeof(scene),
+		 "timing: {frame_rate: 24, frames: [0, 10]}\n"
+		 "nodes: [{name: %s, joint: {type: revolute, axis: %s}}]\n", joint, axis);
+	tmp_file(path, sizeof(path), ".yaml", scene, strlen(scene));
+	snprintf(args, sizeof(args), "import " DIR "%s --merge %s", file, path);
+	strand(&r, args);
+	unlink(path);
+	if (r.rc != 2 || !strstr(r.err, want))
+		fprintf(stderr, "exit %d: %s", r.rc, r.err);
+	assert_int_equal(r.rc, 2);
+	assert_non_null(strstr(r.err, want));
+	run_free(&r);
+}
+
+/* tests/import/urdf/arm.urdf's joints driven by the empties of Blender's
+ * robot scene, named after them (`strand import robot.sampled.glb --merge
+ * arm.yaml`): every frame's joint values against Blender's own. */
+static void test_onto_joints(void **state)
+{
+	static const char *const cols[] = { "pan.angle", "lift.angle", "reach.position" };
+	char robot[64], args[256], *text;
+	struct table tb, bl;
+	struct tu_worst wa = { 0, 0 }, wp = { 0, 0 };
+	struct run r;
+	int k, row;
+
+	(void)state;
+	tmp_file(robot, sizeof(robot), ".yaml", "", 0);
+	snprintf(args, sizeof(args), "import tests/import/urdf/arm.urdf -o %s", robot);
+	strand(&r, args);
+	assert_int_equal(r.rc, 0);
+	run_free(&r);
+	snprintf(args, sizeof(args), "import " DIR "robot.sampled.glb --merge %s -o %s", robot, robot);
+	strand(&r, args);
+	assert_int_equal(r.rc, 0);
+	run_free(&r);
+	snprintf(args, sizeof(args), "export %s", robot);
+	strand(&r, args);
+	assert_int_equal(r.rc, 0);
+	table_parse(&tb, r.out);
+	run_free(&r);
+	text = slurp_text(DIR "robot.blender.csv");
+	table_parse(&bl, text);
+	free(text);
+	assert_int_equal(tb.nrows, bl.nrows);
+	for (k = 0; k < 3; k++) {
+		int c = column(&tb, cols[k]), b = column(&bl, cols[k]);
+
+		assert_true(c >= 0 && b >= 0);
+		for (row = 0; row < tb.nrows; row++)
+			tu_worst_add(k < 2 ? &wa : &wp, tb.v[row * tb.ncols + c] - bl.v[row * bl.ncols + b],
+				     row);
+	}
+	tu_bound("gltf_onto_urdf_angles_vs_blender", &wa, 1e-4, "deg");
+	tu_bound("gltf_onto_urdf_positions_vs_blender", &wp, 1e-6, "m");
+	table_free(&tb);
+	table_free(&bl);
+	unlink(robot);
+	/* refused, named: a node that turns about two axes, one about another
+	 * axis than its joint's, a cubic rotation */
+	onto_error("Kid", "z", "hierarchy.sampled.glb",
+		   ": node 'Kid' turns about more than one axis, and revolute joint 'Kid' about one");
+	onto_error("Spinner", "x", "hierarchy.sampled.glb",
+		   ": node 'Spinner' turns about (0, 1, 0) in the file's axes, not about revolute joint 'Spinner''s axis (1, 0, 0)");
+	onto_error("Base", "y", "hierarchy.keys.gltf",
+		   ": node 'Base': a CUBICSPLINE rotation is no cubic in its angle");
 }
 
 /* Bad files: one line naming the file and the JSON path, exit 2
@@ -429,6 +511,7 @@ int main(void)
 		cmocka_unit_test(test_hierarchy),
 		cmocka_unit_test(test_armature),
 		cmocka_unit_test(test_errors),
+		cmocka_unit_test(test_onto_joints),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
