@@ -196,7 +196,8 @@ def positions(s, name):
 
 def export(name, sampled, fmt):
     ext = "glb" if fmt == "GLB" else "gltf"
-    bpy.ops.export_scene.gltf(filepath="%s/%s.%s.%s" % (OUT, name, "sampled" if sampled else "keys", ext),
+    path = "%s/%s.%s.%s" % (OUT, name, "sampled" if sampled else "keys", ext)
+    bpy.ops.export_scene.gltf(filepath=path,
                               export_format=fmt, export_animations=True,
                               export_force_sampling=sampled, export_nla_strips=False,
                               export_optimize_animation_size=False, export_frame_range=True,

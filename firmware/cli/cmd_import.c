@@ -251,7 +251,9 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	else if (ends_with(path, ".csv"))
 		rc = imp_csv(&m, path, buf, len, &o.imp, err, msg, sizeof(msg));
 	else {
-		rc = o.merge ? onto_joints(&m, path, buf, len, &o, err, msg, sizeof(msg), &onto) : 0;
+		rc = 0;
+		if (o.merge)
+			rc = onto_joints(&m, path, buf, len, &o, err, msg, sizeof(msg), &onto);
 		if (rc > 0) {
 			free(buf);
 			free(mbuf);

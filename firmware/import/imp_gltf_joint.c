@@ -196,7 +196,8 @@ static int revolute(struct imp_chan *ch, const struct gltf *g, const struct gltf
 		if (!sign) {
 			snprintf(err, errsize,
 				 "node '%s' turns about (%.6g, %.6g, %.6g) in the file's axes, not about revolute joint '%s''s axis (%.6g, %.6g, %.6g)",
-				 name, uw[0], uw[1], uw[2], j->name, j->axis[0], j->axis[1], j->axis[2]);
+				 name, uw[0], uw[1], uw[2], j->name, j->axis[0], j->axis[1],
+				 j->axis[2]);
 			free(d);
 			return -EINVAL;
 		}
@@ -305,9 +306,10 @@ int imp_gltf_joints(struct imp_model *m, const char *path, const uint8_t *buf, s
 
 			n->kind = joints[j].kind;
 			memcpy(n->axis, joints[j].axis, sizeof(n->axis));
-			rc = n->kind == IMP_REVOLUTE ?
-				     revolute(&n->ch[0], &g, ch, &joints[j], name, err, errsize, o) :
-				     prismatic(&n->ch[0], &g, ch, &joints[j], name, err, errsize, o);
+			if (n->kind == IMP_REVOLUTE)
+				rc = revolute(&n->ch[0], &g, ch, &joints[j], name, err, errsize, o);
+			else
+				rc = prismatic(&n->ch[0], &g, ch, &joints[j], name, err, errsize, o);
 			(*matched)++;
 		}
 		free(name);

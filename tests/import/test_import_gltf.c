@@ -445,8 +445,8 @@ static void test_onto_joints(void **state)
 
 		assert_true(c >= 0 && b >= 0);
 		for (row = 0; row < tb.nrows; row++)
-			tu_worst_add(k < 2 ? &wa : &wp, tb.v[row * tb.ncols + c] - bl.v[row * bl.ncols + b],
-				     row);
+			tu_worst_add(k < 2 ? &wa : &wp,
+				     tb.v[row * tb.ncols + c] - bl.v[row * bl.ncols + b], row);
 	}
 	tu_bound("gltf_onto_urdf_angles_vs_blender", &wa, 1e-4, "deg");
 	tu_bound("gltf_onto_urdf_positions_vs_blender", &wp, 1e-6, "m");
