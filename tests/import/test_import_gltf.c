@@ -505,6 +505,30 @@ static void test_errors(void **state)
 	}
 }
 
+/* Names: other characters become '_', a clash gets _2 and is said once on
+ * stderr, 'camera' is taken; nodes come parents first whatever the file's
+ * order; a node without a name is node<i>. */
+static void test_names(void **state)
+{
+	static const char file[] = GLTF_HEAD
+		"\"nodes\": [{\"name\": \"leaf\"}, {\"name\": \"a.b\", \"children\": [0]},"
+		" {\"name\": \"a_b\"}, {\"name\": \"camera\"}, {}]}";
+	char path[64], args[128];
+	struct run r;
+
+	(void)state;
+	tmp_file(path, sizeof(path), ".gltf", file, sizeof(file) - 1);
+	snprintf(args, sizeof(args), "import %s", path);
+	strand(&r, args);
+	unlink(path);
+	assert_int_equal(r.rc, 0);
+	assert_non_null(strstr(r.err, ": the name 'a_b' is taken: it is 'a_b_2' in the scene\n"));
+	assert_non_null(strstr(r.err, ": the name 'camera' is taken: it is 'camera_2' in the scene\n"));
+	assert_non_null(strstr(r.out, "nodes:\n  - name: a_b\n  - name: leaf\n    parent: a_b\n"
+				      "  - name: a_b_2\n  - name: camera_2\n  - name: node4\n"));
+	run_free(&r);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -512,6 +536,7 @@ int main(void)
 		cmocka_unit_test(test_armature),
 		cmocka_unit_test(test_errors),
 		cmocka_unit_test(test_onto_joints),
+		cmocka_unit_test(test_names),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
