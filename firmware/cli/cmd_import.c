@@ -202,6 +202,36 @@ static int onto_joints(struct imp_model *m, const char *path, const uint8_t *buf
 	return rc;
 }
 
+/*
+ * The scene written, read back by the loader and built, as check and play
+ * will: a file whose numbers the core cannot hold (key times past 2^30
+ * frames, a tangent beyond the core's range) is refused here, named, not
+ * later. 0, or the exit code with one line on err: FILE: the scene it
+ * makes ...
+ */
+static int check_scene(const char *path, const char *text, size_t len, FILE *err)
+{
+	struct scene_file sf;
+	struct scene_built b;
+	struct load_err e;
+	int rc = scene_file_parse(&sf, "scene", text, len, &e);
+
+	if (!rc) {
+		rc = scene_file_build(&sf, &b, &e);
+		if (!rc)
+			scene_built_free(&b);
+		scene_file_free(&sf);
+	}
+	if (!rc)
+		return 0;
+	if (e.line)
+		fprintf(err, "%s: the scene it makes is refused at its line %u: %s\n", path, e.line,
+			e.msg);
+	else
+		fprintf(err, "%s: the scene it makes is refused: %s\n", path, e.msg);
+	return e.code == -ENOMEM ? STRAND_EXIT_INTERNAL : STRAND_EXIT_SCENE;
+}
+
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
 	static const struct option opts[] = {
@@ -216,7 +246,9 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	size_t len, mlen;
 	const char *path;
 	char msg[512];
-	FILE *f = out;
+	FILE *f = out, *mem;
+	char *text;
+	size_t tlen;
 	bool onto = false;
 	int first, rc;
 
@@ -276,31 +308,47 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		free(mbuf);
 		return STRAND_EXIT_USAGE;
 	}
-	if (o.outpath && !(f = fopen(o.outpath, "w"))) {
-		fprintf(err, "strand import: %s: %s\n", o.outpath, strerror(errno));
+	text = NULL;
+	tlen = 0;
+	mem = open_memstream(&text, &tlen);
+	if (!mem) {
 		imp_model_free(&m);
 		free(mbuf);
-		return STRAND_EXIT_IO;
+		return STRAND_EXIT_INTERNAL;
 	}
 	if (onto) {
 		/* the animation's timing and strands, the scene's nodes and rig */
 		static const char *const drop[] = { "timing:", "strands:", "scene:", NULL };
 
-		rc = imp_yaml_write(f, &m, IMP_YAML_TIMING | IMP_YAML_STRANDS);
+		rc = imp_yaml_write(mem, &m, IMP_YAML_TIMING | IMP_YAML_STRANDS);
 		if (!rc)
-			rc = merge(f, o.merge, (const char *)mbuf, drop);
+			rc = merge(mem, o.merge, (const char *)mbuf, drop);
 	} else {
 		static const char *const drop[] = { "nodes:", "scene:", NULL };
 		bool timing = !mbuf || !has_section((const char *)mbuf, "timing:");
 
-		rc = imp_yaml_write(f, &m, IMP_YAML_ALL & ~(timing ? 0 : IMP_YAML_TIMING));
+		rc = imp_yaml_write(mem, &m, IMP_YAML_ALL & ~(timing ? 0 : IMP_YAML_TIMING));
 		if (!rc && mbuf)
-			rc = merge(f, o.merge, (const char *)mbuf, drop);
+			rc = merge(mem, o.merge, (const char *)mbuf, drop);
 	}
-	if (f != out && fclose(f))
-		rc = -EIO;
+	if (fclose(mem))
+		rc = -ENOMEM;
 	imp_model_free(&m);
 	free(mbuf);
+	if (!rc)
+		rc = check_scene(path, text, tlen, err);
+	if (rc) {
+		free(text);
+		return rc < 0 ? STRAND_EXIT_INTERNAL : rc;
+	}
+	if (o.outpath && !(f = fopen(o.outpath, "w"))) {
+		fprintf(err, "strand import: %s: %s\n", o.outpath, strerror(errno));
+		free(text);
+		return STRAND_EXIT_IO;
+	}
+	if (fwrite(text, 1, tlen, f) != tlen || (f != out && fclose(f)))
+		rc = -EIO;
+	free(text);
 	if (rc) {
 		fprintf(err, "strand import: %s: cannot write\n", o.outpath ? o.outpath : "stdout");
 		return STRAND_EXIT_IO;

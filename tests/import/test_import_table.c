@@ -123,6 +123,8 @@ static void test_errors(void **state)
 	bad("frame,a.angle\n0,1\n1,nan\n", ": line 3, column 2: 'nan' is not a finite number");
 	bad("frame,a.angle\n0,1\n0,2\n", ": line 3: frame 0 is not after the previous row's");
 	bad("frame,a.angle\n0,1,2\n", ": line 2: 3 fields, the header has 2");
+	/* frames the core cannot hold: caught when the scene made is read back */
+	bad("frame,a.angle\n0,1\n2e9,2\n", ": the scene it makes is refused at its line 5: ");
 }
 
 int main(void)
