@@ -4,6 +4,8 @@
 
 #include <math.h>
 
+#include "move.h"
+
 /* One Q32.32 step, and a double's relative step. */
 #define STEP (1.0 / 4294967296.0)
 #define DBL_REL (1.0 / 4503599627370496.0) /* 2^-52 */
@@ -79,6 +81,7 @@ void STRAND_RT lim_measure(const struct lim_meter *m, const struct lim_stencil *
 	me->has_v = m->seen >= (int64_t)s->h;
 	me->has_a = m->seen >= 2 * (int64_t)s->h;
 	me->v = me->has_v ? diff(x0, x1) * s->rate : 0;
+	me->v1 = m->seen >= 1 ? diff(x0, back(m, 1)) * s->tick_hz : 0;
 	/* (x0 - x1) - (x1 - x2): each difference exact, their difference
 	 * to the double's precision */
 	me->a = me->has_a ? (diff(x0, x1) - diff(x1, x2)) * s->rate * s->rate : 0;
@@ -99,8 +102,7 @@ uint32_t STRAND_RT lim_test(const struct lim_stencil *s, const struct lim_bounds
 	if (me->has_a && fabs(me->a) > b->acc + na)
 		hit[n++] = (struct lim_hit){ LIM_ACC, me->a, copysign(b->acc, me->a) };
 	if (me->has_v && !b->vel_ch && isfinite(b->acc) && (isfinite(b->min) || isfinite(b->max))) {
-		double at = me->x + copysign(me->v * me->v / (2 * b->acc) + fabs(me->v) / s->tick_hz,
-					     me->v);
+		double at = me->x + copysign(move_stop_distance(me->v1, b->acc, s->tick_hz), me->v1);
 
 		if (at < b->min - me->noise)
 			hit[n++] = (struct lim_hit){ LIM_STOP, at, b->min };

@@ -20,9 +20,10 @@
  * move far from zero) four of the double's steps at that magnitude too.
  *
  * A channel with a position limit and an acceleration limit is also held
- * to where a controlled stop begun at that sample would leave it, its
- * stopping point x + sign(v) (v^2 / (2a) + |v| dt): every stop (SIGINT, a
- * stop input, a fault) brakes at the acceleration limit, so a timeline on
+ * to where a controlled stop begun after that sample would leave it, its
+ * stopping point: every stop (SIGINT, a stop input, a fault, the post-roll)
+ * brakes from the speed of the last tick at the acceleration limit
+ * (plan/move.h, move_stop_distance gives how far exactly), so a timeline on
  * which this holds everywhere is safe to stop anywhere.
  *
  * Units are the core's (turns, scene units, rpm) per second and per
@@ -68,6 +69,7 @@ struct lim_meter {
  * h and 2h samples came before it: has_v, has_a). */
 struct lim_measure {
 	double x, v, a;
+	double v1;       /* the speed over the last tick alone, what a stop brakes from */
 	double noise;    /* one sample's rounding at this magnitude, units */
 	bool has_v, has_a;
 };

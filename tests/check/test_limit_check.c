@@ -124,11 +124,11 @@ static void test_each_kind(void **state)
 	/* prismatic min -0.2: -0.5 f / 96 < -0.2 after frame 38.4 = tick 1600 */
 	v = find(&f, 1, LIM_MIN, 0);
 	expect_in(v, 1601, 4000, -0.5, -0.2, 1);
-	/* a controlled stop at 50000 deg/s^2 from 120 deg/s needs 0.144 deg plus
-	 * the tick it starts in (0.12 deg): stopping at 0.12 k + 0.264 deg, past
-	 * 100 from tick 832 up, through the hold (at rest: the value itself), and
-	 * on the way down until 120 - 0.12 (k - 2000) - 0.264 <= 100 */
-	expect(find(&f, 0, LIM_STOP, 0), 832, 2164, 120.264, 100);
+	/* a controlled stop at 50000 deg/s^2 (50 deg/s less a tick) from 120
+	 * deg/s goes on 0.07 + 0.02 = 0.09 deg: stopping at 0.12 k + 0.09 deg,
+	 * past 100 from tick 833 up, through the hold (at rest: the value
+	 * itself), and on the way down until 120 - 0.12 (k - 2000) - 0.09 <= 100 */
+	expect(find(&f, 0, LIM_STOP, 0), 833, 2165, 120.09, 100);
 	assert_int_equal(res.violations, 8);
 	assert_int_equal(f.n, 8);
 	free(ch);
@@ -160,7 +160,7 @@ static void test_command(void **state)
 	assert_non_null(strstr(out, "arm.angle: velocity -120 deg/s beyond limit -100 deg/s, frames 48.024 to 72\n"));
 	assert_non_null(strstr(out, "arm.angle: acceleration 120000 deg/s^2 beyond limit 50000 deg/s^2, frames 72 to 72\n"));
 	assert_non_null(strstr(out, "slide.position: min -0.5 units beyond limit -0.2 units, frames 38.424 to 96\n"));
-	assert_non_null(strstr(out, "arm.angle: a controlled stop would end at 120.264 deg, beyond limit 100 deg, frames 19.968 to 51.936\n"));
+	assert_non_null(strstr(out, "arm.angle: a controlled stop would end at 120.09 deg, beyond limit 100 deg, frames 19.992 to 51.96\n"));
 	assert_non_null(strstr(out, ": 8 violations; 2 channels with limits, frames 0 to 96, 4001 ticks\n"));
 	free(out);
 	free(err);
