@@ -39,7 +39,7 @@ FUZZ_IMPORT_SECONDS ?= 6
 FUZZ_IMPORT_CSV_SECONDS ?= 3
 FUZZ_IMPORT_DIR := $(BUILD)/fuzz
 IMPORT_SRC := $(wildcard firmware/import/*.c)
-FUZZ_IMPORT_CFLAGS = $(FUZZ_CFLAGS) $(shell pkg-config --cflags jansson libxml-2.0)
+FUZZ_IMPORT_CFLAGS = $(FUZZ_CFLAGS) $(shell pkg-config --cflags jansson expat)
 
 # the readers compiled once for libFuzzer, then one program per reader from
 # tests/fuzz/fuzz_import.c
@@ -53,7 +53,7 @@ $(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf $(FUZZ_IMPORT_DIR)/fuz
 		$(FUZZ_IMPORT_DIR)/fuzz_%: tests/fuzz/fuzz_import.c $(IMPORT_FUZZ_OBJ) | \
 		$(BUILD)/.deps-fuzz
 	$(Q)clang $(FUZZ_IMPORT_CFLAGS) -DFUZZ_READER=imp_$* $< $(IMPORT_FUZZ_OBJ) \
-		$(shell pkg-config --libs jansson libxml-2.0) -lm -o $@
+		$(shell pkg-config --libs jansson expat) -lm -o $@
 
 # seeds: the Blender files and the URDF test robots
 $(FUZZ_IMPORT_DIR)/seed-gltf: $(wildcard tests/import/blender/*.gl*)

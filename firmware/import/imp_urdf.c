@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * imp_urdf.c - a URDF robot as a model (imp.h), read with Debian's libxml2.
+ * imp_urdf.c - a URDF robot as a model (imp.h), read with Debian's expat
+ * (xmltree.h).
  *
  * Links and joints become nodes, from the root link down: each joint a node
  * under its parent link's, each child link a node under its joint's. strand
@@ -18,16 +19,16 @@
 #include "imp.h"
 
 #include <errno.h>
-#include <libxml/parser.h>
-#include <libxml/tree.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "xmltree.h"
+
 #define DEG (180.0 / M_PI)
 
 struct ujoint {
-	xmlNode *x;
+	struct xel *x;
 	const char *name, *type;
 	int parent, child;   /* link indices */
 	double xyz[3], rpy[3], axis[3];
@@ -39,7 +40,7 @@ struct ujoint {
 };
 
 struct ulink {
-	xmlNode *x;
+	struct xel *x;
 	const char *name;
 	int parent_joint;    /* -1 for the root */
 	double frame[4][4];  /* rest frame in the model, column vectors */
@@ -55,37 +56,26 @@ struct urdf {
 	const char *path;
 };
 
-static int fail(struct urdf *u, const xmlNode *at, const char *fmt, const char *a, const char *b)
+static int fail(struct urdf *u, const struct xel *at, const char *fmt, const char *a, const char *b)
 {
 	char msg[400];
 
 	snprintf(msg, sizeof(msg), fmt, a, b);
-	snprintf(u->err, u->errsize, "line %ld: %s", at ? xmlGetLineNo(at) : 0L, msg);
+	snprintf(u->err, u->errsize, "line %ld: %s", at ? at->line : 0L, msg);
 	return -EINVAL;
 }
 
-static const char *attr(xmlNode *n, const char *name)
+static const char *attr(struct xel *n, const char *name)
 {
-	xmlAttr *a;
-
-	for (a = n->properties; a; a = a->next)
-		if (!strcmp((const char *)a->name, name) && a->children &&
-		    a->children->type == XML_TEXT_NODE)
-			return (const char *)a->children->content;
-	return NULL;
+	return xml_attr(n, name);
 }
 
-static xmlNode *child(xmlNode *n, const char *name)
+static struct xel *child(struct xel *n, const char *name)
 {
-	xmlNode *c;
-
-	for (c = n->children; c; c = c->next)
-		if (c->type == XML_ELEMENT_NODE && !strcmp((const char *)c->name, name))
-			return c;
-	return NULL;
+	return xml_child(n, name);
 }
 
-static int numbers(struct urdf *u, xmlNode *n, const char *name, double *out, int count)
+static int numbers(struct urdf *u, struct xel *n, const char *name, double *out, int count)
 {
 	const char *s = attr(n, name);
 	char *end;
@@ -117,11 +107,11 @@ static int find_link(const struct urdf *u, const char *name)
 	return -1;
 }
 
-static int read_joint(struct urdf *u, xmlNode *x, struct ujoint *j)
+static int read_joint(struct urdf *u, struct xel *x, struct ujoint *j)
 {
 	static const char *const types[] = { "revolute", "continuous", "prismatic", "fixed",
 					     "floating", "planar", NULL };
-	xmlNode *c;
+	struct xel *c;
 	int k, err;
 
 	j->x = x;
@@ -266,18 +256,16 @@ static int emit(struct urdf *u, struct imp_model *m, int l, int parent_node, int
 	return 0;
 }
 
-static int build(struct urdf *u, struct imp_model *m, xmlNode *robot, FILE *warn)
+static int build(struct urdf *u, struct imp_model *m, struct xel *robot, FILE *warn)
 {
 	int i, j, root = -1, err;
 	bool effort = false, odd = false;
-	xmlNode *c;
+	struct xel *c;
 
-	for (c = robot->children; c; c = c->next) {
-		if (c->type != XML_ELEMENT_NODE)
-			continue;
-		if (!strcmp((const char *)c->name, "link"))
+	for (c = robot->first; c; c = c->next) {
+		if (!strcmp(c->name, "link"))
 			u->nlinks++;
-		else if (!strcmp((const char *)c->name, "joint"))
+		else if (!strcmp(c->name, "joint"))
 			u->njoints++;
 	}
 	u->links = calloc((size_t)u->nlinks + 1, sizeof(*u->links));
@@ -285,8 +273,8 @@ static int build(struct urdf *u, struct imp_model *m, xmlNode *robot, FILE *warn
 	if (!u->links || !u->joints)
 		return -ENOMEM;
 	i = 0;
-	for (c = robot->children; c; c = c->next)
-		if (c->type == XML_ELEMENT_NODE && !strcmp((const char *)c->name, "link")) {
+	for (c = robot->first; c; c = c->next)
+		if (!strcmp(c->name, "link")) {
 			struct ulink *l = &u->links[i++];
 
 			l->x = c;
@@ -298,8 +286,8 @@ static int build(struct urdf *u, struct imp_model *m, xmlNode *robot, FILE *warn
 				return fail(u, c, "link '%s' is defined twice%s", l->name, "");
 		}
 	j = 0;
-	for (c = robot->children; c; c = c->next)
-		if (c->type == XML_ELEMENT_NODE && !strcmp((const char *)c->name, "joint")) {
+	for (c = robot->first; c; c = c->next)
+		if (!strcmp(c->name, "joint")) {
 			struct ujoint *jt = &u->joints[j];
 			int k;
 
@@ -368,36 +356,17 @@ int imp_urdf(struct imp_model *m, const char *path, const uint8_t *buf, size_t l
 	     const struct imp_opts *o, FILE *warn, char *err, size_t errsize)
 {
 	struct urdf u = { .err = err, .errsize = errsize, .path = path };
-	xmlParserCtxtPtr ctx = xmlNewParserCtxt();
-	xmlDocPtr doc = NULL;
-	xmlNode *robot;
-	int rc;
+	struct xml_doc doc;
+	struct xel *robot;
+	int rc = xml_parse(&doc, (const char *)buf, len, err, errsize);
 
-	if (!ctx)
-		return -ENOMEM;
-	if (len > INT32_MAX) {
-		snprintf(err, errsize, "too large");
-		xmlFreeParserCtxt(ctx);
-		return -EINVAL;
-	}
-	doc = xmlCtxtReadMemory(ctx, (const char *)buf, (int)len, path, NULL,
-				XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
-	if (!doc) {
-		const xmlError *e = xmlCtxtGetLastError(ctx);
-
-		snprintf(err, errsize, "line %d: not well-formed XML: %s", e ? e->line : 0,
-			 e && e->message ? e->message : "unknown error");
-		/* libxml2's messages end with a newline */
-		if (strlen(err) && err[strlen(err) - 1] == '\n')
-			err[strlen(err) - 1] = 0;
-		xmlFreeParserCtxt(ctx);
-		return -EINVAL;
-	}
-	robot = xmlDocGetRootElement(doc);
+	if (rc)
+		return rc;
+	robot = doc.root;
 	m->rate_num = o->rate_num;
 	m->rate_den = o->rate_den;
 	m->tick_hz = o->tick_hz;
-	if (!robot || strcmp((const char *)robot->name, "robot"))
+	if (strcmp(robot->name, "robot"))
 		rc = fail(&u, robot, "the root element is not <robot>%s%s", "", "");
 	else
 		rc = build(&u, m, robot, warn);
@@ -409,7 +378,6 @@ int imp_urdf(struct imp_model *m, const char *path, const uint8_t *buf, size_t l
 	}
 	free(u.links);
 	free(u.joints);
-	xmlFreeDoc(doc);
-	xmlFreeParserCtxt(ctx);
+	xml_free(&doc);
 	return rc;
 }
