@@ -158,12 +158,13 @@ static int merge(FILE *out, const char *path, const char *text, const char *cons
 /*
  * A glTF file merged into a scene whose joints its animated nodes name: the
  * animation drives those joints (import/imp_gltf_joint.c). *onto false when
- * no animated node has a joint's name (the file is then imported as nodes).
- * 0, a negative errno with msg, or STRAND_EXIT_SCENE (said on err) when the
- * scene cannot be read.
+ * no animated node has a joint's name, or the scene does not load on its
+ * own (a take's strands and rig for another file's nodes): the file is then
+ * imported as nodes, and the merged scene checked as a whole. 0, or a
+ * negative errno with msg.
  */
 static int onto_joints(struct imp_model *m, const char *path, const uint8_t *buf, size_t len,
-		       const struct opts *o, FILE *err, char *msg, size_t msgsize, bool *onto)
+		       const struct opts *o, FILE *warn, char *msg, size_t msgsize, bool *onto)
 {
 	struct scene_file sf;
 	struct load_err le;
@@ -173,7 +174,7 @@ static int onto_joints(struct imp_model *m, const char *path, const uint8_t *buf
 
 	*onto = false;
 	if (scene_file_load(&sf, o->merge, &le))
-		return cli_scene_error(err, o->merge, &le);
+		return 0;
 	joints = calloc(sf.desc.nnodes + 1, sizeof(*joints));
 	if (!joints) {
 		scene_file_free(&sf);
@@ -193,7 +194,7 @@ static int onto_joints(struct imp_model *m, const char *path, const uint8_t *buf
 			joints[n].axis[k] = sn->axis[k] / l;
 		n++;
 	}
-	rc = imp_gltf_joints(m, path, buf, len, &o->imp, joints, n, &matched, err, msg, msgsize);
+	rc = imp_gltf_joints(m, path, buf, len, &o->imp, joints, n, &matched, warn, msg, msgsize);
 	if (!rc && !matched)
 		imp_model_free(m);
 	*onto = !rc && matched;
@@ -286,11 +287,6 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		rc = 0;
 		if (o.merge)
 			rc = onto_joints(&m, path, buf, len, &o, err, msg, sizeof(msg), &onto);
-		if (rc > 0) {
-			free(buf);
-			free(mbuf);
-			return rc;
-		}
 		if (!rc && !onto)
 			rc = imp_gltf(&m, path, buf, len, &o.imp, err, msg, sizeof(msg));
 	}

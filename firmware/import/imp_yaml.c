@@ -151,8 +151,7 @@ static void free_strand(FILE *o, const struct imp_node *n)
 	free(frames);
 }
 
-static void joint_keys(FILE *o, const struct imp_chan *c, const char *field, double mult,
-		       double offset)
+static void joint_keys(FILE *o, const struct imp_chan *c, const char *field)
 {
 	uint32_t i;
 
@@ -162,12 +161,12 @@ static void joint_keys(FILE *o, const struct imp_chan *c, const char *field, dou
 		fputs("      - {frame: ", o);
 		num(o, c->frame[i]);
 		fprintf(o, ", %s: ", field);
-		num(o, mult * c->v[i] + offset);
+		num(o, c->v[i]);
 		if (c->interp == IMP_CUBIC) {
 			fputs(", in: ", o);
-			num(o, mult * c->in[i]);
+			num(o, c->in[i]);
 			fputs(", out: ", o);
-			num(o, mult * c->out[i]);
+			num(o, c->out[i]);
 		}
 		fputs("}\n", o);
 	}
@@ -189,13 +188,11 @@ static void node_entry(FILE *o, const struct imp_model *m, const struct imp_node
 	vec(o, n->axis, 3);
 	fputs("}\n", o);
 	if (n->mimic >= 0) {
-		double r = n->mult * m->nodes[n->mimic].rest + n->offset;
-
-		if (r) {
-			fputs("    rest: ", o);
-			num(o, r);
-			fputc('\n', o);
-		}
+		fprintf(o, "    mimic: {joint: %s, multiplier: ", m->nodes[n->mimic].name);
+		num(o, n->mult);
+		fputs(", offset: ", o);
+		num(o, n->offset);
+		fputs("}\n", o);
 	} else if (n->rest) {
 		fputs("    rest: ", o);
 		num(o, n->rest);
@@ -230,8 +227,7 @@ bool imp_has_strands(const struct imp_model *m)
 	for (i = 0; i < m->nnodes; i++) {
 		const struct imp_node *n = &m->nodes[i];
 
-		if (n->kind == IMP_FREE ? free_keyed(n) :
-		    (n->mimic >= 0 ? m->nodes[n->mimic].ch[0].n : n->ch[0].n) > 0)
+		if (n->kind == IMP_FREE ? free_keyed(n) : n->ch[0].n > 0 && n->mimic < 0)
 			return true;
 	}
 	return false;
@@ -268,8 +264,9 @@ int imp_yaml_write(FILE *o, const struct imp_model *m, unsigned sections)
 		node_entry(o, m, &m->nodes[i]);
 	for (i = 0; i < m->nnodes && (sections & IMP_YAML_STRANDS); i++) {
 		const struct imp_node *n = &m->nodes[i];
-		const struct imp_chan *c = n->mimic >= 0 ? &m->nodes[n->mimic].ch[0] : &n->ch[0];
-		bool keyed = n->kind == IMP_FREE ? free_keyed(n) : c->n > 0;
+		const struct imp_chan *c = &n->ch[0];
+		/* a mimic's keys are its master's, mapped by the loader */
+		bool keyed = n->kind == IMP_FREE ? free_keyed(n) : c->n > 0 && n->mimic < 0;
 
 		if (!keyed)
 			continue;
@@ -284,8 +281,7 @@ int imp_yaml_write(FILE *o, const struct imp_model *m, unsigned sections)
 			fputs("strands:\n", o);
 		strands = true;
 		fprintf(o, "  - node: %s\n", n->name);
-		joint_keys(o, c, n->kind == IMP_REVOLUTE ? "angle" : "position",
-			   n->mimic >= 0 ? n->mult : 1, n->mimic >= 0 ? n->offset : 0);
+		joint_keys(o, c, n->kind == IMP_REVOLUTE ? "angle" : "position");
 	}
 	if (m->nattrs && (sections & IMP_YAML_STRANDS))
 		fputs("attributes:\n", o);

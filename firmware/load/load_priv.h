@@ -37,6 +37,15 @@ struct sf_marks {
 	struct sf_curve_marks *attr;          /* nattrs */
 };
 
+/* A joint that mimics another (`mimic:` on a node): its value is
+ * multiplier x the master's + offset, the master's curve mapped at load
+ * time (ld_mimics). */
+struct ld_mimic {
+	int32_t master;       /* -1: not a mimic */
+	double mult, offset;  /* offset in the mimic's degrees or units */
+	const yaml_node_t *at;
+};
+
 /* The walk: one per parse. */
 struct ld {
 	struct yml y;              /* first: the readers' walk (document, pool, errors) */
@@ -48,6 +57,7 @@ struct ld {
 	struct sd_node *nodes;     /* d->nodes, writable */
 	struct sf_strand *strand;  /* sf->strand, writable */
 	const char **node_names;   /* nnodes + 1, NULL-terminated, for suggestions */
+	struct ld_mimic *mimic;    /* nnodes */
 	uint32_t *by_name;         /* node indices sorted by name */
 };
 
@@ -179,6 +189,9 @@ int ld_curve_check(struct ld *l, const struct sd_curve *c, const struct sf_curve
 int ld_timing(struct ld *l, yaml_node_t *n);     /* load_timing.c */
 int ld_nodes(struct ld *l, yaml_node_t *n);      /* load_node.c */
 int ld_strands(struct ld *l, yaml_node_t *n);    /* load_strand.c */
+/* Every mimic joint's curve from its master's, after the strands are read
+ * (load_node.c). */
+int ld_mimics(struct ld *l);
 
 /* Fields of a strand key of any kind; which ones a node accepts depends on
  * its kind (load_strand.c). */

@@ -347,6 +347,8 @@ static void test_merge(void **state)
 		"nodes:\n  - {name: pan, joint: {type: revolute, axis: z}}\n"
 		"strands:\n  - node: pan\n"
 		"    keys: [{frame: 0, angle: 0}, {frame: 50, angle: 90}, {frame: 100, angle: 0}]\n"
+		"  - {node: grip_l, interpolation: linear,\n"
+		"     keys: [{frame: 0, position: 0}, {frame: 100, position: 0.04}]}\n"
 		"devices:\n  - {name: drives, driver: sim}\n"
 		"outputs:\n  - {channel: pan.angle, device: drives, counts_per_unit: 100,\n"
 		"     limits: {velocity: 100, acceleration: 500}}\n";
@@ -367,7 +369,9 @@ static void test_merge(void **state)
 	 * robot's other joints at rest */
 	assert_non_null(strstr(r.out, "pan.angle,lift.angle,reach.position"));
 	assert_non_null(strstr(r.out, "\n2000,50,"));
-	assert_non_null(strstr(r.out, ",90,0,0,0,0,0\n"));
+	/* pan at 90 degrees, grip_l half open and grip_r, its mimic, with it */
+	assert_non_null(strstr(r.out, ",twist.angle,grip_l.position,grip_r.position\n"));
+	assert_non_null(strstr(r.out, ",90,0,0,0,0.02000000002,0.02000000002\n"));
 	run_free(&r);
 	snprintf(args, sizeof(args), "play %s --sim --clock virtual --no-journal --quiet", yaml);
 	strand(&r, args);

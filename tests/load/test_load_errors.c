@@ -892,6 +892,32 @@ static const struct err_case cases[] = {
 	  "strands:\n"
 	  "  - {node: a, keys: [{frame: 0, angle: 1, out: 3e11}, {frame: 5, angle: 0}]}\n",
 	  "t.yaml:4:22: a tangent of this key times its interval reaches beyond the core's range (below 2^31 turns)" },
+	{ "mimic of an unknown joint",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, joint: {type: revolute, axis: z}}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, mimic: {joint: c}}\n",
+	  "t.yaml:4:64: mimic of unknown joint 'c'" },
+	{ "mimic with a strand",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, joint: {type: revolute, axis: z}}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, mimic: {joint: a, multiplier: -1}}\n"
+	  "strands:\n"
+	  "  - {node: b, keys: [{frame: 0, angle: 1}]}\n",
+	  "t.yaml:6:5: 'b' mimics 'a': its motion is the master's, it takes no strand" },
+	{ "mimic of a free node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, mimic: {joint: a}}\n",
+	  "t.yaml:4:56: 'b' mimics 'a', which is not a joint of its own (a free node or a mimic)" },
+	{ "mimic with a rest",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, joint: {type: revolute, axis: z}}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, rest: 3, mimic: {joint: a}}\n",
+	  "t.yaml:4:55: 'b' mimics a joint: its rest is the master's, mapped (give 'offset' instead)" },
 };
 
 #define NCASES (sizeof(cases) / sizeof(cases[0]))
