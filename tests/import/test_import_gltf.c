@@ -529,6 +529,52 @@ static void test_names(void **state)
 	run_free(&r);
 }
 
+/* --animation NAME|N chooses a clip; the first by default. */
+static void test_clips(void **state)
+{
+	/* times 0 and 1 s, then clip A's translations (0,0,0) (1,2,3), B's
+	 * (0,0,0) (-1,-2,-3) */
+	static const char file[] = GLTF_HEAD
+		"\"buffers\": [{\"byteLength\": 56, \"uri\": \"data:application/octet-stream;base64,"
+		"AAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAQAAAQEAAAAAAAAAAAAAAAAAAAIC/AAAAwAAAQMA=\"}], "
+		"\"bufferViews\": [{\"buffer\": 0, \"byteLength\": 56}], "
+		"\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 2, \"type\": \"SCALAR\"},"
+		" {\"bufferView\": 0, \"byteOffset\": 8, \"componentType\": 5126, \"count\": 2, \"type\": \"VEC3\"},"
+		" {\"bufferView\": 0, \"byteOffset\": 32, \"componentType\": 5126, \"count\": 2, \"type\": \"VEC3\"}], "
+		"\"nodes\": [{\"name\": \"n\"}], \"animations\": ["
+		"{\"name\": \"A\", \"samplers\": [{\"input\": 0, \"output\": 1}], "
+		"\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": \"translation\"}}]},"
+		"{\"name\": \"B\", \"samplers\": [{\"input\": 0, \"output\": 2, \"interpolation\": \"STEP\"}], "
+		"\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": \"translation\"}}]}]}";
+	static const struct {
+		const char *opt, *comment, *key;
+	} clips[] = {
+		{ "", "animation 0 'A' of 2", "{frame: 24, translate: [1, 2, 3]}" },
+		{ "--animation B", "animation 1 'B' of 2", "{frame: 24, translate: [-1, -2, -3]}" },
+		{ "--animation 1", "animation 1 'B' of 2", "translate: step" },
+	};
+	char path[64], args[160];
+	struct run r;
+	size_t i;
+
+	(void)state;
+	tmp_file(path, sizeof(path), ".gltf", file, sizeof(file) - 1);
+	for (i = 0; i < sizeof(clips) / sizeof(clips[0]); i++) {
+		snprintf(args, sizeof(args), "import %s %s", path, clips[i].opt);
+		strand(&r, args);
+		assert_int_equal(r.rc, 0);
+		assert_non_null(strstr(r.out, clips[i].comment));
+		assert_non_null(strstr(r.out, clips[i].key));
+		run_free(&r);
+	}
+	snprintf(args, sizeof(args), "import %s --animation C", path);
+	strand(&r, args);
+	assert_int_equal(r.rc, 2);
+	assert_non_null(strstr(r.err, ": /animations: no animation named or numbered 'C' (the file has 2)"));
+	run_free(&r);
+	unlink(path);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -537,6 +583,7 @@ int main(void)
 		cmocka_unit_test(test_errors),
 		cmocka_unit_test(test_onto_joints),
 		cmocka_unit_test(test_names),
+		cmocka_unit_test(test_clips),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
