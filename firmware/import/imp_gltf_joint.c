@@ -309,7 +309,8 @@ int imp_gltf_joints(struct imp_model *m, const char *path, const uint8_t *buf, s
 			if (n->kind == IMP_REVOLUTE)
 				rc = revolute(&n->ch[0], &g, ch, &joints[j], name, err, errsize, o);
 			else
-				rc = prismatic(&n->ch[0], &g, ch, &joints[j], name, err, errsize, o);
+				rc = prismatic(&n->ch[0], &g, ch, &joints[j], name, err, errsize,
+					       o);
 			(*matched)++;
 		}
 		free(name);

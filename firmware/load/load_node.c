@@ -220,9 +220,10 @@ static int mimic(struct ld *l, uint32_t i, yaml_node_t *n, const yaml_node_t *re
 		return ld_fail(l, rest, -EINVAL,
 			       "'%s' mimics a joint: its rest is the master's, mapped (give 'offset' instead)",
 			       sn->name);
-	m = v[0]->type == YAML_SCALAR_NODE ?
-		    ld_find_node(l, (const char *)v[0]->data.scalar.value, v[0]->data.scalar.length) :
-		    -1;
+	m = -1;
+	if (v[0]->type == YAML_SCALAR_NODE)
+		m = ld_find_node(l, (const char *)v[0]->data.scalar.value,
+				 v[0]->data.scalar.length);
 	if (m < 0)
 		return ld_fail(l, v[0], -EINVAL, "mimic of unknown joint %s",
 			       ld_describe(v[0], buf, sizeof(buf)));
