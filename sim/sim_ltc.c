@@ -156,16 +156,23 @@ static double sample_at(struct sim_ltc *s, double u)
 	int64_t j = (int64_t)floor(u);
 	double a = u - (double)j;
 
-	if (j - s->sb_base > SIM_LTC_BUF / 2) { /* drop what is behind */
-		int64_t drop = j - s->sb_base - 16;
+	/* the source runs on through a silence: every frame is encoded,
+	 * heard or not, and what is behind j dropped to make room */
+	while (j + 1 >= s->sb_base + s->sb_len) {
+		if (s->sb_len + 4096 > SIM_LTC_BUF) {
+			int64_t from = j - 16 < s->sb_base + s->sb_len ? j - 16 :
+					s->sb_base + s->sb_len, drop = from - s->sb_base;
 
-		memmove(s->sb, s->sb + drop, (size_t)(s->sb_len - drop) * sizeof(*s->sb));
-		s->sb_base += drop;
-		s->sb_len -= drop;
-	}
-	while (j + 1 >= s->sb_base + s->sb_len)
+			if (drop > 0) {
+				memmove(s->sb, s->sb + drop,
+					(size_t)(s->sb_len - drop) * sizeof(*s->sb));
+				s->sb_base += drop;
+				s->sb_len -= drop;
+			}
+		}
 		if (!encode_next(s))
 			return 0;
+	}
 	if (j < s->sb_base)
 		return 0;
 	return s->sb[j - s->sb_base] * (1 - a) + s->sb[j + 1 - s->sb_base] * a;

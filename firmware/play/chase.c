@@ -166,6 +166,7 @@ enum chase_event STRAND_RT chase_take_event(struct chase *c, int64_t now)
 		note(c, CHASE_EV_LOST);
 		c->good = 0;
 		c->locked = false;
+		c->mapped = false; /* the stop runs on at the last step */
 		e = CHASE_EV_LOST;
 	}
 	c->event = CHASE_EV_NONE;
