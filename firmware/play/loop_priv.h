@@ -144,6 +144,7 @@ struct loop {
 	struct loop_step step;
 	int64_t *limited;         /* n: the result's, written here */
 	struct loop_result *res;
+	struct chase *chase;      /* NULL: the loop's own time */
 	struct loop_safety safety; /* last: the edge buffer is large and seldom used */
 };
 
@@ -229,6 +230,15 @@ void loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to);
 bool loop_more_passes(const struct loop *L);
 /* [rt] Every output one tick closer to rest; true when all are there. */
 bool loop_rest_step(struct loop *L);
+
+/* ---- loop_chase.c ---- */
+
+/* [rt] The source's marks, its events (a controlled stop), the cue. */
+void loop_chase_tick(struct loop *L, int64_t now);
+/* [rt] After a tick: a run the source stopped waits for it again. */
+void loop_chase_after(struct loop *L);
+/* [rt] The source's frame at time t, plus one, for the journal (0: none). */
+uint32_t loop_chase_frame(struct loop *L, int64_t t);
 
 /* ---- loop_trig.c ---- */
 

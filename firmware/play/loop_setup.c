@@ -21,7 +21,7 @@ static const char *const state_names[] = {
 	[LOOP_POSTROLL] = "post-roll",	 [LOOP_STEP_NEXT] = "step",
 	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
 	[LOOP_STEP_EXPOSE] = "expose",	 [LOOP_STOPPING] = "stopping",
-	[LOOP_ENDED] = "ended",
+	[LOOP_ENDED] = "ended",		 [LOOP_CUE] = "cue",
 };
 
 static const char *const cause_names[] = {
@@ -41,16 +41,17 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_READY] = "camera not ready",
 	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
+	[LOOP_CAUSE_CHASE] = "chase",
 };
 
 const char *loop_state_name(enum loop_state s)
 {
-	return s <= LOOP_ENDED ? state_names[s] : "?";
+	return s <= LOOP_CUE ? state_names[s] : "?";
 }
 
 const char *loop_cause_name(enum loop_cause c)
 {
-	return c <= LOOP_CAUSE_SATURATION ? cause_names[c] : "?";
+	return c <= LOOP_CAUSE_CHASE ? cause_names[c] : "?";
 }
 
 /* ---- the block ---- */
