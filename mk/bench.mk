@@ -13,8 +13,10 @@
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench
 
-bench: $(BENCH_PROGS) $(BUILD)/strand $(BUILD)/bench/sleep_tick | $(BUILD)/.deps-bench-play
+bench: $(BENCH_PROGS) $(BUILD)/bench/scene_count $(BUILD)/strand $(BUILD)/bench/sleep_tick | \
+		$(BUILD)/.deps-bench-play $(BUILD)/.deps-bench-count
 	$(Q)for p in $(BENCH_PROGS); do $$p || exit 1; done
+	$(Q)sh mk/bench-count.sh $(BUILD)/bench/scene_count $(COUNT_SCENES)
 	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play \
 		$(BUILD)/bench/sleep_tick
 
@@ -78,8 +80,8 @@ bench-play: $(BUILD)/strand $(BUILD)/bench/sleep_tick | $(BUILD)/.deps-bench-pla
 # ---- instruction counts ------------------------------------------------------------
 # The scenes of scene_bench.c played once under callgrind, which counts only
 # scene_count_play(): instructions per node per tick, steadier than any
-# timing on a shared machine. Needs valgrind (not installed by mk/deps.sh:
-# a developer's tool, not part of the build).
+# timing on a shared machine (mk/bench-count.sh). Needs Debian's valgrind,
+# which mk/deps.sh installs for these targets only.
 SC_SRC := bench/scene_count.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c tests/synth.c
 SC_OBJ := $(SC_SRC:%.c=$(BUILD)/bench/%.o)
 COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_hermite1000 \
@@ -88,12 +90,9 @@ COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_her
 $(BUILD)/bench/scene_count: $(SC_OBJ) $(MB_LINK)
 	$(Q)$(CC) $^ -lm -o $@
 
-bench-count: $(BUILD)/bench/scene_count
-	$(Q)for s in $(COUNT_SCENES); do for side in fixed double; do \
-		out=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
-			--toggle-collect=scene_count_play $< $$s $$side 2>&1) || exit 1; \
-		units=$$(echo "$$out" | awk '/^COUNT/ { print $$5 }'); \
-		ir=$$(echo "$$out" | awk '/Collected :/ { print $$4 }'); \
-		echo "$$s $$side $$ir $$units" | \
-			awk '{ printf "COUNT %s_%s %.0f instructions/node/tick\n", $$1, $$2, $$3 / $$4 }'; \
-	done; done
+DEB_BENCH_COUNT := valgrind
+$(BUILD)/.deps-bench-count: mk/deps.sh mk/bench.mk $(BUILD)/.deps-build
+	$(Q)sh mk/deps.sh $(DEB_BENCH_COUNT) && touch $@
+
+bench-count: $(BUILD)/bench/scene_count | $(BUILD)/.deps-bench-count
+	$(Q)sh mk/bench-count.sh $< $(COUNT_SCENES)
