@@ -26,9 +26,11 @@ static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
 }
 
-/* The value of an interpolating curve's piece s at a frame inside it. */
-static inline __attribute__((always_inline)) mot_q32
-piece_value(const struct mot_curve *c, const struct mot_curve_seg *s, mot_q32 f, uint32_t *sat)
+/* The value of an interpolating curve's piece s at a frame inside it: one
+ * copy, called from every path but mot_curve_eval()'s plainest. */
+static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,
+						     const struct mot_curve_seg *s, mot_q32 f,
+						     uint32_t *sat)
 {
 	int64_t u;
 
@@ -138,9 +140,9 @@ held_piece(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
 	return &c->seg[j];
 }
 
-/* mot_curve_eval() for a curve with a strand-wide ease, and for an eased
- * piece: out of the plain path's way, so that it needs no saved register
- * (the calls below would make it save some). */
+/* mot_curve_eval() for a curve with a strand-wide ease: out of the plain
+ * path's way, so that it needs no saved register (the calls below would
+ * make it save some). */
 static __attribute__((noinline)) mot_q32 eval_warped(const struct mot_curve *c,
 						     struct mot_cursor *cur, mot_q32 frame,
 						     uint32_t *sat)
@@ -155,13 +157,6 @@ static __attribute__((noinline)) mot_q32 eval_warped(const struct mot_curve *c,
 	s = held_piece(c, cur, f);
 	/* the way back is with the frame as given: eval() warps it again */
 	return s ? piece_value(c, s, f, sat) : eval_any(c, cur, frame, sat);
-}
-
-static __attribute__((noinline)) mot_q32 eval_eased(const struct mot_curve *c,
-						    const struct mot_curve_seg *s, mot_q32 f,
-						    uint32_t *sat)
-{
-	return piece_value(c, s, f, sat);
 }
 
 /*
@@ -192,7 +187,7 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
 	if (s->ush >= 0)
 		return value_of(s->vref, poly_eval(s->c, (frame - s->f0) << s->ush), s->vsh, sat);
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
-		return eval_eased(c, s, frame, sat);
+		return piece_value(c, s, frame, sat);
 	u = frac62(frame - s->f0, &s->inv_w);
 	if (c->kind == MOT_INTERP_LINEAR)
 		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);

@@ -398,10 +398,16 @@ static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 							     mot_q32 c)
 {
 	mot_q32 omc = ONE - c; /* exact, in [0, 2] */
+	unsigned k;
 
-	tilted_entries(r, n, s, omc, 0, 1, 2);
-	tilted_entries(r, n, s, omc, 1, 2, 0);
-	tilted_entries(r, n, s, omc, 2, 0, 1);
+	if (small_kernels) {
+		tilted_entries(r, n, s, omc, 0, 1, 2);
+		tilted_entries(r, n, s, omc, 1, 2, 0);
+		tilted_entries(r, n, s, omc, 2, 0, 1);
+	} else {
+		for (k = 0; k < 3; k++) /* one copy: less code */
+			tilted_entries(r, n, s, omc, k, (k + 1) % 3, (k + 2) % 3);
+	}
 	r->m[3][0] = r->m[3][1] = r->m[3][2] = 0;
 }
 
@@ -567,8 +573,10 @@ static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	tilted_rot(&r, n, s, c);
 	if (small_kernels && small)
 		node_world_in(w, pos, par, &r, n->pivot, zero, true, sat);
-	else
+	else if (small_kernels)
 		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat);
+	else /* one copy: less code */
+		node_world(w, pos, par, &r, n->pivot, zero, false, sat);
 }
 
 /* M = I (prismatic joints, free nodes without rotation, scale or shear):
@@ -617,9 +625,9 @@ prismatic_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot
 {
 	const mot_q32 tx[3] = { v, 0, 0 }, ty[3] = { 0, v, 0 }, tz[3] = { 0, 0, v };
 
-	if (!small_kernels)
-		translate_world_in(w, pos, par, p, o == MOT_AXIS_X ? tx : o == MOT_AXIS_Y ? ty : tz,
-				   small, sat);
+	if (!small_kernels) /* one copy: less code */
+		translate_world(w, pos, par, p, o == MOT_AXIS_X ? tx : o == MOT_AXIS_Y ? ty : tz, false,
+				sat);
 	else if (o == MOT_AXIS_X)
 		translate_world_in(w, pos, par, p, tx, small, sat);
 	else if (o == MOT_AXIS_Y)
