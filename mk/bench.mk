@@ -63,7 +63,7 @@ $(BUILD)/bench/motion_bench: $(MB_OBJ) $(MB_LINK)
 
 # ---- the play loop ------------------------------------------------------------------
 # Its wake-up latency on the wall clock against cyclictest (Debian's
-# rt-tests), taking turns in 3 s rounds for 30 s each at 1 kHz and the same
+# rt-tests), taking turns in 1 s rounds for 30 s each at 1 kHz and the same
 # priority, and the CPU time per tick of the robot arm on the simulated rig
 # beside that of a thread that only sleeps (bench/sleep_tick.c).
 # BENCH_PLAY_STRESS=2 runs it all again under stress-ng (Debian's).
