@@ -12,19 +12,25 @@
 .PHONY: bench-fixmath bench-motion bench-play bench-count
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench
+# What the timed programs run under. On a shared machine
+#   make bench-motion BENCH_PREFIX='chrt -f 50 taskset -c 1'
+# keeps the other processes off their CPU while they time (root or rtprio):
+# the README's figures, with run-to-run spreads of a few percent instead of
+# tens.
+BENCH_PREFIX ?=
 
 bench: $(BENCH_PROGS) $(BUILD)/bench/scene_count $(BUILD)/strand $(BUILD)/bench/sleep_tick | \
 		$(BUILD)/.deps-bench-play $(BUILD)/.deps-bench-count
-	$(Q)for p in $(BENCH_PROGS); do $$p || exit 1; done
+	$(Q)for p in $(BENCH_PROGS); do $(BENCH_PREFIX) $$p || exit 1; done
 	$(Q)sh mk/bench-count.sh $(BUILD)/bench/scene_count $(COUNT_SCENES)
 	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play \
 		$(BUILD)/bench/sleep_tick
 
 bench-fixmath: $(BUILD)/bench/fixmath_chain
-	$(Q)$<
+	$(Q)$(BENCH_PREFIX) $<
 
 bench-motion: $(BUILD)/bench/motion_bench
-	$(Q)$<
+	$(Q)$(BENCH_PREFIX) $<
 
 BENCH_CFLAGS := -std=c11 -O2 $(WARN) -Werror
 
