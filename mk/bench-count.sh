@@ -20,7 +20,8 @@ for s in "$@"; do
 		echo "$ir $units" | awk '{ printf "%.0f\n", $1 / $2 }' >"${TMPDIR:-/tmp}/count.$$.$side"
 		echo "COUNT ${s}_$side $(cat "${TMPDIR:-/tmp}/count.$$.$side") instructions/node/tick"
 	done
-	awk -v s="$s" 'NR == FNR { f = $1; next } { printf "COUNT %s_ratio_fixed_over_double %.3f x\n", s, f / $1 }' \
+	awk -v s="$s" 'NR == FNR { f = $1; next }
+		{ printf "COUNT %s_ratio_fixed_over_double %.3f x\n", s, f / $1 }' \
 		"${TMPDIR:-/tmp}/count.$$.fixed" "${TMPDIR:-/tmp}/count.$$.double"
 	rm -f "${TMPDIR:-/tmp}/count.$$.fixed" "${TMPDIR:-/tmp}/count.$$.double"
 done

@@ -108,8 +108,13 @@ done
 # is steadier than the ratio of the pooled percentiles when the load moves.
 for q in 0.5 0.99; do
 	name=$(echo "$q" | awk '{ printf "p%g", $1 * 100 }')
-	m=$(awk '$2 > 0 { print $1 / $2 }' "$out/rounds.p$q" | sort -g |
-		awk '{ v[NR] = $1 } END { if (NR) printf "%.3f", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; else print "inf" }')
+	m=$(awk '$2 > 0 { print $1 / $2 }' "$out/rounds.p$q" | sort -g | awk '
+		{ v[NR] = $1 }
+		END {
+			if (!NR) print "inf"
+			else if (NR % 2) printf "%.3f", v[(NR + 1) / 2]
+			else printf "%.3f", (v[NR / 2] + v[NR / 2 + 1]) / 2
+		}')
 	echo "BENCH play_vs_cyclictest_${name}_median_of_rounds $m x"
 done
 s=$(maxof "$out/strand.hist")
