@@ -38,3 +38,4 @@ soak: $(PROMISE_BIN) $(BUILD)/strand
 	$(Q)sh mk/soak.sh $(BUILD)/strand
 
 EXTRA_TEST_STEPS += check-promise
+TEST_PREBUILD += $(PROMISE_BIN)
