@@ -404,13 +404,40 @@ void scene_built_free(struct scene_built *b)
 	b->block = NULL;
 }
 
+/* Each system's part of an evaluation in one block after the array of
+ * struct mot_sys_eval (system.h). */
+static int sys_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
+{
+	size_t head = ((size_t)(sc->nsys ? sc->nsys : 1) * sizeof(*ev->sys) + 63) & ~(size_t)63;
+	size_t size = head, off;
+	unsigned char *block;
+	uint32_t i;
+
+	for (i = 0; i < sc->nsys; i++)
+		size += (mot_system_eval_bytes(&sc->sys[i]) + 63) & ~(size_t)63;
+	block = aligned_alloc(64, size);
+	if (!block)
+		return -ENOMEM;
+	ev->sys = (struct mot_sys_eval *)(void *)block;
+	for (i = 0, off = head; i < sc->nsys; i++) {
+		size_t n = mot_system_eval_bytes(&sc->sys[i]);
+
+		mot_system_eval_init(&ev->sys[i], &sc->sys[i], block + off, n);
+		off += (n + 63) & ~(size_t)63;
+	}
+	return 0;
+}
+
 int scene_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
 {
 	uint32_t n = mot_eval_cursor_count(sc);
 
+	memset(ev, 0, sizeof(*ev));
 	ev->cursors = calloc(n ? n : 1, sizeof(*ev->cursors));
-	if (!ev->cursors)
+	if (!ev->cursors || sys_eval_new(ev, sc)) {
+		scene_eval_free(ev);
 		return -ENOMEM;
+	}
 	ev->ncursors = n;
 	return mot_eval_reset(ev, sc);
 }
@@ -418,7 +445,9 @@ int scene_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
 void scene_eval_free(struct mot_eval *ev)
 {
 	free(ev->cursors);
+	free(ev->sys);
 	ev->cursors = NULL;
+	ev->sys = NULL;
 }
 
 int scene_pose_new(struct mot_pose *p, const struct mot_scene *sc)
@@ -432,7 +461,10 @@ int scene_pose_new(struct mot_pose *p, const struct mot_scene *sc)
 	p->rpm = calloc(n, sizeof(*p->rpm));
 	p->cycle = calloc(sc->ncycles ? sc->ncycles : 1, sizeof(*p->cycle));
 	p->attr = calloc(sc->nattrs ? sc->nattrs : 1, sizeof(*p->attr));
-	if (!p->world || !p->pos || !p->value || !p->rpm || !p->cycle || !p->attr) {
+	p->sysout = calloc(sc->nsysout ? sc->nsysout : 1, sizeof(*p->sysout));
+	p->aim = calloc(sc->naims ? sc->naims : 1, sizeof(*p->aim));
+	if (!p->world || !p->pos || !p->value || !p->rpm || !p->cycle || !p->attr || !p->sysout ||
+	    !p->aim) {
 		scene_pose_free(p);
 		return -ENOMEM;
 	}
@@ -447,5 +479,7 @@ void scene_pose_free(struct mot_pose *p)
 	free(p->rpm);
 	free(p->cycle);
 	free(p->attr);
+	free(p->sysout);
+	free(p->aim);
 	memset(p, 0, sizeof(*p));
 }
