@@ -35,7 +35,7 @@ struct steer_ctx {
 	const struct mot_member *m;
 	uint32_t i, count;
 	mot_q32 sep[3];
-	mot_acc psum[3], vsum[3];
+	mot_q32 dp[3], dv[3]; /* sums of p_j - p_i and v_j - v_i: small, no overflow */
 	uint32_t *sat;
 };
 
@@ -55,8 +55,8 @@ static bool mate(void *vctx, uint32_t j)
 	if (len >= f->radius)
 		return true;
 	for (k = 0; k < 3; k++) {
-		c->psum[k] = mot_acc_add(c->psum[k], mot_acc_from(mj->p[k], 0));
-		c->vsum[k] = mot_acc_add(c->vsum[k], mot_acc_from(mj->v[k], 0));
+		c->dp[k] = mot_sub_sat(c->dp[k], d[k], c->sat);
+		c->dv[k] = mot_add_sat(c->dv[k], mot_sub_sat(mj->v[k], mi->v[k], c->sat), c->sat);
 	}
 	if (len < f->sep && len > 0) {
 		/* (sep - d) / (sep d) along d */
@@ -93,8 +93,7 @@ void mot_flock_steer(const struct mot_flock *f, const struct mot_curve *curves,
 	c.count = 0;
 	c.sat = sat;
 	for (k = 0; k < 3; k++) {
-		c.sep[k] = 0;
-		c.psum[k] = c.vsum[k] = mot_acc_zero();
+		c.sep[k] = c.dp[k] = c.dv[k] = 0;
 		a[k] = 0;
 	}
 	if (f->max_neighbours) {
@@ -105,17 +104,15 @@ void mot_flock_steer(const struct mot_flock *f, const struct mot_curve *curves,
 		a[k] = mot_mul(f->w_sep, c.sep[k], sat);
 	if (c.count) {
 		for (k = 0; k < 3; k++) {
-			/* the mates' mean position and velocity, exactly rounded */
-			mot_q32 pm = mot_acc_round(c.psum[k], 0, sat), vm;
+			/* the mates' mean position and velocity relative to
+			 * the member's, each rounded once */
+			mot_q32 pm = mot_muldiv(c.dp[k], 1, c.count, sat);
+			mot_q32 vm = mot_muldiv(c.dv[k], 1, c.count, sat);
 
-			pm = mot_muldiv(pm, 1, c.count, sat);
-			vm = mot_muldiv(mot_acc_round(c.vsum[k], 0, sat), 1, c.count, sat);
-			a[k] = mot_add_sat(a[k], mot_mul(f->w_coh,
-							 mot_div(mot_sub_sat(pm, mi->p[k], sat),
-								 f->radius, sat), sat), sat);
-			a[k] = mot_add_sat(a[k], mot_mul(f->w_ali,
-							 mot_div(mot_sub_sat(vm, mi->v[k], sat),
-								 f->vmax, sat), sat), sat);
+			a[k] = mot_add_sat(a[k], mot_mul(f->w_coh, mot_div(pm, f->radius, sat), sat),
+					   sat);
+			a[k] = mot_add_sat(a[k], mot_mul(f->w_ali, mot_div(vm, f->vmax, sat), sat),
+					   sat);
 		}
 	}
 	if (f->goal != MOT_FLOCK_GOAL_NONE) {
