@@ -260,7 +260,8 @@ static bool is_angle(const struct rl *rl, const struct chan *c)
 {
 	if (c->kind == CHAN_VALUE)
 		return rl->l->d->nodes[c->index].kind == MOT_NODE_REVOLUTE;
-	return c->kind == CHAN_CAMERA && c->comp >= 3;
+	return (c->kind == CHAN_CAMERA && c->comp >= 3) || c->kind == CHAN_AIM ||
+	       (c->kind == CHAN_SYS && chan_is_angle(c));
 }
 
 /* An output's keys: the loader's, then the drivers' (in the table's order). */
@@ -374,9 +375,8 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 	if (err)
 		return ld_fail(l, at_min ? v[O_MINFE] : map, err, "%s", msg);
 	/* moves and stops are planned with these: the output's, else its node's */
-	rig_output_limits(&o->limits, c->kind == CHAN_VALUE ? &l->d->nodes[c->index].limits : NULL,
-			  &o->limits);
-	err = rig_output_check_limits(o->channel, &o->limits, c->kind == CHAN_VALUE, msg,
+	rig_output_limits(&o->limits, chan_limits(c, l->d), &o->limits);
+	err = rig_output_check_limits(o->channel, &o->limits, chan_limits(c, l->d) != NULL, msg,
 				      sizeof(msg));
 	if (err)
 		return ld_fail(l, map, err, "%s", msg);
