@@ -17,8 +17,9 @@ struct run {
 };
 
 struct joint {
-	uint32_t node;
-	bool revolute;
+	const struct chan *c;
+	const struct sd_limits *lim;
+	bool revolute; /* an angle */
 	double *ring; /* the last 2h + 1 values */
 	struct run run[LIM_NKINDS];
 };
@@ -34,7 +35,7 @@ struct checker {
 const char *lim_kind_name(enum lim_kind k)
 {
 	static const char *const names[] = { "min", "max", "velocity", "acceleration",
-					     "stopping distance" };
+					     "stopping distance", "pool" };
 
 	return names[k];
 }
@@ -46,14 +47,16 @@ static double tick_frame(const struct mot_timing *t, int64_t k)
 
 static void close_run(struct checker *c, struct joint *j, enum lim_kind k)
 {
-	const struct sd_limits *lim = &c->d->nodes[j->node].limits;
+	const struct sd_limits *lim = j->lim;
 	struct run *r = &j->run[k];
 	struct lim_violation v;
 
 	if (!r->open)
 		return;
 	r->open = false;
-	v.node = j->node;
+	v.node = j->c->kind == CHAN_VALUE ? (int32_t)j->c->index : -1;
+	v.channel = j->c->name;
+	v.angle = j->revolute;
 	v.kind = k;
 	v.worst = r->worst;
 	v.limit = k == LIM_MIN ? lim->min : k == LIM_MAX ? lim->max :
@@ -71,7 +74,7 @@ static void close_run(struct checker *c, struct joint *j, enum lim_kind k)
 /* The position limit a stopping point lies beyond. */
 static double stop_bound(const struct checker *c, const struct joint *j, double at)
 {
-	const struct sd_limits *lim = &c->d->nodes[j->node].limits;
+	const struct sd_limits *lim = j->lim;
 
 	return lim->has_max && at > lim->max ? lim->max : lim->min;
 }
@@ -102,7 +105,7 @@ static void step(struct checker *c, struct joint *j, enum lim_kind k, int64_t ti
 static void joint_tick(struct checker *c, struct joint *j, int64_t k, int64_t k0, uint32_t h,
 		       double value, double rate, double lsb)
 {
-	const struct sd_limits *lim = &c->d->nodes[j->node].limits;
+	const struct sd_limits *lim = j->lim;
 	uint32_t n = 2 * h + 1;
 	double *ring = j->ring;
 
@@ -136,7 +139,35 @@ static void joint_tick(struct checker *c, struct joint *j, int64_t k, int64_t k0
 
 static bool has_limits(const struct sd_limits *l)
 {
-	return l->has_min || l->has_max || l->has_vel || l->has_acc;
+	return l && (l->has_min || l->has_max || l->has_vel || l->has_acc);
+}
+
+/* Particle systems whose pool ran out by frame `to`: one violation each. */
+static void pools(struct checker *c, const struct mot_scene *sc, int64_t to)
+{
+	uint32_t i, sat = 0;
+
+	for (i = 0; i < sc->nsys; i++) {
+		const struct mot_particles *p = sc->sys[i].particles;
+		struct lim_violation v;
+		mot_q32 f;
+
+		if (sc->sys[i].kind != MOT_SYS_PARTICLES || p->first_drop < 0)
+			continue;
+		f = mot_steps_frame(&p->steps, p->first_drop * MOT_Q32_ONE, &sat);
+		if ((f >> 32) > to)
+			continue;
+		memset(&v, 0, sizeof(v));
+		v.node = -1;
+		v.channel = sd_sys_name(&c->d->sys[i]);
+		v.kind = LIM_POOL;
+		v.worst = (double)p->dropped;
+		v.limit = p->npool;
+		v.frame_first = v.frame_last = chan_q32(f);
+		v.tick_first = v.tick_last = mot_timing_next_frame(c->t, 0);
+		c->res->violations++;
+		c->report(c->ctx, &v);
+	}
 }
 
 int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t from, int64_t to,
@@ -147,6 +178,7 @@ int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t fr
 	double rate = (double)t->tick_hz / h;
 	struct checker c = { d, t, report, ctx, res };
 	struct joint *joints;
+	struct chan_list ch;
 	struct mot_eval ev;
 	struct mot_pose pose;
 	int64_t k, k0, k1;
@@ -154,19 +186,29 @@ int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t fr
 	int err;
 
 	memset(res, 0, sizeof(*res));
-	joints = calloc(d->nnodes ? d->nnodes : 1, sizeof(*joints));
-	rings = calloc((size_t)(d->nnodes ? d->nnodes : 1) * (2 * h + 1), sizeof(*rings));
+	if (chan_list_make(&ch, d))
+		return -ENOMEM;
+	joints = calloc(ch.n ? ch.n : 1, sizeof(*joints));
+	rings = calloc((size_t)(ch.n ? ch.n : 1) * (2 * h + 1), sizeof(*rings));
 	if (!joints || !rings) {
 		free(joints);
 		free(rings);
+		chan_list_free(&ch);
 		return -ENOMEM;
 	}
-	for (i = 0; i < d->nnodes; i++) {
-		if (d->nodes[i].kind == MOT_NODE_FREE || !has_limits(&d->nodes[i].limits))
+	/* every channel with limits of its own in the scene: joints, the
+	 * systems' items, the aims */
+	for (i = 0; i < ch.n; i++) {
+		const struct sd_limits *lim = chan_limits(&ch.c[i], d);
+
+		if (!has_limits(lim))
 			continue;
-		joints[nj].node = i;
-		joints[nj].revolute = d->nodes[i].kind == MOT_NODE_REVOLUTE;
+		joints[nj].c = &ch.c[i];
+		joints[nj].lim = lim;
+		joints[nj].revolute = chan_is_angle(&ch.c[i]);
 		joints[nj].ring = rings + (size_t)nj * (2 * h + 1);
+		res->joints += ch.c[i].kind == CHAN_VALUE;
+		res->channels += ch.c[i].kind != CHAN_VALUE;
 		nj++;
 	}
 	err = scene_eval_new(&ev, sc);
@@ -178,6 +220,7 @@ int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t fr
 	if (err) {
 		free(joints);
 		free(rings);
+		chan_list_free(&ch);
 		return err;
 	}
 	k0 = mot_timing_trigger_tick(t, from);
@@ -190,20 +233,20 @@ int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t fr
 		}
 		for (i = 0; i < nj; i++) {
 			struct joint *j = &joints[i];
-			mot_q32 q = pose.value[j->node];
 
-			joint_tick(&c, j, k, k0, h,
-				   j->revolute ? chan_turns_deg(q) : chan_q32(q), rate,
+			joint_tick(&c, j, k, k0, h, chan_value(j->c, &pose), rate,
 				   j->revolute ? 360.0 / 4294967296.0 : 1.0 / 4294967296.0);
 		}
 	}
 	for (i = 0; i < nj; i++)
 		for (kind = 0; kind < LIM_NKINDS; kind++)
 			close_run(&c, &joints[i], (enum lim_kind)kind);
+	pools(&c, sc, to);
 	res->ticks = k1 - k0 + 1;
 	scene_pose_free(&pose);
 	scene_eval_free(&ev);
 	free(joints);
 	free(rings);
+	chan_list_free(&ch);
 	return 0;
 }

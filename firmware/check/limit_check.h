@@ -33,10 +33,14 @@
  * limits, so that a stop anywhere on a timeline that passes `check` is safe.
  * worst is that stopping point, limit the bound it crosses.
  */
-enum lim_kind { LIM_MIN, LIM_MAX, LIM_VEL, LIM_ACC, LIM_STOP, LIM_NKINDS };
+enum lim_kind { LIM_MIN, LIM_MAX, LIM_VEL, LIM_ACC, LIM_STOP, LIM_NKINDS,
+		LIM_POOL = LIM_NKINDS /* a particle system's pool ran out (worst: particles
+				       * dropped, limit: its slots; frames: the first drop) */ };
 
 struct lim_violation {
-	uint32_t node;
+	int32_t node;             /* the joint's node, or -1 (a system's channel, an aim) */
+	const char *channel;      /* the channel's name (a pool's: the system's) */
+	bool angle;               /* degrees (else scene units or plain numbers) */
 	enum lim_kind kind;
 	double worst;             /* value, velocity or acceleration (signed), file units */
 	double limit;             /* the limit it breaks (signed like worst) */
@@ -46,6 +50,8 @@ struct lim_violation {
 
 struct lim_result {
 	uint32_t violations;
+	uint32_t joints;      /* joints with limits */
+	uint32_t channels;    /* other channels with limits (systems, aims) */
 	int64_t ticks;        /* ticks evaluated */
 	uint32_t sat;         /* the core's sticky saturation bits */
 	double sat_frame;     /* the first frame where sat became non-zero */
@@ -54,14 +60,16 @@ struct lim_result {
 typedef void (*lim_report_fn)(void *ctx, const struct lim_violation *v);
 
 /*
- * Check frames [from, to] of a built scene against d's limits, calling
+ * Check frames [from, to] of a built scene against d's limits (every
+ * channel with limits: joints, the systems' items, aims) and every
+ * particle system's pool, calling
  * report for each violation as it closes (in time order per limit). 0, or
  * -ENOMEM. Not real-time: it allocates its state.
  */
 int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t from, int64_t to,
 	      lim_report_fn report, void *ctx, struct lim_result *res);
 
-/* "min", "max", "velocity", "acceleration" */
+/* "min", "max", "velocity", "acceleration", "stopping distance", "pool" */
 const char *lim_kind_name(enum lim_kind k);
 
 #endif /* STRAND_LIMIT_CHECK_H */

@@ -12,6 +12,24 @@
 #include "exitcode.h"
 #include "scene/channel.h"
 
+/* What each particle system's pool held at most, and the steps a system
+ * takes: the proof that the pool is enough. */
+static void check_pools(FILE *out, const struct mot_scene *sc, const struct scene_desc *d)
+{
+	uint32_t i;
+
+	for (i = 0; i < sc->nsys; i++) {
+		const struct mot_system *s = &sc->sys[i];
+
+		if (s->kind == MOT_SYS_PARTICLES && s->particles->emit)
+			fprintf(out, "particles '%s': at most %lld of %u slots alive at once, %lld "
+				"dropped; %lld steps at %g a second\n", sd_sys_name(&d->sys[i]),
+				(long long)s->particles->peak, s->particles->npool,
+				(long long)s->particles->dropped, (long long)s->particles->steps.nsteps,
+				(double)s->particles->steps.rate_num / s->particles->steps.rate_den);
+	}
+}
+
 struct report {
 	FILE *out;
 	const struct scene_desc *d;
@@ -20,24 +38,28 @@ struct report {
 static void print_violation(void *ctx, const struct lim_violation *v)
 {
 	const struct report *r = ctx;
-	const struct sd_node *n = &r->d->nodes[v->node];
-	bool rev = n->kind == MOT_NODE_REVOLUTE;
-	const char *unit = rev ? "deg" : "units";
+	const char *unit = v->angle ? "deg" : "units";
 	const char *per = v->kind == LIM_VEL ? "/s" : v->kind == LIM_ACC ? "/s^2" : "";
 
 	/* 7 digits: a velocity or acceleration is a difference of quantised
 	 * values, and more digits would print only that noise (limit_check.h) */
-	if (v->kind == LIM_STOP) {
+	if (v->kind == LIM_POOL) {
 		fprintf(r->out,
-			"%s.%s: a controlled stop would end at %.7g %s, beyond limit %.7g %s, "
-			"frames %.10g to %.10g\n",
-			n->name, rev ? "angle" : "position", v->worst, unit, v->limit, unit,
-			v->frame_first, v->frame_last);
+			"%s: the pool of %.0f slots runs out at frame %.10g: %.0f particles "
+			"dropped over the span (raise pool:)\n",
+			v->channel, v->limit, v->frame_first, v->worst);
 		return;
 	}
-	fprintf(r->out, "%s.%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
-		n->name, rev ? "angle" : "position", lim_kind_name(v->kind), v->worst, unit, per,
-		v->limit, unit, per, v->frame_first, v->frame_last);
+	if (v->kind == LIM_STOP) {
+		fprintf(r->out,
+			"%s: a controlled stop would end at %.7g %s, beyond limit %.7g %s, "
+			"frames %.10g to %.10g\n",
+			v->channel, v->worst, unit, v->limit, unit, v->frame_first, v->frame_last);
+		return;
+	}
+	fprintf(r->out, "%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
+		v->channel, lim_kind_name(v->kind), v->worst, unit, per, v->limit, unit, per,
+		v->frame_first, v->frame_last);
 }
 
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
@@ -47,7 +69,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	struct scene_built b;
 	struct lim_result res;
 	struct report r;
-	uint32_t i, joints = 0;
+	uint32_t joints;
 	const char *path;
 	int rc;
 
@@ -65,15 +87,16 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			path, res.sat_frame);
 		rc = STRAND_EXIT_INTERNAL;
 	} else {
-		for (i = 0; i < sf.desc.nnodes; i++) {
-			const struct sd_limits *l = &sf.desc.nodes[i].limits;
-
-			joints += l->has_min || l->has_max || l->has_vel || l->has_acc;
-		}
-		fprintf(out, "%s: %u violation%s; %u joint%s with limits, frames %g to %g, %lld ticks\n",
-			path, res.violations, res.violations == 1 ? "" : "s", joints,
-			joints == 1 ? "" : "s", sf.desc.frame_first, sf.desc.frame_last,
-			(long long)res.ticks);
+		joints = res.joints;
+		fprintf(out, "%s: %u violation%s; %u joint%s", path, res.violations,
+			res.violations == 1 ? "" : "s", joints, joints == 1 ? "" : "s");
+		if (res.channels)
+			fprintf(out, " and %u system channel%s", res.channels,
+				res.channels == 1 ? "" : "s");
+		fprintf(out, " with limits, frames %g to %g, %lld ticks\n", sf.desc.frame_first,
+			sf.desc.frame_last, (long long)res.ticks);
+		if (sf.desc.nsys)
+			check_pools(out, &b.sc, &sf.desc);
 		check_buses(out, &sf.rig, sf.desc.tick_hz);
 		rc = res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}

@@ -335,7 +335,6 @@ static int check_first(struct cli *c, const char *path, const struct scene_file 
 {
 	struct first_violation fv = { .d = &sf->desc };
 	struct lim_result res;
-	const struct sd_node *n;
 
 	if (lim_check(&sf->desc, &b->sc, from, to, keep_first, &fv, &res)) {
 		fprintf(c->err, "strand play: out of memory\n");
@@ -343,15 +342,14 @@ static int check_first(struct cli *c, const char *path, const struct scene_file 
 	}
 	if (!res.violations || c->o.loop.force)
 		return 0;
-	n = &sf->desc.nodes[fv.v.node];
 	fprintf(c->err,
-		"%s: strand check finds %u limit violation%s, the first: %s.%s %s %.7g beyond "
+		"%s: strand check finds %u limit violation%s, the first: %s %s %.7g beyond "
 		"%.7g at frames %.10g to %.10g.\n"
 		"strand play refuses it ('strand check %s' lists them all); --force plays it,\n"
 		"clamping every setpoint to its limits.\n",
-		path, res.violations, res.violations == 1 ? "" : "s", n->name,
-		n->kind == MOT_NODE_REVOLUTE ? "angle" : "position", lim_kind_name(fv.v.kind),
-		fv.v.worst, fv.v.limit, fv.v.frame_first, fv.v.frame_last, path);
+		path, res.violations, res.violations == 1 ? "" : "s", fv.v.channel,
+		lim_kind_name(fv.v.kind), fv.v.worst, fv.v.limit, fv.v.frame_first,
+		fv.v.frame_last, path);
 	return STRAND_EXIT_VIOLATION;
 }
 

@@ -58,7 +58,7 @@ static const struct lim_violation *find(const struct found *f, uint32_t node, en
 	unsigned i;
 
 	for (i = 0; i < f->n; i++)
-		if (f->v[i].node == node && f->v[i].kind == k && nth-- == 0)
+		if (f->v[i].node == (int32_t)node && f->v[i].kind == k && nth-- == 0)
 			return &f->v[i];
 	fail_msg("no violation %u of %s on node %u", nth, lim_kind_name(k), node);
 	return NULL;
