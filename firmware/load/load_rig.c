@@ -298,6 +298,7 @@ static int output_axis(struct rl *rl, yaml_node_t *map, yaml_node_t *const *v,
 			return ld_fail(l, first, -EINVAL, "%s; '%s' is not one",
 				       (*d)->output_foreign, o->device);
 	*at = v[O_AXIS];
+	p.dev = &rl->r->devices[find(rl->dev_names, o->device)];
 	if (drv->parse_output) {
 		driver_values(&rl->ok, v, drv, dv);
 		return drv->parse_output(&p, v[O_AXIS], c, o, axis, at);
