@@ -94,8 +94,8 @@ static int place(struct yml *y, const struct dmx_desc *d, yaml_node_t *univ, yam
 	for (i = 0; i < d->nuniverses && d->universes[i] != u; i++)
 		;
 	if (i == d->nuniverses)
-		return yml_fail(y, univ, -EINVAL, "universe %lld is not one of the device's "
-				"universes:", u);
+		return yml_fail(y, univ, -EINVAL, "universe %lld is not among the device's "
+				"(dmx: universes:)", u);
 	if (a + width - 1 > DMX_SLOTS)
 		return yml_fail(y, addr, -EINVAL, "%u slots from address %lld go past slot 512",
 				width, a);
@@ -261,10 +261,12 @@ static int dmx_validate(const struct rig_desc *rd, uint32_t tick_hz, struct rig_
 				if (owner[ch]) {
 					e->output = (int32_t)i;
 					snprintf(e->msg, sizeof(e->msg), "slot %u of universe %u is "
-						 "already %s", ch % DMX_SLOTS + 1,
-						 d->universes[ch / DMX_SLOTS], owner[ch] == -2 ?
-						 "the tick's (tick_slots:)" :
-						 rd->outputs[owner[ch] - 1].channel);
+						 "already taken by %s%s%s", ch % DMX_SLOTS + 1,
+						 d->universes[ch / DMX_SLOTS],
+						 owner[ch] == -2 ? "the tick (tick_slots:)" : "'",
+						 owner[ch] == -2 ? "" :
+						 rd->outputs[owner[ch] - 1].channel,
+						 owner[ch] == -2 ? "" : "'");
 					free(owner);
 					return -EINVAL;
 				}
