@@ -39,7 +39,8 @@ enum lim_kind { LIM_MIN, LIM_MAX, LIM_VEL, LIM_ACC, LIM_STOP, LIM_NKINDS,
 
 struct lim_violation {
 	int32_t node;             /* the joint's node, or -1 (a system's channel, an aim) */
-	const char *channel;      /* the channel's name (a pool's: the system's) */
+	const char *channel;      /* the channel's name (a pool's: the system's); valid
+				   * during the report call only */
 	bool angle;               /* degrees (else scene units or plain numbers) */
 	enum lim_kind kind;
 	double worst;             /* value, velocity or acceleration (signed), file units */

@@ -317,6 +317,7 @@ static int write_hist(const char *path, const struct lat_stats *s)
 struct first_violation {
 	const struct scene_desc *d;
 	struct lim_violation v;
+	char channel[128]; /* v.channel's, which lives only during the call */
 	bool any;
 };
 
@@ -324,8 +325,11 @@ static void keep_first(void *ctx, const struct lim_violation *v)
 {
 	struct first_violation *f = ctx;
 
-	if (!f->any)
+	if (!f->any) {
 		f->v = *v;
+		snprintf(f->channel, sizeof(f->channel), "%s", v->channel);
+		f->v.channel = f->channel;
+	}
 	f->any = true;
 }
 
