@@ -1,105 +1,150 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * cmd_check.c - `strand check SCENE`: validate a scene file, then every
- * joint limit over the whole timeline at tick resolution (limit_check.c).
+ * cmd_check.c - `strand check SCENE`: validate a scene file, then walk what
+ * a run would play, tick by tick, against every limit the run would hold
+ * its channels to (limits.h), and its CAN buses' load.
  */
 #include <getopt.h>
 #include <string.h>
 
 #include "check/check_bus.h"
-#include "check/limit_check.h"
+#include "check/pools.h"
 #include "cli.h"
 #include "exitcode.h"
-#include "scene/channel.h"
+#include "limits.h"
+#include "opt.h"
+#include "rig/rig_auto.h"
 
-/* What each particle system's pool held at most, and the steps a system
- * takes: the proof that the pool is enough. */
-static void check_pools(FILE *out, const struct mot_scene *sc, const struct scene_desc *d)
-{
-	uint32_t i;
+enum { OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_LOOP, OPT_PING_PONG, OPT_PASSES };
 
-	for (i = 0; i < sc->nsys; i++) {
-		const struct mot_system *s = &sc->sys[i];
-
-		if (s->kind == MOT_SYS_PARTICLES && s->particles->emit)
-			fprintf(out, "particles '%s': at most %lld of %u slots alive at once, %lld "
-				"dropped; %lld steps at %g a second\n", sd_sys_name(&d->sys[i]),
-				(long long)s->particles->peak, s->particles->npool,
-				(long long)s->particles->dropped, (long long)s->particles->steps.nsteps,
-				(double)s->particles->steps.rate_num / s->particles->steps.rate_den);
-	}
-}
-
-struct report {
-	FILE *out;
-	const struct scene_desc *d;
+static const struct option check_options[] = {
+	{ "sim", no_argument, NULL, OPT_SIM },
+	{ "mode", required_argument, NULL, OPT_MODE },
+	{ "from", required_argument, NULL, OPT_FROM },
+	{ "to", required_argument, NULL, OPT_TO },
+	{ "loop", no_argument, NULL, OPT_LOOP },
+	{ "ping-pong", no_argument, NULL, OPT_PING_PONG },
+	{ "passes", required_argument, NULL, OPT_PASSES },
+	{ "help", no_argument, NULL, 'h' },
+	{ NULL, 0, NULL, 0 },
 };
 
-static void print_violation(void *ctx, const struct lim_violation *v)
-{
-	const struct report *r = ctx;
-	const char *unit = v->angle ? "deg" : "units";
-	const char *per = v->kind == LIM_VEL ? "/s" : v->kind == LIM_ACC ? "/s^2" : "";
+struct opts {
+	const struct cli_cmd *cmd;
+	FILE *err;
+	struct lim_run run;
+	bool sim, have_from, have_to;
+};
 
-	/* 7 digits: a velocity or acceleration is a difference of quantised
-	 * values, and more digits would print only that noise (limit_check.h) */
-	if (v->kind == LIM_POOL) {
-		fprintf(r->out,
-			"%s: the pool of %.0f slots runs out at frame %.10g: %.0f particles "
-			"dropped over the span (raise pool:)\n",
-			v->channel, v->limit, v->frame_first, v->worst);
-		return;
+static int on_opt(void *ctx, int opt, const char *arg)
+{
+	struct opts *o = ctx;
+	long long v;
+
+	switch (opt) {
+	case OPT_SIM:
+		o->sim = true;
+		return -1;
+	case OPT_MODE:
+		if (strcmp(arg, "continuous") && strcmp(arg, "step"))
+			return cli_usage(o->cmd, o->err, "--mode %s: continuous or step", arg);
+		o->run.step = !strcmp(arg, "step");
+		return -1;
+	case OPT_FROM:
+	case OPT_TO:
+		if (!opt_long(arg, 0, INT32_MAX, &v))
+			return cli_usage(o->cmd, o->err, "%s %s: a frame number",
+					 opt == OPT_FROM ? "--from" : "--to", arg);
+		if (opt == OPT_FROM) {
+			o->run.from = v;
+			o->have_from = true;
+		} else {
+			o->run.to = v;
+			o->have_to = true;
+		}
+		return -1;
+	case OPT_LOOP:
+		o->run.loop = true;
+		return -1;
+	case OPT_PING_PONG:
+		o->run.ping_pong = true;
+		return -1;
+	case OPT_PASSES:
+		if (!opt_long(arg, 1, INT32_MAX, &v))
+			return cli_usage(o->cmd, o->err, "--passes %s: a count of 1 or more", arg);
+		o->run.passes = v;
+		return -1;
+	default:
+		return cli_usage(o->cmd, o->err, "unknown option");
 	}
-	if (v->kind == LIM_STOP) {
-		fprintf(r->out,
-			"%s: a controlled stop would end at %.7g %s, beyond limit %.7g %s, "
-			"frames %.10g to %.10g\n",
-			v->channel, v->worst, unit, v->limit, unit, v->frame_first, v->frame_last);
-		return;
-	}
-	fprintf(r->out, "%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
-		v->channel, lim_kind_name(v->kind), v->worst, unit, per, v->limit, unit, per,
-		v->frame_first, v->frame_last);
 }
 
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
-	static const struct option opts[] = { { "help", no_argument, NULL, 'h' }, { 0 } };
+	struct opts o = { .cmd = cmd, .err = err };
+	struct cli_limits lc = { .out = out };
 	struct scene_file sf;
 	struct scene_built b;
-	struct lim_result res;
-	struct report r;
-	uint32_t joints;
+	struct source_scene ss;
+	struct rig_auto ra;
+	const struct rig_desc *rig;
 	const char *path;
+	int64_t ticks;
+	uint32_t pools;
 	int rc;
 
-	rc = cli_scene_args(cmd, argc, argv, out, err, opts, NULL, NULL, &path, &sf, &b);
+	rc = cli_scene_args(cmd, argc, argv, out, err, check_options, on_opt, &o, &path, &sf, &b);
 	if (rc >= 0)
 		return rc;
-	r.out = out;
-	r.d = &sf.desc;
-	if (lim_check(&sf.desc, &b.sc, (int64_t)sf.desc.frame_first, (int64_t)sf.desc.frame_last,
-		      print_violation, &r, &res)) {
+	memset(&ra, 0, sizeof(ra));
+	rc = STRAND_EXIT_INTERNAL;
+	if (source_scene_init(&ss, &sf.desc, &b.sc)) {
 		fprintf(err, "strand check: out of memory\n");
+		goto out_scene;
+	}
+	if (!o.have_from)
+		o.run.from = ss.s.frame_first;
+	if (!o.have_to)
+		o.run.to = ss.s.frame_last;
+	rc = cli_limits_usage(cmd, err, &o.run);
+	if (rc >= 0)
+		goto out;
+	rig = &sf.rig;
+	if (o.sim && !rig->noutputs && !rig->ntriggers) {
+		/* the rig strand play --sim makes for a scene without one */
 		rc = STRAND_EXIT_INTERNAL;
-	} else if (res.sat) {
-		fprintf(err, "%s: the core's arithmetic saturated at frame %.10g: values too large for its Q32.32 format\n",
-			path, res.sat_frame);
+		if (rig_auto_build(&ra, &sf.desc, &ss.s)) {
+			fprintf(err, "strand check: out of memory\n");
+			goto out;
+		}
+		rig = &ra.d;
+	}
+	rc = cli_limits_run(&lc, &ss, rig, &o.run);
+	if (rc) {
+		fprintf(err, "strand check: %s\n", strerror(-rc));
+		rc = STRAND_EXIT_INTERNAL;
+	} else if (lc.res.sat) {
+		fprintf(err, "%s: the core's arithmetic saturated at frame %.10g: values too large "
+			"for its Q32.32 format\n", path, lc.res.sat_frame);
 		rc = STRAND_EXIT_INTERNAL;
 	} else {
-		joints = res.joints;
-		fprintf(out, "%s: %u violation%s; %u joint%s", path, res.violations,
-			res.violations == 1 ? "" : "s", joints, joints == 1 ? "" : "s");
-		if (res.channels)
-			fprintf(out, " and %u system channel%s", res.channels,
-				res.channels == 1 ? "" : "s");
-		fprintf(out, " with limits, frames %g to %g, %lld ticks\n", sf.desc.frame_first,
-			sf.desc.frame_last, (long long)res.ticks);
-		if (sf.desc.nsys)
-			check_pools(out, &b.sc, &sf.desc);
-		check_buses(out, &sf.rig, sf.desc.tick_hz);
-		rc = res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
+		ticks = mot_timing_trigger_tick(&ss.s.timing, o.run.to) -
+			mot_timing_trigger_tick(&ss.s.timing, o.run.from) + 1;
+		/* a particle pool that runs out is a violation too */
+		pools = lim_pools(out, &sf.desc, &b.sc, o.run.to, NULL, 0);
+		fprintf(out, "%s: %u violation%s; %u channel%s with limits, frames %lld to %lld, "
+			"%lld ticks\n", path, lc.res.violations + pools,
+			lc.res.violations + pools == 1 ? "" : "s",
+			cli_limits_count(&lc), cli_limits_count(&lc) == 1 ? "" : "s",
+			(long long)o.run.from, (long long)o.run.to, (long long)ticks);
+		check_buses(out, rig, sf.desc.tick_hz);
+		rc = lc.res.violations || pools ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
+out:
+	cli_limits_free(&lc);
+	rig_auto_free(&ra);
+	source_scene_free(&ss);
+out_scene:
 	scene_built_free(&b);
 	scene_file_free(&sf);
 	return rc;
@@ -107,14 +152,20 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 
 const struct cli_cmd cmd_check = {
 	.name = "check",
-	.summary = "validate a scene and verify every joint limit at tick resolution",
-	.help = "usage: strand check SCENE.yaml\n\n"
-		"Validate the scene file, then play its whole span (timing.frames) at\n"
-		"tick resolution, as the controller will, and compare every joint with its\n"
-		"limits: min and max value, velocity and acceleration. Each run of ticks\n"
-		"breaking a limit is one line:\n"
+	.summary = "validate a scene and verify every limit over what a run plays",
+	.help = "usage: strand check SCENE.yaml [--from F] [--to F] [--loop | --ping-pong]\n"
+		"                   [--passes N] [--mode continuous|step] [--sim]\n\n"
+		"Validate the scene file, then walk what strand play would play, tick by tick,\n"
+		"as the controller will: the run-up into each pass, the scene's ticks, the\n"
+		"post-roll to rest. Every channel the rig drives is held to its output's limits\n"
+		"(its node's where the output gives none), every other joint to its node's:\n"
+		"min and max value, velocity, acceleration, and where a controlled stop would\n"
+		"leave it; every particle system's pool, that its slots suffice. Each run of\n"
+		"ticks breaking a limit is one line:\n"
 		"  CHANNEL: KIND WORST UNIT beyond limit LIMIT UNIT, frames FIRST to LAST\n"
-		"then a summary line.\n\n"
+		"then a summary line. The options are strand play's, and check what such a run\n"
+		"plays (default: the scene's span, once); --sim checks a scene without a rig\n"
+		"against the simulated rig strand play --sim makes for it.\n\n"
 		"exit codes: 0 within limits, 1 limits violated, 2 invalid scene, 3 usage,\n"
 		"            4 I/O, 8 the core's arithmetic saturated\n",
 	.run = run,

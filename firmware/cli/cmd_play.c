@@ -16,9 +16,10 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "check/limit_check.h"
+#include "check/pools.h"
 #include "cli.h"
 #include "exitcode.h"
+#include "limits.h"
 #include "play/frames.h"
 #include "play/play.h"
 #include "rig/rig_auto.h"
@@ -314,47 +315,51 @@ static int write_hist(const char *path, const struct lat_stats *s)
 	return fclose(f) ? -errno : 0;
 }
 
-struct first_violation {
-	const struct scene_desc *d;
-	struct lim_violation v;
-	char channel[128]; /* v.channel's, which lives only during the call */
-	bool any;
-};
-
-static void keep_first(void *ctx, const struct lim_violation *v)
+/*
+ * strand check's walk over what this run will play, with the limits its
+ * rig holds each channel to (an automatic rig's derived ones included),
+ * before any device starts: 0 clean, else the exit code, having said why.
+ */
+static int check_first(struct cli *c, const char *path, struct source_scene *ss,
+		       const struct rig_desc *rig, struct frame_list *fl)
 {
-	struct first_violation *f = ctx;
+	struct cli_limits lc = { .out = NULL };
+	struct lim_run run = {
+		.from = c->o.loop.from, .to = c->o.loop.to, .loop = c->o.loop.loop,
+		.ping_pong = c->o.loop.ping_pong, .passes = c->o.loop.passes, .step = c->step,
+	};
+	char line[512];
+	int rc;
 
-	if (!f->any) {
-		f->v = *v;
-		snprintf(f->channel, sizeof(f->channel), "%s", v->channel);
-		f->v.channel = f->channel;
+	if (c->step && fl->n) {
+		/* step mode shoots the frames it lists: their poses */
+		run.from = frames_min(fl);
+		run.to = frames_max(fl);
 	}
-	f->any = true;
-}
-
-/* `strand check` over what will play: 0 clean, else the exit code. */
-static int check_first(struct cli *c, const char *path, const struct scene_file *sf,
-		       const struct scene_built *b, int64_t from, int64_t to)
-{
-	struct first_violation fv = { .d = &sf->desc };
-	struct lim_result res;
-
-	if (lim_check(&sf->desc, &b->sc, from, to, keep_first, &fv, &res)) {
-		fprintf(c->err, "strand play: out of memory\n");
-		return STRAND_EXIT_INTERNAL;
+	rc = cli_limits_run(&lc, ss, rig, &run);
+	if (rc) {
+		fprintf(c->err, "strand play: %s\n", strerror(-rc));
+		rc = STRAND_EXIT_INTERNAL;
+	} else if (lc.res.sat) {
+		fprintf(c->err, "%s: the core's arithmetic saturated at frame %.10g: values too "
+			"large for its Q32.32 format\n", path, lc.res.sat_frame);
+		rc = STRAND_EXIT_INTERNAL;
+	} else if (!c->o.loop.force &&
+		   lim_pools(NULL, ss->d, ss->sc, run.to, line, sizeof(line))) {
+		fprintf(c->err, "%s: strand check finds %s.\nstrand play refuses it; --force plays "
+			"it, the particles that find no slot left out.\n", path, line);
+		rc = STRAND_EXIT_VIOLATION;
+	} else if (lc.res.violations && !c->o.loop.force) {
+		cli_limits_line(line, sizeof(line), &lc, &lc.first);
+		fprintf(c->err,
+			"%s: strand check finds %u limit violation%s, the first: %s.\n"
+			"strand play refuses it ('strand check %s' with the same options lists "
+			"them all); --force plays it,\nclamping every setpoint to its limits.\n",
+			path, lc.res.violations, lc.res.violations == 1 ? "" : "s", line, path);
+		rc = STRAND_EXIT_VIOLATION;
 	}
-	if (!res.violations || c->o.loop.force)
-		return 0;
-	fprintf(c->err,
-		"%s: strand check finds %u limit violation%s, the first: %s %s %.7g beyond "
-		"%.7g at frames %.10g to %.10g.\n"
-		"strand play refuses it ('strand check %s' lists them all); --force plays it,\n"
-		"clamping every setpoint to its limits.\n",
-		path, res.violations, res.violations == 1 ? "" : "s", fv.v.channel,
-		lim_kind_name(fv.v.kind), fv.v.worst, fv.v.limit, fv.v.frame_first,
-		fv.v.frame_last, path);
-	return STRAND_EXIT_VIOLATION;
+	cli_limits_free(&lc);
+	return rc;
 }
 
 int cli_play_exit(const struct loop_report *r)
@@ -429,18 +434,6 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		cli_usage(cmd, err, "--frames is for --mode step");
 		goto out;
 	}
-	if (c.step && (c.o.loop.loop || c.o.loop.ping_pong)) {
-		cli_usage(cmd, err, "--loop and --ping-pong are for continuous mode");
-		goto out;
-	}
-	if (c.o.loop.loop && c.o.loop.ping_pong) {
-		cli_usage(cmd, err, "--loop or --ping-pong, not both");
-		goto out;
-	}
-	if (c.o.loop.passes && !c.o.loop.loop && !c.o.loop.ping_pong) {
-		cli_usage(cmd, err, "--passes goes with --loop or --ping-pong");
-		goto out;
-	}
 	rc = STRAND_EXIT_INTERNAL;
 	if (source_scene_init(&src, &sf.desc, &b.sc)) {
 		fprintf(err, "strand play: out of memory\n");
@@ -448,10 +441,15 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	}
 	c.o.loop.from = c.have_from ? c.from : src.s.frame_first;
 	c.o.loop.to = c.have_to ? c.to : src.s.frame_last;
-	rc = check_first(&c, path, &sf, &b, c.step ? src.s.frame_first : c.o.loop.from,
-			 c.step ? src.s.frame_last : c.o.loop.to);
-	if (rc)
-		goto out;
+	{
+		struct lim_run r = { .from = c.o.loop.from, .to = c.o.loop.to,
+				     .loop = c.o.loop.loop, .ping_pong = c.o.loop.ping_pong,
+				     .passes = c.o.loop.passes, .step = c.step };
+
+		rc = cli_limits_usage(cmd, err, &r);
+		if (rc >= 0)
+			goto out;
+	}
 	rig = &sf.rig;
 	if (!rig->noutputs && !rig->ntriggers) {
 		rc = STRAND_EXIT_SCENE;
@@ -460,6 +458,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 				"play it on a simulated one with --sim\n", path);
 			goto out;
 		}
+		rc = STRAND_EXIT_INTERNAL;
 		if (rig_auto_build(&ra, &sf.desc, &src.s)) {
 			fprintf(err, "strand play: out of memory\n");
 			goto out;
@@ -491,6 +490,9 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		}
 		c.o.loop.frames = &fl;
 	}
+	rc = check_first(&c, path, &src, rig, &fl);
+	if (rc)
+		goto out;
 	if (!c.no_journal) {
 		if (!c.journal[0])
 			default_journal(c.journal, sizeof(c.journal), src.s.name);

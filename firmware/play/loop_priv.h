@@ -28,7 +28,11 @@
 #include <stdatomic.h>
 
 #include "loop.h"
-#include "move.h"
+#include "plan/limit.h"
+#include "plan/move.h"
+#include "plan/pass.h"
+#include "plan/runup.h"
+#include "plan/timeline.h"
 #include "hal/rt.h"
 
 /* Input edges taken per poll of a device; a device with more polls again,
@@ -42,8 +46,9 @@ struct loop_out {
 	double vel_now;         /* this tick's, once its setpoint stands */
 	int64_t sent;           /* counts sent last tick */
 	struct hal_setpoint sp; /* this tick's, in counts */
-	double ru_v;            /* run-up: the scene's speed at the pass's first pose */
-	int64_t ru_n;           /* run-up: ticks of this output's ramp */
+	struct runup_ramp ru;   /* its ramp into the pass */
+	struct lim_bounds lim;  /* its limits, as the predicate takes them */
+	struct lim_meter meter; /* its last setpoints, for the limit check */
 };
 
 /* The segments of loop.h's "Sequence", the passes and the move under way. */
@@ -55,6 +60,10 @@ struct loop_seq {
 	int64_t scene_k;        /* PLAY: the scene tick being played */
 	int64_t scene_begin, scene_end; /* the scene ticks the pass covers */
 	int64_t pass_first, pass_last;  /* its frames, in firing order */
+	struct pass_span span;  /* the pass: the same, and its frames in order */
+	struct timeline tl;     /* the pass's range of the scene, and beyond */
+	mot_q32 *tl_mem;        /* TIMELINE_WORDS(n) */
+	bool *extend;           /* n: the output goes on at its speed beyond the range */
 	int64_t lead, tail;     /* scene ticks before the first edge, after the last */
 	struct move mv;         /* its channels are in the block */
 	int64_t mv_j;
@@ -117,6 +126,7 @@ struct loop {
 	const struct mot_timing *tm;
 	uint32_t n;               /* outputs */
 	uint32_t sat;             /* the core's saturation flags, sticky */
+	struct lim_stencil stencil; /* the limit predicate's differences */
 	int64_t t0;               /* monotonic ns of tick 0 */
 	int64_t tick;             /* the tick being run */
 

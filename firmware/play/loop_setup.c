@@ -104,19 +104,24 @@ static void input_table(struct loop *L)
  * an arena without memory this only measures (and returns NULL); the same
  * code then carves, so the two cannot disagree.
  */
-static struct loop *carve(struct mot_arena *a, const struct rig *rig)
+static struct loop *carve(struct mot_arena *a, const struct rig *rig, uint32_t tick_hz)
 {
 	uint32_t d, n = rig->nout, nlines = 0;
+	struct lim_stencil st;
 	struct loop *L;
 
 	for (d = 0; d < rig->ndins; d++)
 		nlines += input_lines(rig, d);
+	lim_stencil_init(&st, tick_hz);
 	L = CARVE(a, struct loop, 1);
 	struct loop_out *out = CARVE(a, struct loop_out, n);
 	mot_q32 *val = CARVE(a, mot_q32, n);
 	mot_q32 *prev = CARVE(a, mot_q32, n);
 	mot_q32 *target = CARVE(a, mot_q32, n);
 	mot_q32 *ru_end = CARVE(a, mot_q32, n);
+	mot_q32 *tl_mem = CARVE(a, mot_q32, TIMELINE_WORDS(n));
+	mot_q32 *rings = CARVE(a, mot_q32, (size_t)n * LIM_METER_LEN(st.h));
+	bool *extend = CARVE(a, bool, n);
 	struct move_ch *mv_ch = CARVE(a, struct move_ch, n);
 	double *vmax = CARVE(a, double, n);
 	double *amax = CARVE(a, double, n);
@@ -131,6 +136,11 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig)
 	if (!L || a->failed)
 		return NULL;
 	L->n = n;
+	L->stencil = st;
+	L->seq.tl_mem = tl_mem;
+	L->seq.extend = extend;
+	for (d = 0; d < n; d++)
+		out[d].meter.ring = rings + (size_t)d * LIM_METER_LEN(st.h);
 	L->out = out;
 	L->val = val;
 	L->prev = prev;
@@ -152,7 +162,7 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig)
 
 /* The block: measured, allocated once (64-byte aligned, as the arena
  * wants its base), carved, sealed. NULL when out of memory. */
-static struct loop *block_new(const struct rig *rig)
+static struct loop *block_new(const struct rig *rig, uint32_t tick_hz)
 {
 	struct mot_arena a;
 	struct loop *L;
@@ -160,7 +170,7 @@ static struct loop *block_new(const struct rig *rig)
 	void *block;
 
 	mot_arena_init(&a, NULL, 0);
-	carve(&a, rig);
+	carve(&a, rig, tick_hz);
 	if (a.failed)
 		return NULL;
 	size = (a.used + 63) & ~(size_t)63;
@@ -168,7 +178,7 @@ static struct loop *block_new(const struct rig *rig)
 	if (!block)
 		return NULL;
 	mot_arena_init(&a, block, size);
-	L = carve(&a, rig);
+	L = carve(&a, rig, tick_hz);
 	mot_arena_seal(&a);
 	if (!L) { /* cannot happen: the same carving measured it */
 		free(block);
@@ -179,7 +189,15 @@ static struct loop *block_new(const struct rig *rig)
 
 /* ---- the plan ---- */
 
-/* Where the rig stands: feedback where there is some, else home. */
+/* Output o's limits as the predicate takes them. */
+static struct lim_bounds out_bounds(const struct rig_out *o)
+{
+	return (struct lim_bounds){ .min = o->min, .max = o->max, .vel = o->vmax,
+				    .acc = o->amax, .vel_ch = o->vel_mode };
+}
+
+/* Where the rig stands: feedback where there is some, else home; each
+ * output's limits and its meter, standing there. */
 static void read_rig(struct loop *L)
 {
 	const struct rig *rig = L->rig;
@@ -198,6 +216,11 @@ static void read_rig(struct loop *L)
 					      o->scale.per_unit_d);
 		L->val[i] = L->prev[i];
 		L->out[i].sent = o->vel_mode ? 0 : hal_scale_counts(&o->scale, L->prev[i], NULL);
+		L->out[i].lim = out_bounds(o);
+		/* the run starts from rest where the rig stands */
+		lim_meter_reset(&L->out[i].meter, &L->stencil, L->out[i].meter.ring, L->prev[i],
+				true);
+		L->seq.extend[i] = timeline_extends(o->unit);
 	}
 }
 
@@ -265,7 +288,7 @@ static int plan_continuous(struct loop *L, char *err, size_t errsize)
 			 "%s moves at %.6g %s/s at frame %lld: coming up to that speed within "
 			 "its acceleration limit needs a run-up from %.6g %s, outside its limits; "
 			 "start from a frame where it moves slower",
-			 o->channel, rig_file_units(o->unit, L->out[bad].ru_v),
+			 o->channel, rig_file_units(o->unit, L->out[bad].ru.v),
 			 rig_unit_name(o->unit), (long long)L->seq.pass_first,
 			 rig_file_units(o->unit, move_q2d(L->seq.target[bad])),
 			 rig_unit_name(o->unit));
@@ -294,7 +317,7 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 
 	STRAND_ASSERT_NOT_RT();
 	*out = NULL;
-	L = block_new(rig);
+	L = block_new(rig, src->timing.tick_hz);
 	if (!L) {
 		snprintf(err, errsize, "out of memory");
 		return -ENOMEM;

@@ -250,6 +250,7 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 	for (i = 0; i < L->n; i++) {
 		L->out[i].vel = L->out[i].vel_now;
 		L->prev[i] = L->val[i];
+		lim_meter_push(&L->out[i].meter, L->val[i]);
 	}
 out:
 	res->ticks_run = k + 1;

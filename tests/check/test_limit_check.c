@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * test_limit_check.c - `strand check`'s limit verification (firmware/limit_check.c):
+ * test_limit_check.c - `strand check`'s limit verification (check/limit_check.c):
  * a scene that breaks each kind of limit (and where a controlled stop would
- * overrun one), caught at the right ticks, with
- * the worst values and the report lines of the command.
+ * overrun one), caught at the right ticks, with the worst values and the
+ * report lines of the command.
  *
  * The joint climbs linearly 0 -> 120 degrees over frames 0..24 (1 s at 24
  * fps, 120 deg/s), holds to frame 48 and comes back by frame 72. With 1000
@@ -14,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "check/channels.h"
 #include "check/limit_check.h"
 #include "cli/cli.h"
 #include "cli/exitcode.h"
@@ -58,43 +59,62 @@ static const struct lim_violation *find(const struct found *f, uint32_t node, en
 	unsigned i;
 
 	for (i = 0; i < f->n; i++)
-		if (f->v[i].node == (int32_t)node && f->v[i].kind == k && nth-- == 0)
+		if (f->v[i].channel == node && f->v[i].kind == k && f->v[i].seg == LIM_SEG_SCENE &&
+		    nth-- == 0)
 			return &f->v[i];
-	fail_msg("no violation %u of %s on node %u", nth, lim_kind_name(k), node);
+	fail_msg("no violation %u of %s on channel %u", nth, lim_kind_name(k), node);
 	return NULL;
+}
+
+/* worst and limit in the file's units (degrees for an angle: turns /360). */
+static void expect_in(const struct lim_violation *v, int64_t first, int64_t last, double worst,
+		      double limit, double per_core)
+{
+	worst /= per_core;
+	limit /= per_core;
+	if (v->tick_first != first || v->tick_last != last ||
+	    fabs(v->worst - worst) > 1e-5 * fabs(worst) || fabs(v->limit - limit) > 1e-15)
+		fail_msg("%s: ticks %lld..%lld worst %.10g limit %g; want %lld..%lld %.10g %g",
+			 lim_kind_name(v->kind), (long long)v->tick_first, (long long)v->tick_last,
+			 v->worst, v->limit, (long long)first, (long long)last, worst, limit);
 }
 
 static void expect(const struct lim_violation *v, int64_t first, int64_t last, double worst,
 		   double limit)
 {
-	if (v->tick_first != first || v->tick_last != last || fabs(v->worst - worst) > 1e-5 * fabs(worst) ||
-	    v->limit != limit)
-		fail_msg("%s: ticks %lld..%lld worst %.10g limit %g; want %lld..%lld %.10g %g",
-			 lim_kind_name(v->kind), (long long)v->tick_first, (long long)v->tick_last,
-			 v->worst, v->limit, (long long)first, (long long)last, worst, limit);
+	expect_in(v, first, last, worst, limit, 360);
 }
 
 static void test_each_kind(void **state)
 {
 	struct scene_file sf;
 	struct scene_built b;
+	struct source_scene ss;
 	struct load_err e;
 	struct lim_result res;
+	struct lim_channel *ch;
+	struct lim_run run = { .from = 0, .to = 96 };
 	struct found f = { .n = 0 };
 	const struct lim_violation *v;
+	uint32_t n;
 
 	assert_int_equal(scene_file_parse(&sf, "limits.yaml", scene, strlen(scene), &e), 0);
 	assert_int_equal(scene_file_build(&sf, &b, &e), 0);
-	assert_int_equal(lim_check(&sf.desc, &b.sc, 0, 96, collect, &f, &res), 0);
-	assert_int_equal(res.ticks, 4001);
+	assert_int_equal(source_scene_init(&ss, &sf.desc, &b.sc), 0);
+	assert_int_equal(lim_channels(&ss, NULL, &ch, &n), 0);
+	assert_int_equal(n, 2);
+	assert_string_equal(ch[0].name, "arm.angle");
+	assert_string_equal(ch[1].name, "slide.position");
+	assert_int_equal(lim_check(&ss.s, ch, n, &run, collect, &f, &res), 0);
 	assert_int_equal(res.sat, 0);
 
 	/* max 100: above from tick 834 (100.08 deg) to the descent's tick 2166 */
 	v = find(&f, 0, LIM_MAX, 0);
 	expect(v, 834, 2166, 120, 100);
 	assert_true(fabs(v->frame_first - 20.016) < 1e-9 && fabs(v->frame_last - 51.984) < 1e-9);
-	/* velocity 100 deg/s: 120 deg/s on the way up (ticks 1..1000) and down */
-	expect(find(&f, 0, LIM_VEL, 0), 1, 1000, 120, 100);
+	/* velocity 100 deg/s: 120 deg/s on the way up (ticks 0..1000: the run-up
+	 * brings the arm to that speed at tick 0) and down */
+	expect(find(&f, 0, LIM_VEL, 0), 0, 1000, 120, 100);
 	expect(find(&f, 0, LIM_VEL, 1), 2001, 3000, -120, -100);
 	/* acceleration: one tick at each corner of the linear path,
 	 * 0.12 deg / (1 ms)^2 = 120000 deg/s^2 */
@@ -103,14 +123,16 @@ static void test_each_kind(void **state)
 	expect(find(&f, 0, LIM_ACC, 2), 3000, 3000, 120000, 50000);
 	/* prismatic min -0.2: -0.5 f / 96 < -0.2 after frame 38.4 = tick 1600 */
 	v = find(&f, 1, LIM_MIN, 0);
-	expect(v, 1601, 4000, -0.5, -0.2);
-	/* a controlled stop at 50000 deg/s^2 from 120 deg/s needs 0.144 deg plus
-	 * the tick it starts in (0.12 deg): stopping at 0.12 k + 0.264 deg, past
-	 * 100 from tick 832 up, through the hold (at rest: the value itself), and
-	 * on the way down until 120 - 0.12 (k - 2000) - 0.264 <= 100 */
-	expect(find(&f, 0, LIM_STOP, 0), 832, 2164, 120.264, 100);
+	expect_in(v, 1601, 4000, -0.5, -0.2, 1);
+	/* a controlled stop at 50000 deg/s^2 (50 deg/s less a tick) from 120
+	 * deg/s goes on 0.07 + 0.02 = 0.09 deg: stopping at 0.12 k + 0.09 deg,
+	 * past 100 from tick 833 up, through the hold (at rest: the value
+	 * itself), and on the way down until 120 - 0.12 (k - 2000) - 0.09 <= 100 */
+	expect(find(&f, 0, LIM_STOP, 0), 833, 2165, 120.09, 100);
 	assert_int_equal(res.violations, 8);
 	assert_int_equal(f.n, 8);
+	free(ch);
+	source_scene_free(&ss);
 	scene_built_free(&b);
 	scene_file_free(&sf);
 }
@@ -138,8 +160,8 @@ static void test_command(void **state)
 	assert_non_null(strstr(out, "arm.angle: velocity -120 deg/s beyond limit -100 deg/s, frames 48.024 to 72\n"));
 	assert_non_null(strstr(out, "arm.angle: acceleration 120000 deg/s^2 beyond limit 50000 deg/s^2, frames 72 to 72\n"));
 	assert_non_null(strstr(out, "slide.position: min -0.5 units beyond limit -0.2 units, frames 38.424 to 96\n"));
-	assert_non_null(strstr(out, "arm.angle: a controlled stop would end at 120.264 deg, beyond limit 100 deg, frames 19.968 to 51.936\n"));
-	assert_non_null(strstr(out, ": 8 violations; 2 joints with limits, frames 0 to 96, 4001 ticks\n"));
+	assert_non_null(strstr(out, "arm.angle: a controlled stop would end at 120.09 deg, beyond limit 100 deg, frames 19.992 to 51.96\n"));
+	assert_non_null(strstr(out, ": 8 violations; 2 channels with limits, frames 0 to 96, 4001 ticks\n"));
 	free(out);
 	free(err);
 	unlink(path);
