@@ -64,16 +64,23 @@ for p in artnet dummy e131 espnet ftdidmx gpio karate kinet milinst opendmx \
 	usbpro dmx4linux nanoleaf; do
 	echo "enabled = false" >"$conf/ola-$p.conf"
 done
-printf 'enabled = true\nip = 198.18.0.1\ninput_ports = 1\noutput_ports = 0\nignore_preview = true\n' \
-	>"$conf/ola-e131.conf"
+printf 'enabled = true\nip = 198.18.0.1\ninput_ports = 1\noutput_ports = 0\n%s\n' \
+	'ignore_preview = true' >"$conf/ola-e131.conf"
 printf 'enabled = true\nip = 198.18.0.1\nuse_limited_broadcast = false\n' >"$conf/ola-artnet.conf"
 chown -R olad "$conf"
 rpc=9011
 setpriv --reuid olad --regid nogroup --clear-groups olad --config-dir "$conf" --no-http \
 	--no-register-with-dns-sd --rpc-port $rpc -l ${OLA_LOG:-2} >olad.log 2>&1 &
 olad=$!
-trap 'kill $olad 2>/dev/null || true; kill $tshark 2>/dev/null || true; wait 2>/dev/null || true' EXIT
 tshark=""
+reader=""
+stop() {
+	kill $olad 2>/dev/null || true
+	[ -z "$tshark" ] || kill $tshark 2>/dev/null || true
+	[ -z "$reader" ] || kill $reader 2>/dev/null || true
+	wait 2>/dev/null || true
+}
+trap stop EXIT
 n=0
 until /usr/bin/python3 -c "import socket; socket.create_connection(('127.0.0.1', $rpc), 1)" \
 	2>/dev/null; do
@@ -106,6 +113,7 @@ done
 "$strand" play "$here/lights.yaml" --journal journal.j --priority 0 >play.txt 2>&1 ||
 	fail "strand play: $(cat play.txt)"
 wait $reader || fail "olad's client failed"
+reader=""
 sleep 0.3
 kill -INT $tshark
 wait $tshark || true
