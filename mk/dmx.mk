@@ -12,6 +12,7 @@
 DEB_DMX := ola ola-python tshark iproute2 util-linux procps
 $(BUILD)/.deps-dmx: mk/deps.sh $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_DMX) && touch $@
+deps: $(BUILD)/.deps-dmx
 
 check-dmx: $(BUILD)/strand
 	$(Q)why=""; [ "$$(id -u)" -eq 0 ] || why="not root (the test makes a network namespace)"; \
