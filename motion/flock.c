@@ -36,6 +36,7 @@ struct steer_ctx {
 	uint32_t i, count;
 	mot_q32 sep[3];
 	mot_q32 dp[3], dv[3]; /* sums of p_j - p_i and v_j - v_i: small, no overflow */
+	mot_acc r2, s2;       /* radius^2, sep^2 (Q64.64) */
 	uint32_t *sat;
 };
 
@@ -45,20 +46,24 @@ static bool mate(void *vctx, uint32_t j)
 	const struct mot_flock *f = c->f;
 	const struct mot_member *mi = &c->m[c->i], *mj = &c->m[j];
 	mot_q32 d[3], len;
+	mot_acc d2;
 	int k;
 
 	if (j == c->i)
 		return true;
 	for (k = 0; k < 3; k++)
 		d[k] = mot_sub_sat(mi->p[k], mj->p[k], c->sat);
-	len = mot_norm3(d, c->sat);
-	if (len >= f->radius)
+	/* within reach by the exact squared distance: a square root only for
+	 * the mates close enough to push apart */
+	d2 = mot_acc_mac(mot_acc_mac(mot_acc_mul(d[0], d[0]), d[1], d[1]), d[2], d[2]);
+	if (!mot_acc_is_neg(mot_acc_sub(d2, c->r2)))
 		return true;
 	for (k = 0; k < 3; k++) {
 		c->dp[k] = mot_sub_sat(c->dp[k], d[k], c->sat);
 		c->dv[k] = mot_add_sat(c->dv[k], mot_sub_sat(mj->v[k], mi->v[k], c->sat), c->sat);
 	}
-	if (len < f->sep && len > 0) {
+	if (mot_acc_is_neg(mot_acc_sub(d2, c->s2)) &&
+	    (len = (mot_q32)mot_isqrt_acc(d2, c->sat)) > 0 && len < f->sep) {
 		/* (sep - d) / (sep d) along d */
 		mot_q32 w = mot_div(mot_sub_sat(f->sep, len, c->sat),
 				    mot_mul(f->sep, len, c->sat), c->sat);
@@ -92,6 +97,8 @@ void mot_flock_steer(const struct mot_flock *f, const struct mot_curve *curves,
 	c.i = i;
 	c.count = 0;
 	c.sat = sat;
+	c.r2 = mot_acc_mul(f->radius, f->radius);
+	c.s2 = mot_acc_mul(f->sep, f->sep);
 	for (k = 0; k < 3; k++) {
 		c.sep[k] = c.dp[k] = c.dv[k] = 0;
 		a[k] = 0;
@@ -109,10 +116,10 @@ void mot_flock_steer(const struct mot_flock *f, const struct mot_curve *curves,
 			mot_q32 pm = mot_muldiv(c.dp[k], 1, c.count, sat);
 			mot_q32 vm = mot_muldiv(c.dv[k], 1, c.count, sat);
 
-			a[k] = mot_add_sat(a[k], mot_mul(f->w_coh, mot_div(pm, f->radius, sat), sat),
-					   sat);
-			a[k] = mot_add_sat(a[k], mot_mul(f->w_ali, mot_div(vm, f->vmax, sat), sat),
-					   sat);
+			a[k] = mot_add_sat(a[k], mot_mul(f->w_coh, mot_recip_ratio(pm, &f->inv_radius,
+										    sat), sat), sat);
+			a[k] = mot_add_sat(a[k], mot_mul(f->w_ali, mot_recip_ratio(vm, &f->inv_vmax,
+										    sat), sat), sat);
 		}
 	}
 	if (f->goal != MOT_FLOCK_GOAL_NONE) {
@@ -126,14 +133,14 @@ void mot_flock_steer(const struct mot_flock *f, const struct mot_curve *curves,
 		len = mot_norm3(u, sat);
 		/* a unit vector, shorter within `radius` of a goal point */
 		s = len == 0 ? 0 :
-		    f->goal == MOT_FLOCK_GOAL_POINT && len < f->radius ? mot_div(ONE, f->radius, sat) :
-									 mot_div(ONE, len, sat);
+		    f->goal == MOT_FLOCK_GOAL_POINT && len < f->radius ?
+			    mot_recip_ratio(ONE, &f->inv_radius, sat) : mot_div(ONE, len, sat);
 		for (k = 0; k < 3; k++) {
 			mot_q32 want = mot_mul(mot_mul(u[k], s, sat), f->vmax, sat);
 
 			a[k] = mot_add_sat(a[k], mot_mul(f->w_goal,
-							 mot_div(mot_sub_sat(want, mi->v[k], sat),
-								 f->vmax, sat), sat), sat);
+							 mot_recip_ratio(mot_sub_sat(want, mi->v[k], sat),
+									 &f->inv_vmax, sat), sat), sat);
 		}
 	}
 	for (o = 0; o < f->nobst; o++) {
@@ -212,6 +219,8 @@ int mot_flock_init(struct mot_flock *f, const struct mot_curve *curves, uint32_t
 	for (k = 0; k < 3; k++)
 		if (f->goal_ch[k] < -1 || (f->goal_ch[k] >= 0 && (uint32_t)f->goal_ch[k] >= ncurves))
 			return MOT_E_INVAL;
+	if (mot_recip_init(&f->inv_radius, f->radius) || mot_recip_init(&f->inv_vmax, f->vmax))
+		return MOT_E_INVAL;
 	mot_rng_seed(&r, f->seed);
 	for (i = 0; i < f->n; i++) {
 		for (k = 0; k < 3; k++)

@@ -72,6 +72,9 @@ struct mot_flock {
 	mot_q32 margin;
 	mot_q32 vmax, amax;       /* units/s, units/s^2 */
 	struct mot_steps steps;
+	/* prepared by init: divisions by the radius and the speed limit as
+	 * products (within 1 LSB) */
+	struct mot_recip inv_radius, inv_vmax;
 };
 
 static inline uint32_t mot_flock_state_bytes(uint32_t n)
