@@ -113,7 +113,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	if (o.sim && !rig->noutputs && !rig->ntriggers) {
 		/* the rig strand play --sim makes for a scene without one */
 		rc = STRAND_EXIT_INTERNAL;
-		if (rig_auto_build(&ra, &sf.desc, &ss.s)) {
+		if (rig_auto_build(&ra, &sf.desc, &ss.s, o.run.from)) {
 			fprintf(err, "strand check: out of memory\n");
 			goto out;
 		}

@@ -38,7 +38,8 @@ enum {
 	OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_FRAMES, OPT_LOOP, OPT_PING_PONG,
 	OPT_PASSES, OPT_DURATION, OPT_SETTLE, OPT_EXPOSURE, OPT_TIMEOUT, OPT_JOURNAL,
 	OPT_NO_JOURNAL, OPT_TELEMETRY, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK,
-	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET,
+	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET, OPT_CHASE, OPT_TC_OFFSET,
+	OPT_FREEWHEEL,
 };
 
 static const struct option play_options[] = {
@@ -65,6 +66,9 @@ static const struct option play_options[] = {
 	{ "camera-log", required_argument, NULL, OPT_CAMERA_LOG },
 	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
 	{ "quiet", no_argument, NULL, OPT_QUIET },
+	{ "chase", required_argument, NULL, OPT_CHASE },
+	{ "tc-offset", required_argument, NULL, OPT_TC_OFFSET },
+	{ "freewheel", required_argument, NULL, OPT_FREEWHEEL },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -74,7 +78,7 @@ struct cli {
 	FILE *err;
 	struct play_opts o;
 	const char *frames, *lat_hist;
-	bool have_from, have_to, no_journal, quiet, step;
+	bool have_from, have_to, no_journal, quiet, step, freewheel_given;
 	long long from, to;
 	double duration_s, settle_ms, exposure_ms, timeout_s;
 	const char *duration_arg, *timeout_arg; /* as given, for their messages */
@@ -207,6 +211,18 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		return -1;
 	case OPT_QUIET:
 		c->quiet = true;
+		return -1;
+	case OPT_CHASE:
+		c->o.chase.spec = arg;
+		return -1;
+	case OPT_TC_OFFSET:
+		c->o.chase.tc_offset = arg;
+		return -1;
+	case OPT_FREEWHEEL:
+		if (!opt_double(arg, 0, DBL_MAX, &c->o.chase.freewheel_ms) ||
+		    c->o.chase.freewheel_ms > 3600000)
+			return cli_usage(c->cmd, c->err, "--freewheel %s: 0 to 3600000 ms", arg);
+		c->freewheel_given = true;
 		return -1;
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
@@ -423,6 +439,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	c.exposure_ms = 100;
 	c.timeout_s = 10;
 	c.timeout_arg = "10";
+	c.o.chase.freewheel_ms = 500;
 	rc = cli_scene_args(cmd, argc, argv, out, err, play_options, on_opt, &c, &path, &sf, &b);
 	if (rc >= 0)
 		return rc;
@@ -432,6 +449,15 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	rc = STRAND_EXIT_USAGE;
 	if (c.frames && !c.step) {
 		cli_usage(cmd, err, "--frames is for --mode step");
+		goto out;
+	}
+	if (c.o.chase.spec && (c.step || c.o.loop.loop || c.o.loop.ping_pong)) {
+		cli_usage(cmd, err, "--chase plays the scene as the source runs: not with --mode "
+			  "step, --loop or --ping-pong");
+		goto out;
+	}
+	if (!c.o.chase.spec && (c.o.chase.tc_offset || c.freewheel_given)) {
+		cli_usage(cmd, err, "--tc-offset and --freewheel go with --chase");
 		goto out;
 	}
 	rc = STRAND_EXIT_INTERNAL;
@@ -459,7 +485,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			goto out;
 		}
 		rc = STRAND_EXIT_INTERNAL;
-		if (rig_auto_build(&ra, &sf.desc, &src.s)) {
+		if (rig_auto_build(&ra, &sf.desc, &src.s, c.o.loop.from)) {
 			fprintf(err, "strand play: out of memory\n");
 			goto out;
 		}
@@ -579,6 +605,13 @@ const struct cli_cmd cmd_play = {
 		"  --camera-log FILE     the first simulated camera logs its trigger edges there\n"
 		"  --latency-hist FILE   the wake-up latency histogram (us count lines)\n"
 		"  --quiet               no status line, no summary\n"
+		"  --chase SPEC          follow an external clock: ltc:DEVICE (LTC on an ALSA\n"
+		"                        capture device), ltc:sim[:K=V,...] (simulated), or\n"
+		"                        gpio:CHIP:LINE (a frame pulse): wait for it, lock, play\n"
+		"                        from the frame it names (see README \"Time from outside\")\n"
+		"  --tc-offset TC        the source's timecode of the scene's frame 0 (00:00:00:00)\n"
+		"  --freewheel MS        run on without the source this long, then a controlled\n"
+		"                        stop and a new cue when it is back (500)\n"
 		"\n"
 		"SIGINT or SIGTERM: every axis comes to rest within its limits (exit 5); a second\n"
 		"SIGINT disables the drives at once. During the devices' start-up it is given up\n"

@@ -101,15 +101,15 @@ bool STRAND_RT loop_rest_step(struct loop *L)
 	bool rest = true;
 	uint32_t i;
 
+	L->seq.braked = true;
 	for (i = 0; i < L->n; i++) {
 		const struct rig_out *o = &L->rig->out[i];
-		double v = L->out[i].vel;
 
 		L->val[i] = L->prev[i];
 		if (L->safety.dev_off[o->dev])
 			continue;
-		rest &= move_stop_step(&L->val[i], &v, o->vel_mode, o->vmax, o->amax,
-				       L->tm->tick_hz);
+		rest &= move_stop_step(&L->val[i], &L->out[i].stop_v, o->vel_mode, o->vmax,
+				       o->amax, L->tm->tick_hz);
 	}
 	return rest;
 }

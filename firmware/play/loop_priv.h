@@ -44,6 +44,12 @@ _Static_assert(LOOP_EDGES_PER_TICK % LOOP_EDGES_MAX == 0, "whole polls per tick"
 struct loop_out {
 	double vel;             /* speed of the last two setpoints, units/s */
 	double vel_now;         /* this tick's, once its setpoint stands */
+	/* a stop's speed, carried exactly from tick to tick as move_stop_step
+	 * brakes it (re-deriving it from the rounded setpoints would feed
+	 * their rounding back into the braking, a bias of up to half a step
+	 * a tick: at 10 kHz beyond the acceleration limit's slack); the last
+	 * tick's speed until a stop begins */
+	double stop_v;
 	int64_t sent;           /* counts sent last tick */
 	struct hal_setpoint sp; /* this tick's, in counts */
 	struct runup_ramp ru;   /* its ramp into the pass */
@@ -68,6 +74,7 @@ struct loop_seq {
 	struct move mv;         /* its channels are in the block */
 	int64_t mv_j;
 	int64_t ru_ticks, ru_j; /* the run-up: the longest ramp, the step it is at */
+	bool braked;            /* this tick was a stop's step (loop_rest_step) */
 	mot_q32 *target;        /* a pose: where a move goes (a ramp's start, a frame) */
 	mot_q32 *ru_end;        /* a pose: the pass's first, where the ramps end */
 	double *vmax, *amax;    /* per output, as the move planner takes them */
@@ -137,6 +144,7 @@ struct loop {
 	struct loop_step step;
 	int64_t *limited;         /* n: the result's, written here */
 	struct loop_result *res;
+	struct chase *chase;      /* NULL: the loop's own time */
 	struct loop_safety safety; /* last: the edge buffer is large and seldom used */
 };
 
@@ -222,6 +230,15 @@ void loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to);
 bool loop_more_passes(const struct loop *L);
 /* [rt] Every output one tick closer to rest; true when all are there. */
 bool loop_rest_step(struct loop *L);
+
+/* ---- loop_chase.c ---- */
+
+/* [rt] The source's marks, its events (a controlled stop), the cue. */
+void loop_chase_tick(struct loop *L, int64_t now);
+/* [rt] After a tick: a run the source stopped waits for it again. */
+void loop_chase_after(struct loop *L);
+/* [rt] The source's frame at time t, plus one, for the journal (0: none). */
+uint32_t loop_chase_frame(struct loop *L, int64_t t);
 
 /* ---- loop_trig.c ---- */
 

@@ -21,7 +21,7 @@ static const char *const state_names[] = {
 	[LOOP_POSTROLL] = "post-roll",	 [LOOP_STEP_NEXT] = "step",
 	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
 	[LOOP_STEP_EXPOSE] = "expose",	 [LOOP_STOPPING] = "stopping",
-	[LOOP_ENDED] = "ended",
+	[LOOP_ENDED] = "ended",		 [LOOP_CUE] = "cue",
 };
 
 static const char *const cause_names[] = {
@@ -41,16 +41,17 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_READY] = "camera not ready",
 	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
+	[LOOP_CAUSE_CHASE] = "chase",
 };
 
 const char *loop_state_name(enum loop_state s)
 {
-	return s <= LOOP_ENDED ? state_names[s] : "?";
+	return s <= LOOP_CUE ? state_names[s] : "?";
 }
 
 const char *loop_cause_name(enum loop_cause c)
 {
-	return c <= LOOP_CAUSE_SATURATION ? cause_names[c] : "?";
+	return c <= LOOP_CAUSE_CHASE ? cause_names[c] : "?";
 }
 
 /* ---- the block ---- */
@@ -224,6 +225,29 @@ static void read_rig(struct loop *L)
 	}
 }
 
+/* Every output stands inside its position limits: a move from outside
+ * would break them at its first tick. -EDOM, naming it, otherwise. */
+static int standing(struct loop *L, char *err, size_t errsize)
+{
+	uint32_t i;
+
+	for (i = 0; i < L->n; i++) {
+		const struct rig_out *o = &L->rig->out[i];
+		double x = move_q2d(L->prev[i]);
+
+		if (o->vel_mode || (x >= o->min - 1e-9 && x <= o->max + 1e-9))
+			continue;
+		snprintf(err, errsize, "%s (device '%s' axis %u) stands at %.7g %s, outside its "
+			 "limits %.7g to %.7g %s: bring it inside them before playing",
+			 o->channel, L->rig->axes[o->dev]->name, o->ch,
+			 rig_file_units(o->unit, x), rig_unit_name(o->unit),
+			 rig_file_units(o->unit, o->min), rig_file_units(o->unit, o->max),
+			 rig_unit_name(o->unit));
+		return -EDOM;
+	}
+	return 0;
+}
+
 static int plan_step(struct loop *L, char *err, size_t errsize)
 {
 	const struct loop_cfg *cfg = &L->cfg;
@@ -347,8 +371,10 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	L->seq.lead = -min_off;
 	L->seq.tail = max_off;
 	read_rig(L);
-	rc = cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
-					   plan_continuous(L, err, errsize);
+	rc = standing(L, err, errsize);
+	if (!rc)
+		rc = cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
+						   plan_continuous(L, err, errsize);
 	if (rc) {
 		loop_free(L);
 		return rc;

@@ -119,9 +119,9 @@ out:
 }
 
 /* One output for channel `name` on the simulated drive, axis n, standing
- * where the scene begins. */
+ * at frame `home`'s pose. */
 static int add(struct rig_auto *ra, const char *name, const struct sd_limits *lim, uint32_t n,
-	       struct play_source *src)
+	       struct play_source *src, int64_t home)
 {
 	struct rig_output_desc *o = &ra->out[n];
 	struct src_channel sc;
@@ -139,12 +139,12 @@ static int add(struct rig_auto *ra, const char *name, const struct sd_limits *li
 	o->counts_per_unit = turns ? 1000 : 1000000; /* millidegrees, micrometres */
 	if (lim)
 		o->limits = *lim;
-	/* a simulated rig stands where the scene begins: no long pre-roll */
+	/* a simulated rig stands where the run begins: no long pre-roll */
 	one = (uint32_t)idx;
 	rc = src_select(src, &one, 1);
 	if (rc)
 		return rc;
-	src_eval(src, src->frame_first * MOT_Q32_ONE, &v0, &sat);
+	src_eval(src, home * MOT_Q32_ONE, &v0, &sat);
 	o->home = lim_file_units(sc.unit, (double)v0 / 4294967296.0);
 	return 0;
 }
@@ -187,7 +187,8 @@ static int derive(struct rig_auto *ra, uint32_t n, struct play_source *src)
 	return rc;
 }
 
-int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_source *src)
+int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_source *src,
+		   int64_t home)
 {
 	static const char *const cam[] = { "camera.x",	 "camera.y",    "camera.z",
 					   "camera.pan", "camera.tilt", "camera.roll" };
@@ -214,10 +215,10 @@ int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_
 		}
 		sprintf(name, "%s.%s", nd->name, nd->kind == MOT_NODE_REVOLUTE ? "angle" : "position");
 		ra->names[ra->nnames++] = name;
-		rc = add(ra, name, &nd->limits, n++, src);
+		rc = add(ra, name, &nd->limits, n++, src, home);
 	}
 	for (i = 0; !rc && d->has_camera && i < 6; i++)
-		rc = add(ra, cam[i], NULL, n++, src);
+		rc = add(ra, cam[i], NULL, n++, src, home);
 	if (!rc)
 		rc = derive(ra, n, src);
 	if (rc) {

@@ -33,8 +33,10 @@ struct rig_auto {
 	struct rig_trigger_desc trig;
 };
 
-/* [init] 0 or a negative errno. */
-int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_source *src);
+/* [init] 0 or a negative errno. Each axis stands at the pose of frame
+ * `home` (the run's first: no pre-roll on a rig that stands ready). */
+int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_source *src,
+		   int64_t home);
 void rig_auto_free(struct rig_auto *ra);
 
 #endif /* STRAND_RIG_AUTO_H */

@@ -18,6 +18,7 @@
 #include "check/limit_check.h"
 #include "cli/cli.h"
 #include "cli/exitcode.h"
+#include "cliutil.h"
 #include "testutil.h"
 
 static const char scene[] =
@@ -167,11 +168,140 @@ static void test_command(void **state)
 	unlink(path);
 }
 
+/* A scene file made from an example with one line changed, for the tests
+ * below: `from` replaced by `to` (which must be there). */
+static void example_with(char *path, size_t size, const char *ex, const char *from,
+			 const char *to)
+{
+	FILE *f = fopen(ex, "r");
+	char text[16384];
+	size_t n;
+	char *at;
+
+	assert_non_null(f);
+	n = fread(text, 1, sizeof(text) - 1, f);
+	fclose(f);
+	text[n] = '\0';
+	at = strstr(text, from);
+	assert_non_null(at);
+	snprintf(path, size, "/tmp/strand-limits-%d.yaml", (int)getpid());
+	f = fopen(path, "w");
+	assert_non_null(f);
+	fprintf(f, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+	fclose(f);
+}
+
+/* strand check's first line is play's first reason, verbatim. */
+static void same_first(const struct run *chk, const struct run *ply)
+{
+	char want[600];
+	const char *nl = strchr(chk->out, '\n');
+
+	assert_non_null(nl);
+	snprintf(want, sizeof(want), "the first: %.*s.\n", (int)(nl - chk->out), chk->out);
+	if (!strstr(ply->err, want))
+		fail_msg("play says:\n%swant:\n%s", ply->err, want);
+}
+
+/*
+ * An output's own limits replace its node's at run time, and check holds
+ * the timeline to them (issue 12: the robot arm with {velocity: 20,
+ * acceleration: 360} on base.angle's output passed check, then play stopped
+ * at tick 561 with exit 7). Now check finds it and play refuses it, exit 1,
+ * for the same first reason, before anything moves.
+ */
+static void test_output_limits(void **state)
+{
+	char path[256];
+	struct run chk, ply;
+
+	example_with(path, sizeof(path), "examples/robot_arm.yaml",
+		     "axis: 0, counts_per_unit: 1000, ferror: 1, min_ferror: 0.1}",
+		     "axis: 0, counts_per_unit: 1000, ferror: 1, min_ferror: 0.1,\n"
+		     "     limits: {velocity: 20, acceleration: 360}}");
+	{
+		char args[300];
+
+		snprintf(args, sizeof(args), "check %s", path);
+		strand(&chk, args);
+		snprintf(args, sizeof(args), "play %s --clock virtual --no-journal --quiet", path);
+		strand(&ply, args);
+	}
+	assert_int_equal(chk.rc, STRAND_EXIT_VIOLATION);
+	assert_non_null(strstr(chk.out, "base.angle: velocity 38.8889"));
+	assert_non_null(strstr(chk.out, ": 3 violations; 3 channels with limits"));
+	assert_int_equal(ply.rc, STRAND_EXIT_VIOLATION);
+	same_first(&chk, &ply);
+	run_free(&chk);
+	run_free(&ply);
+	unlink(path);
+}
+
+/*
+ * A range that starts where the scene moves fast, next to a position limit
+ * behind it: the run-up would have to start beyond the limit. check names
+ * it (the frame and where the ramp would start), and play refuses it, exit
+ * 1, for the same reason, instead of failing to plan after the devices
+ * started (exit 2 before).
+ */
+static void test_runup_outside(void **state)
+{
+	static const char yaml[] =
+		"timing: {tick_hz: 1000, frame_rate: 24, frames: [0, 48]}\n"
+		"nodes: [{name: a, joint: {type: revolute, axis: z},\n"
+		"         limits: {min: -1, max: 100, velocity: 200, acceleration: 100}}]\n"
+		"strands: [{node: a, interpolation: linear,\n"
+		"           keys: [{frame: 0, angle: 0}, {frame: 24, angle: 90}]}]\n";
+	char path[] = "/tmp/strand-runup-XXXXXX.yaml", args[300];
+	struct run chk, ply;
+	int fd = mkstemps(path, 5);
+
+	assert_true(fd >= 0);
+	assert_int_equal(write(fd, yaml, strlen(yaml)), (ssize_t)strlen(yaml));
+	close(fd);
+	snprintf(args, sizeof(args), "check --sim %s --from 0 --to 20", path);
+	strand(&chk, args);
+	snprintf(args, sizeof(args), "play %s --sim --clock virtual --no-journal --quiet --from 0 "
+		 "--to 20", path);
+	strand(&ply, args);
+	assert_int_equal(chk.rc, STRAND_EXIT_VIOLATION);
+	/* 90 deg/s at 100 deg/s^2: 900 ticks of ramp, starting 40.5 deg back */
+	assert_non_null(strstr(chk.out, "a.angle: the run-up into frame 0 starts at -40.5"));
+	assert_int_equal(ply.rc, STRAND_EXIT_VIOLATION);
+	same_first(&chk, &ply);
+	run_free(&chk);
+	run_free(&ply);
+	unlink(path);
+}
+
+/* A rig that stands outside an output's position limits is refused before
+ * its first tick, naming the output (exit 7: the rig's state, not the
+ * scene's), rather than faulting at tick 0. */
+static void test_stands_outside(void **state)
+{
+	char path[256], args[300];
+	struct run r;
+
+	example_with(path, sizeof(path), "examples/robot_arm.yaml",
+		     "axis: 0, counts_per_unit: 1000, ferror: 1, min_ferror: 0.1}",
+		     "axis: 0, counts_per_unit: 1000, ferror: 1, min_ferror: 0.1, home: 200}");
+	snprintf(args, sizeof(args), "play %s --clock virtual --no-journal --quiet", path);
+	strand(&r, args);
+	assert_int_equal(r.rc, STRAND_EXIT_FAULT);
+	assert_non_null(strstr(r.err, "base.angle (device 'drives' axis 0) stands at 200 deg, "
+				      "outside its limits -170 to 170 deg"));
+	run_free(&r);
+	unlink(path);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_each_kind),
 		cmocka_unit_test(test_command),
+		cmocka_unit_test(test_output_limits),
+		cmocka_unit_test(test_runup_outside),
+		cmocka_unit_test(test_stands_outside),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
