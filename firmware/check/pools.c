@@ -4,8 +4,8 @@
 
 #include "scene/channel.h"
 
-uint32_t lim_pools(FILE *out, const struct scene_desc *d, const struct mot_scene *sc, int64_t to,
-		   char *first, size_t size)
+uint32_t lim_pools(FILE *out, FILE *info, const struct scene_desc *d, const struct mot_scene *sc,
+		   int64_t to, char *first, size_t size)
 {
 	uint32_t i, bad = 0, sat = 0;
 
@@ -17,8 +17,8 @@ uint32_t lim_pools(FILE *out, const struct scene_desc *d, const struct mot_scene
 
 		if (sc->sys[i].kind != MOT_SYS_PARTICLES || !p->emit)
 			continue;
-		if (out)
-			fprintf(out, "particles '%s': at most %lld of %u slots alive at once, %lld "
+		if (info)
+			fprintf(info, "particles '%s': at most %lld of %u slots alive at once, %lld "
 				"dropped; %lld steps at %g a second\n", name, (long long)p->peak,
 				p->npool, (long long)p->dropped, (long long)p->steps.nsteps,
 				(double)p->steps.rate_num / p->steps.rate_den);

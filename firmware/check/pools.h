@@ -16,12 +16,12 @@
 #include "scene/scene_desc.h"
 
 /*
- * Each emitting particle system of sc: a line on out (NULL: none) saying
- * what its pool held at most; one more for a pool that ran out by frame
- * `to`, the first of which is also written into first (size bytes, may be
- * NULL). Returns the pools that ran out.
+ * Each emitting particle system of sc: a line on info (NULL: none) saying
+ * what its pool held at most, and one on out (NULL: none) for a pool that
+ * ran out by frame `to`, the first of which is also written into first
+ * (size bytes, may be NULL). Returns the pools that ran out.
  */
-uint32_t lim_pools(FILE *out, const struct scene_desc *d, const struct mot_scene *sc, int64_t to,
-		   char *first, size_t size);
+uint32_t lim_pools(FILE *out, FILE *info, const struct scene_desc *d, const struct mot_scene *sc,
+		   int64_t to, char *first, size_t size);
 
 #endif /* STRAND_CHECK_POOLS_H */

@@ -131,13 +131,14 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		ticks = mot_timing_trigger_tick(&ss.s.timing, o.run.to) -
 			mot_timing_trigger_tick(&ss.s.timing, o.run.from) + 1;
 		/* a particle pool that runs out is a violation too */
-		pools = lim_pools(out, &sf.desc, &b.sc, o.run.to, NULL, 0);
+		pools = lim_pools(out, NULL, &sf.desc, &b.sc, o.run.to, NULL, 0);
 		fprintf(out, "%s: %u violation%s; %u channel%s with limits, frames %lld to %lld, "
 			"%lld ticks\n", path, lc.res.violations + pools,
 			lc.res.violations + pools == 1 ? "" : "s",
 			cli_limits_count(&lc), cli_limits_count(&lc) == 1 ? "" : "s",
 			(long long)o.run.from, (long long)o.run.to, (long long)ticks);
 		check_buses(out, rig, sf.desc.tick_hz);
+		lim_pools(NULL, out, &sf.desc, &b.sc, o.run.to, NULL, 0);
 		rc = lc.res.violations || pools ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
 out:
