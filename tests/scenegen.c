@@ -204,7 +204,7 @@ static void nodes(struct scenegen *g, struct tu_rng *r, struct node *nd, uint32_
 static void strands(struct scenegen *g, struct tu_rng *r, struct node *nd, uint32_t n)
 {
 	uint32_t i, k;
-	bool any = false;
+	bool any = false, rot4;
 
 	for (i = 0; i < n; i++) {
 		struct node *d = &nd[i];
@@ -222,13 +222,31 @@ static void strands(struct scenegen *g, struct tu_rng *r, struct node *nd, uint3
 			continue;
 		}
 		strand_head(g, r, "    ", d->interp, d->f[d->nkeys - 1] - d->f[0]);
-		if (!d->joint && chance(r, 0.5))
-			say(g, "    rotation: %s\n", chance(r, 0.5) ? "slerp" : "squad");
+		rot4 = false;
+		if (!d->joint && chance(r, 0.5)) {
+			static const char *const rots[] = { "slerp", "squad", "cubic", "step" };
+			uint32_t w = pick(r, 4);
+
+			say(g, "    rotation: %s\n", rots[w]);
+			/* cubic and step rotations are shaped by their keys alone */
+			rot4 = w >= 2;
+		}
+		/* a storage choice: step and linear channels keep their keys alone */
+		if (chance(r, 0.15))
+			say(g, "    compact: true\n");
 		say(g, "    keys:\n");
 		for (k = 0; k < d->nkeys; k++) {
 			say(g, "      - {frame: %.1f", d->f[k]);
 			if (d->joint) {
+				double slope = (d->hi - d->lo + 1) / (d->f[d->nkeys - 1] - d->f[0] + 1);
+
 				say(g, d->rev ? ", angle: %.4f" : ", position: %.5f", d->v[k]);
+				/* an animator's handles: a slope in the value's unit per
+				 * frame, either side (hermite only) */
+				if (!strcmp(d->interp, "hermite") && chance(r, 0.3))
+					say(g, ", in: %.5f", tu_uniform(r, -3, 3) * slope);
+				if (!strcmp(d->interp, "hermite") && chance(r, 0.3))
+					say(g, ", out: %.5f", tu_uniform(r, -3, 3) * slope);
 			} else {
 				bool t = !k || chance(r, 0.7), rot = !k || !t || chance(r, 0.7);
 
@@ -242,7 +260,8 @@ static void strands(struct scenegen *g, struct tu_rng *r, struct node *nd, uint3
 					say(g, ", scale: [%.3f, %.3f, %.3f]", tu_uniform(r, 0.5, 2),
 					    tu_uniform(r, 0.5, 2), tu_uniform(r, 0.5, 2));
 			}
-			key_ease(g, r);
+			if (!rot4)
+				key_ease(g, r);
 			say(g, "}\n");
 		}
 	}
