@@ -28,7 +28,7 @@ VM_TIMEOUT ?= 300
 
 # The kernel's kbuild tools are unpacked, not installed: their libraries
 # (libelf1, libssl3) and compiler (gcc-12) are listed here instead.
-DEB_VM := qemu-system-x86 busybox-static cpio xz-utils patch gcc-12 make libelf1 libssl3 \
+DEB_VM += qemu-system-x86 busybox-static cpio xz-utils patch gcc-12 make libelf1 libssl3 \
           can-utils gpiod libgpiod-dev
 
 # Modules from the kernel package, loaded with insmod in this order (the
@@ -36,7 +36,7 @@ DEB_VM := qemu-system-x86 busybox-static cpio xz-utils patch gcc-12 make libelf1
 # VM_MODULE_PARAMS: NAME.ko:PARAM=VALUE, given to insmod. gpio-sim wires
 # output 0 to input 8 and output 1 to input 9 of every chip (the trigger
 # and rig-ready lines of tests/vm/t_gpio_*.sh, watched by gpiomon).
-VM_MODULES := kernel/drivers/net/can/dev/can-dev.ko kernel/drivers/net/can/vcan.ko \
+VM_MODULES += kernel/drivers/net/can/dev/can-dev.ko kernel/drivers/net/can/vcan.ko \
               kernel/net/can/can.ko kernel/net/can/can-raw.ko kernel/fs/configfs/configfs.ko
 VM_MODULE_PARAMS += gpio-sim.ko:loopback=0,8,1,9
 

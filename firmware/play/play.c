@@ -99,7 +99,9 @@ static int prepare_chase(struct play *p, const struct play_source *src, char *er
 	const struct mot_timing *tm = &src->timing;
 	struct chase_cfg cc = { .num = tm->num, .den = tm->den, .tick_hz = tm->tick_hz,
 				.mult = 1 };
-	struct rig_chase_cfg rc = { .spec = o->spec, .clk = &p->clk, .sched = p->plan.events,
+	/* a frame pulse's edges are input events; LTC capture is I/O (rt.h) */
+	struct rig_chase_cfg rc = { .spec = o->spec, .clk = &p->clk,
+				    .sched = strncmp(o->spec, "ltc:", 4) ? p->plan.events : p->plan.io,
 				    .gpio_sysfs = p->o.rig.gpio_sysfs, .sim = o->sim,
 				    .sim_din = o->sim_din };
 	struct timecode tc;

@@ -18,6 +18,14 @@
 # after their ticks were due (the jitter of the trigger), how far the
 # pulses' widths were off, and how long after the edge the journal's time
 # was read. On a mismatch it prints the first one and exits 1.
+#
+# With -v frame_ns=F (the scene's frame period), also the rate the pulses
+# came at against it, as an observer with the kernel's timestamps measures
+# it, as BENCH gpio_edge_rate_ppm: each rising edge's time less its frame's
+# nominal one, the 10th percentile of that in the first and in the last
+# third of the run, and the slope between them. An edge is late, never
+# early, and a stall of the emulated CPU makes a burst of edges late, which
+# a line through all of them would follow; the lower edge does not.
 
 function fail(msg) {
 	print "edges: " msg
@@ -131,4 +139,16 @@ END {
 	printf "BENCH gpio_pulse_width_error_max %.1f us\n", worst_w
 	printf "BENCH gpio_journal_after_edge_p50 %.1f us\n", quantile(lag, nj, 0.5)
 	printf "BENCH gpio_journal_after_edge_max %.1f us\n", lag[nj]
+	if (frame_ns > 0 && nj >= 30) {
+		h = int(nj / 3)
+		f1 = f3 = 0
+		for (k = 1; k <= h; k++) {
+			r1[k] = rise[k] - frame[k] * frame_ns
+			r3[k] = rise[nj - h + k] - frame[nj - h + k] * frame_ns
+			f1 += frame[k] / h
+			f3 += frame[nj - h + k] / h
+		}
+		per = frame_ns + (quantile(r3, h, 0.1) - quantile(r1, h, 0.1)) / (f3 - f1)
+		printf "BENCH gpio_edge_rate_ppm %.1f\n", (frame_ns / per - 1) * 1e6
+	}
 }
