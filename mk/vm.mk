@@ -42,7 +42,9 @@ VM_MODULE_PARAMS += gpio-sim.ko:loopback=0,8,1,9
 
 # What goes into the guest. Other mk files add to these: VM_BINS are copied
 # to /bin with the shared libraries ldd names for them, VM_FILES are
-# DEST=SRC pairs copied as they are, VM_TESTS are the scripts run in order.
+# DEST=SRC pairs copied as they are, VM_TESTS are the scripts run in order,
+# VM_AGAIN NAME@VARIANT the tests run once more with /VARIANT/bin first on
+# PATH (mk/gpiod2.mk).
 VM_HOST_BINS += /usr/bin/gpiodetect /usr/bin/gpioinfo /usr/bin/gpioget /usr/bin/gpioset \
                 /usr/bin/gpiomon /usr/bin/gpiofind /usr/bin/candump /usr/bin/cansend
 VM_BINS      += $(BUILD)/strand
@@ -71,7 +73,8 @@ $(VM_SIMDIR)/gpio-sim.ko: $(VM_KDIR)/.done tests/vm/build-gpio-sim.sh $(VM_SIM_S
 	$(Q)sh tests/vm/build-gpio-sim.sh $(VM_KDIR) $(VM_SIMDIR) $(VM_SIM_SRC)
 
 # Rebuilt when any input or the lists change; cheap (a few MB of cpio).
-VM_LISTS := $(VM_MODULES) $(VM_MODULE_PARAMS) | $(VM_HOST_BINS) $(VM_BINS) | $(VM_FILES) | $(VM_TESTS)
+VM_LISTS := $(VM_MODULES) $(VM_MODULE_PARAMS) | $(VM_HOST_BINS) $(VM_BINS) | $(VM_FILES) | \
+            $(VM_TESTS) | $(VM_AGAIN)
 $(VM_DIR)/initrd.lists: FORCE
 	@mkdir -p $(@D)
 	$(Q)echo '$(VM_LISTS)' | cmp -s - $@ || echo '$(VM_LISTS)' >$@
@@ -81,6 +84,7 @@ $(VM_DIR)/initrd.cpio.gz: $(VM_DIR)/initrd.lists $(VM_KDIR)/.done $(VM_SIMDIR)/g
 	$(Q)VM_MODULES="$(addprefix $(VM_KDIR)/modules/,$(VM_MODULES)) \
 		$(VM_SIMDIR)/gpio-sim.ko" VM_MODULE_PARAMS="$(VM_MODULE_PARAMS)" \
 		VM_BINS="$(VM_HOST_BINS) $(VM_BINS)" VM_FILES="$(VM_FILES)" VM_TESTS="$(VM_TESTS)" \
+		VM_AGAIN="$(VM_AGAIN)" \
 		sh tests/vm/mkinitramfs.sh tests/vm/init.sh $@
 vm-initramfs: $(VM_DIR)/initrd.cpio.gz
 

@@ -37,10 +37,10 @@ attempt() {
 		--journal /tmp/journal >/tmp/play.out 2>&1 &
 	play=$!
 	BG_PIDS="$BG_PIDS $play"
-	# the source: 15 s of LTC (the range is 11 s), through a 0.5 s buffer
+	# the source: 11 s of LTC (the range is 7 s), through a 0.5 s buffer
 	# so that a busy emulated CPU does not make aplay underrun
 	sleep 0.5
-	bg sh -c 'ltcgen 25 10:00:00:00 15 |
+	bg sh -c 'ltcgen 25 10:00:00:00 11 |
 		aplay -q -B 500000 -D hw:Loopback,0,0 -t raw -f S16_LE -c 1 -r 48000'
 	wait_for 40 sh -c "! kill -0 $play" || fail "strand still chasing after 40 s"
 	wait "$play"
