@@ -4,6 +4,7 @@
  * its top-level sections, and the names they share (see load.h).
  */
 #include "load_priv.h"
+#include "scene/sha256.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -12,9 +13,10 @@
 
 static const char *const top_keys[] = { "scene",      "timing",  "nodes",   "strands",
 					"camera",     "cycles",  "attributes", "devices",
-					"outputs",    "triggers", "inputs",  NULL };
+					"outputs",    "triggers", "inputs",  "boards",
+					"lockstep",   NULL };
 enum { T_SCENE, T_TIMING, T_NODES, T_STRANDS, T_CAMERA, T_CYCLES, T_ATTRS, T_DEVICES,
-       T_OUTPUTS, T_TRIGGERS, T_INPUTS, T_COUNT };
+       T_OUTPUTS, T_TRIGGERS, T_INPUTS, T_BOARDS, T_LOCKSTEP, T_COUNT };
 
 static int yaml_error(struct ld *l, const yaml_parser_t *p)
 {
@@ -118,6 +120,8 @@ static int sections(struct ld *l, yaml_node_t *root)
 
 		err = ld_rig(l, &rs);
 	}
+	if (!err)
+		err = ld_boards(l, v[T_BOARDS], v[T_LOCKSTEP], v[T_DEVICES]);
 	return err;
 }
 
@@ -203,6 +207,7 @@ int scene_file_parse(struct scene_file *sf, const char *path, const char *buf, s
 		return rc;
 	}
 	sf->desc = d;
+	sha256(sf->digest, buf, len);
 	sf->path = pool_strndup(&sf->pool, path, strlen(path));
 	sf->strand = l.strand;
 	sf->marks = mk;
