@@ -50,3 +50,11 @@ fuzz-board-short: $(FUZZ_BOARD_DIR)/fuzz_board $(FUZZ_BOARD_DIR)/seed-board
 	$(call run_fuzz_board,$(FUZZ_BOARD_SECONDS))
 
 fuzz: fuzz-board
+
+# make bench-boards (part of make bench): the lockstep case alone, three
+# boards playing 10 s (250 frames): the skew between the same frame's
+# trigger on the three boards (tests/boards/run.sh --bench).
+.PHONY: bench-boards
+bench: bench-boards
+bench-boards: $(BUILD)/strand $(BUILD)/strand-simdrive
+	$(Q)sh tests/boards/run.sh $(BUILD)/strand $(BUILD)/strand-simdrive --bench

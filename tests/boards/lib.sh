@@ -111,13 +111,13 @@ ptp_wait() {
 # play BOARD ARGS...: strand play SCENE --node BOARD in the board's
 # namespace, its output in $T/BOARD.out, its journal $T/BOARD.journal; in
 # the background, its pid in PID_BOARD (ip execs env, which execs strand:
-# one process, which a signal reaches)
+# one process, which a signal reaches); PLAY_RT: its real-time options
 play() {
 	_b=$1
 	shift
 	ip netns exec "$(ns "$_b")" env $PLAY_ENV "$STRAND" play "$@" --node "$_b" \
 		--ptp-socket "$T/ptp4l-$_b" \
-		--ptp-free-running --journal "$T/$_b.journal" --priority 0 --no-mlock \
+		--ptp-free-running --journal "$T/$_b.journal" $PLAY_RT \
 		>"$T/$_b.out" 2>&1 &
 	eval "PID_$_b=\$!"
 }

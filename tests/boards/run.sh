@@ -1,5 +1,5 @@
 #!/bin/sh
-# run.sh STRAND STRAND-SIMDRIVE - several boards, one scene, for real: three
+# run.sh STRAND STRAND-SIMDRIVE [--bench] - several boards, one scene, for real: three
 # `strand play --node` in network namespaces joined by a bridge, ptp4l
 # between them (lib.sh), each board driving its part of tests/boards/lock3.yaml
 # on simulated devices (board b, in one case, a Modbus drive served by
@@ -27,11 +27,20 @@
 #               --trip-after): b stops with its device fault (exit 7), a and
 #               c under control (exit 7) naming board b and the fault
 #
+# --bench (make bench-boards): the lockstep case alone, over 10 s (250
+# frames on each board), for its BENCH lines.
+#
 # Needs root, ip netns, veth, a bridge and linuxptp; where one is missing,
 # one SKIP line says which (never under CI).
 set -u
 STRAND=$(readlink -f "$1")
 SIMDRIVE=$(readlink -f "$2")
+BENCH=${3:-}
+# the tests' boards: ordinary threads on a shared machine; the benchmark's:
+# the loop's SCHED_FIFO and locked memory, as on a board
+PLAY_RT="--priority 0 --no-mlock"
+[ "$BENCH" = --bench ] && PLAY_RT=""
+
 HERE=$(cd "$(dirname "$0")" && pwd)
 SCENE=$HERE/lock3.yaml
 PLAY_ENV=
@@ -58,12 +67,15 @@ ptp_up
 ptp_wait 15 || { fail "ptp4l did not settle"; exit 1; }
 
 # ---- lockstep: the skew between the boards' triggers --------------------------
-CASE=lockstep
-for b in $BOARDS; do play "$b" "$SCENE"; done
-wait_all
-if [ "$RC_a$RC_b$RC_c" != 000 ]; then
-	fail "exit codes a $RC_a, b $RC_b, c $RC_c, want 0"
-else
+# lockstep SCENE FRAMES: the three play SCENE (FRAMES frames) together
+lockstep() {
+	CASE=lockstep
+	for b in $BOARDS; do play "$b" "$1"; done
+	wait_all
+	if [ "$RC_a$RC_b$RC_c" != 000 ]; then
+		fail "exit codes a $RC_a, b $RC_b, c $RC_c, want 0"
+		return
+	fi
 	for b in $BOARDS; do "$STRAND" journal "$T/$b.journal" >"$T/$b.csv"; done
 	# per frame: the spread of due_ns and of mono_ns over the three boards
 	awk -F, 'FNR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; f++; next }
@@ -79,7 +91,10 @@ else
 				print (dh - dl) / 1000, (mh - ml) / 1000
 			}
 			exit bad
-		}' "$T/a.csv" "$T/b.csv" "$T/c.csv" >"$T/skew" || fail "$(grep frame "$T/skew" | head -n 1)"
+		}' "$T/a.csv" "$T/b.csv" "$T/c.csv" >"$T/skew" || {
+		fail "$(grep frame "$T/skew" | head -n 1)"
+		return
+	}
 	frames=$(wc -l <"$T/skew")
 	# quantiles COLUMN NAME DIGITS: p50, p99, max of a column as BENCH lines
 	quantiles() {
@@ -96,15 +111,26 @@ else
 	cat "$T/bench"
 	due_max=$(sed -n 's/^BENCH lockstep_due_skew_max_us //p' "$T/bench")
 	trig_p50=$(sed -n 's/^BENCH lockstep_trigger_skew_p50_us //p' "$T/bench")
-	if [ "$frames" != 26 ]; then
-		fail "$frames frames in all three journals, want 26"
+	if [ "$frames" != "$2" ]; then
+		fail "$frames frames in all three journals, want $2"
 	elif awk -v d="$due_max" -v t="$trig_p50" 'BEGIN { exit !(d > 20 || t > 2000) }'; then
 		fail "due times up to $due_max us apart (bound 20), triggers $trig_p50 us at the median (bound 2000)"
 	else
-		pass "26 frames on three boards: due within $due_max us, triggers p50 $trig_p50 us apart;" \
+		pass "$2 frames on three boards: due within $due_max us, triggers p50 $trig_p50 us apart;" \
 			"$(grep -o 'the clocks within [^;]*' "$T/a.out")"
 	fi
+}
+
+if [ "$BENCH" = --bench ]; then
+	sed 's/^  frames: \[0, 25\]/  frames: [0, 250]/; s/{frame: 25,/{frame: 250,/' "$SCENE" >"$T/long.yaml"
+	echo "bench-boards: three boards in network namespaces, ptp4l software timestamps," \
+		"1 kHz, 250 frames each, SCHED_FIFO 80; skew = the spread of one frame's time over" \
+		"the boards"
+	lockstep "$T/long.yaml" 251
+	[ $FAILED = 0 ] || exit 1
+	exit 0
 fi
+lockstep "$SCENE" 26
 
 # ---- the refusals ------------------------------------------------------------------
 # refused WHAT: all three exit 7, each saying WHAT (the refusal's words)
