@@ -58,3 +58,5 @@ fuzz: fuzz-board
 bench: bench-boards
 bench-boards: $(BUILD)/strand $(BUILD)/strand-simdrive
 	$(Q)sh tests/boards/run.sh $(BUILD)/strand $(BUILD)/strand-simdrive --bench
+
+TEST_PREBUILD += $(FUZZ_BOARD_DIR)/fuzz_board

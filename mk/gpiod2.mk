@@ -43,3 +43,6 @@ $(BUILD)/strand-gpiod2: $(CLI_OBJ) $(LIB_OBJ) $(BUILD)/libmotion.a $(GPIOD2_LIB)
 VM_FILES += /gpiod2/bin/strand=$(BUILD)/strand-gpiod2
 VM_AGAIN += $(addsuffix @gpiod2,t_gpio_busy t_gpio_estop t_gpio_genlock t_gpio_step t_gpio_trigger)
 DEB_VM   += debian-archive-keyring
+
+# built with everything else before make test's steps run
+TEST_PREBUILD += $(BUILD)/strand-gpiod2 $(BUILD)/vm/ltcgen
