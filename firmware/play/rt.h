@@ -35,6 +35,7 @@
  *   strand-gpio-DEV    GPIO input events        SCHED_FIFO P, off CPU N
  *   strand-mb-DEV      Modbus I/O               SCHED_FIFO P - RT_IO_BELOW, off CPU N
  *   strand-ltc         LTC capture (--chase)    SCHED_FIFO P - RT_IO_BELOW, off CPU N
+ *   strand-board       the lockstep (--node)    SCHED_FIFO P - RT_IO_BELOW, off CPU N
  *   strand (main)      the service thread       SCHED_OTHER
  *
  * The input event threads run at the loop's own priority: they carry the
