@@ -40,23 +40,6 @@ void dbl_ease_init(struct dbl_ease *e, double a, double b)
 	e->kb = b > 0 ? e->v / (2 * b) : 0;
 }
 
-double dbl_ease_apply(const struct dbl_ease *e, double s)
-{
-	double r, t;
-
-	if (s <= 0)
-		return 0;
-	if (s >= 1)
-		return 1;
-	if (s < e->a)
-		return s * e->ka * s;
-	r = 1 - s;
-	if (r < e->b)
-		return 1 - r * e->kb * r;
-	t = e->v * (2 * s - e->a) / 2;
-	return t < 0 ? 0 : t > 1 ? 1 : t;
-}
-
 /* ---- evaluation helpers --------------------------------------------------------- */
 
 static inline double poly_eval(const double c[4], double u)
@@ -324,6 +307,40 @@ int dbl_curve_newton_iterations(const struct dbl_curve *c, double f)
 
 	eval(c, NULL, f, &it);
 	return it;
+}
+
+void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_cursor *cur,
+		     double f)
+{
+	const struct dbl_seg *s;
+
+	p->lo = 1;
+	p->hi = 0;
+	p->seg = NULL;
+	if (c->kind > MOT_INTERP_HERMITE || c->nkeys < 2 || c->span_ease)
+		return;
+	if (f <= c->span_f0) {
+		p->lo = -INFINITY;
+		p->hi = nextafter(c->span_f0, INFINITY);
+		p->held = c->value[0];
+		return;
+	}
+	if (f >= c->span_f1) {
+		p->lo = c->span_f1;
+		p->hi = INFINITY;
+		p->held = c->value[c->nkeys - 1];
+		return;
+	}
+	s = &c->seg[locate_seg(c, cur, f)];
+	p->lo = s->f0 > c->span_f0 ? s->f0 : nextafter(c->span_f0, INFINITY);
+	p->hi = s->f1;
+	if (c->kind == MOT_INTERP_STEP) {
+		p->held = s->vref;
+		return;
+	}
+	p->seg = s;
+	p->linear = c->kind == MOT_INTERP_LINEAR;
+	p->eased = c->seg_ease && !dbl_ease_is_identity(&s->ease);
 }
 
 /* Integral over [f0, f0 + e] of interpolating piece i at parameter s */

@@ -73,11 +73,59 @@ int dbl_curve_newton_iterations(const struct dbl_curve *c, double f);
 double dbl_curve_integral(const struct dbl_curve *c, struct dbl_cursor *cur, double f);
 
 void dbl_ease_init(struct dbl_ease *e, double a, double b);
-double dbl_ease_apply(const struct dbl_ease *e, double s);
+
+static inline double dbl_ease_apply(const struct dbl_ease *e, double s)
+{
+	double r, t;
+
+	if (s <= 0)
+		return 0;
+	if (s >= 1)
+		return 1;
+	if (s < e->a)
+		return s * e->ka * s;
+	r = 1 - s;
+	if (r < e->b)
+		return 1 - r * e->kb * r;
+	t = e->v * (2 * s - e->a) / 2;
+	return t < 0 ? 0 : t > 1 ? 1 : t;
+}
 
 static inline bool dbl_ease_is_identity(const struct dbl_ease *e)
 {
 	return e->a == 0 && e->b == 0;
+}
+
+/*
+ * scene.c's piece memo (struct mot_node_memo): what a joint's curve is
+ * between the frames lo (included) and hi (excluded), the held value or
+ * one piece of an interpolating curve without a strand-wide ease;
+ * dbl_piece_learn() finds it at a frame (an empty span where it cannot).
+ */
+struct dbl_piece {
+	double lo, hi, held;
+	const struct dbl_seg *seg; /* NULL: held */
+	bool linear, eased;
+};
+
+void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_cursor *cur,
+		     double f);
+
+/* The piece at a frame of its span (curve.c's piece_value()) */
+static inline double dbl_piece_at(const struct dbl_piece *p, double f)
+{
+	const struct dbl_seg *s = p->seg;
+	double u;
+
+	if (!s)
+		return p->held;
+	u = (f - s->f0) * s->inv_w;
+	u = u < 0 ? 0 : u > 1 ? 1 : u;
+	if (p->eased)
+		u = dbl_ease_apply(&s->ease, u);
+	if (p->linear)
+		return s->vref + s->c[1] * u;
+	return s->vref + ((s->c[3] * u + s->c[2]) * u + s->c[1]) * u + s->c[0];
 }
 
 /* A double as scene_build() quantises it (Q32.32), false when out of range. */

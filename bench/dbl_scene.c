@@ -377,11 +377,16 @@ void dbl_pose_free(struct dbl_pose *p)
 /* ---- evaluation (scene.c) ------------------------------------------------------------ */
 
 static double joint_value(const struct dbl_scene *sc, struct dbl_eval *ev,
-			  const struct dbl_node *n, double f, double *rpm)
+			  const struct dbl_node *n, struct dbl_memo *m, double f, double *rpm)
 {
 	*rpm = 0;
-	if (n->curve >= 0)
+	if (n->curve >= 0) {
+		/* scene.c's piece memo */
+		if (f >= m->piece.lo && f < m->piece.hi)
+			return dbl_piece_at(&m->piece, f);
+		dbl_piece_learn(&m->piece, &sc->curves[n->curve], &ev->cursors[n->curve], f);
 		return dbl_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], f);
+	}
 	if (n->spin >= 0) {
 		const struct dbl_curve *c = &sc->curves[n->spin];
 		struct dbl_cursor *cur = &ev->cursors[n->spin];
@@ -546,7 +551,7 @@ void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double fram
 		m->moved = true;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
-			v = joint_value(sc, ev, n, frame, &r);
+			v = joint_value(sc, ev, n, m, frame, &r);
 			if (!warm || v != m->value) {
 				m->value = v;
 				sincos(2 * M_PI * v, &m->s, &m->c);
@@ -562,7 +567,7 @@ void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double fram
 			}
 			break;
 		case MOT_NODE_PRISMATIC:
-			v = joint_value(sc, ev, n, frame, &r);
+			v = joint_value(sc, ev, n, m, frame, &r);
 			if (still && v == m->value) {
 				m->moved = false;
 				break;

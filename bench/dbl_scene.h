@@ -82,6 +82,7 @@ struct dbl_scene {
 struct dbl_memo {
 	double value, s, c;
 	bool moved;
+	struct dbl_piece piece; /* the joint's curve (scene.c's piece memo) */
 };
 
 struct dbl_eval {

@@ -61,6 +61,34 @@ static inline bool mot_ease_is_identity(const struct mot_ease *e)
  * exact at 0 and 1. Real-time safe: at most three products, no division. */
 int64_t mot_ease_apply62(const struct mot_ease *e, int64_t s);
 
+/* The same, inline: for the curves' playback path (curve_priv.h). */
+static inline int64_t mot_ease_apply62_in(const struct mot_ease *e, int64_t s)
+{
+	int64_t t, r;
+
+	if (s <= 0)
+		return 0;
+	if (s >= MOT_Q62_ONE)
+		return MOT_Q62_ONE;
+	if (s < e->a) {
+		t = mot_acc_round(mot_acc_mul(s, e->ka), e->ka_shift, NULL);
+		return mot_acc_round(mot_acc_mul(t, s), 62, NULL);
+	}
+	r = MOT_Q62_ONE - s;
+	if (r < e->b) {
+		t = mot_acc_round(mot_acc_mul(r, e->kb), e->kb_shift, NULL);
+		return MOT_Q62_ONE - mot_acc_round(mot_acc_mul(t, r), 62, NULL);
+	}
+	{
+		/* v (2s - a) / 2 = (2 s V - a V) / 2^62 with V = v 2^61 */
+		mot_acc sv = mot_acc_mul(s, e->v);
+
+		t = mot_acc_round(mot_acc_sub(mot_acc_add(sv, sv), mot_acc_mul(e->a, e->v)), 62,
+				  NULL);
+	}
+	return t < 0 ? 0 : t > MOT_Q62_ONE ? MOT_Q62_ONE : t;
+}
+
 /* s' for s in Q32.32. s outside [0, 1] is taken as the nearest end and sets
  * MOT_SAT_DOMAIN. Real-time safe. */
 mot_q32 mot_ease_apply(const struct mot_ease *e, mot_q32 s, uint32_t *sat);

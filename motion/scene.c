@@ -204,6 +204,109 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 		m->bound = bt + ((2 * p1 + 3 * t) << SMALL_LIN_SHIFT) + 2;
 }
 
+/* ---- a joint's curve: the piece memo ----------------------------------------- */
+
+/* How the memo evaluates its piece (struct mot_node_memo): curve.c's
+ * piece_value() with what it decides per evaluation decided once. */
+enum {
+	PIECE_SHIFTED,     /* a hermite piece in s' (curve.h) */
+	PIECE_LINEAR,      /* u = (f - f0) / (f1 - f0), linear */
+	PIECE_CUBIC,       /* the same, hermite */
+	PIECE_LINEAR_EASE, /* u eased, linear */
+	PIECE_CUBIC_EASE,  /* u eased, hermite */
+};
+
+static void piece_forget(struct mot_node_memo *m)
+{
+	m->lo = MOT_Q32_MAX;
+	m->hi = MOT_Q32_MIN;
+	m->held = 0;
+	m->piece = NULL;
+	m->op = PIECE_SHIFTED;
+}
+
+/*
+ * What the memo knows of a curve at frame f, from mot_curve_eval()'s way
+ * (curve.c's eval()): without a strand-wide ease, an interpolating curve
+ * holds its first value up to its first key, its last from its last key,
+ * and between them is the piece of the key interval of f, evaluated
+ * without any choice left. The span of the first piece starts after the
+ * first key, which the held value covers.
+ */
+static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
+			struct mot_cursor *cur, mot_q32 f)
+{
+	const struct mot_curve_seg *s;
+
+	piece_forget(m);
+	if (!c->plain || c->span_ease)
+		return;
+	if (f <= c->span_f0) {
+		m->lo = MOT_Q32_MIN;
+		m->hi = c->span_f0 + 1; /* |span_f0| < 2^62 */
+		m->held = c->keys[0].value;
+		return;
+	}
+	if (f >= c->span_f1) {
+		m->lo = c->span_f1;
+		m->hi = MOT_Q32_MAX;
+		m->held = c->keys[c->nkeys - 1].value;
+		return;
+	}
+	s = &c->seg[locate_seg(c, cur, f)];
+	m->lo = s->f0 > c->span_f0 ? s->f0 : c->span_f0 + 1;
+	m->hi = s->f1;
+	if (c->kind == MOT_INTERP_STEP) {
+		m->held = s->vref;
+		return;
+	}
+	m->piece = s;
+	if (s->ush >= 0)
+		m->op = PIECE_SHIFTED;
+	else if (c->seg_ease && !mot_ease_is_identity(&s->ease))
+		m->op = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR_EASE : PIECE_CUBIC_EASE;
+	else
+		m->op = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
+}
+
+/* The memo's piece at a frame of its span: false where value_of() would
+ * take its wide path (mot_curve_eval() then takes it). */
+static inline __attribute__((always_inline)) bool piece_at(const struct mot_node_memo *m,
+							   mot_q32 f, mot_q32 *out)
+{
+	const struct mot_curve_seg *s = m->piece;
+	int64_t p, q, u;
+	int sh;
+
+	if (!s) {
+		*out = m->held;
+		return true;
+	}
+	if (m->op == PIECE_SHIFTED) {
+		p = poly_eval(s->c, (f - s->f0) << s->ush);
+	} else {
+		u = frac62(f - s->f0, &s->inv_w);
+		if (m->op >= PIECE_LINEAR_EASE)
+			u = mot_ease_apply62_in(&s->ease, u);
+		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
+									  poly_eval(s->c, u);
+	}
+	sh = s->vsh;
+	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
+	       !__builtin_add_overflow(s->vref, q >> sh, out);
+}
+
+/* A frame outside the memo's span: learn the piece there, and the value
+ * the whole way. */
+static __attribute__((noinline)) mot_q32 curve_learn(const struct mot_curve *c,
+						     struct mot_cursor *cur,
+						     struct mot_node_memo *m, mot_q32 f,
+						     uint32_t *sat)
+{
+	piece_learn(m, c, cur, f);
+	return mot_curve_eval(c, cur, f, sat);
+}
+
 int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 {
 	uint32_t i, n = mot_eval_cursor_count(sc);
@@ -220,6 +323,7 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 
 		m->value = m->s = m->c = 0;
 		m->moved = 1;
+		piece_forget(m);
 		memo_prepare(m, sc, nd, nd->parent >= 0 ? &ev->memo[nd->parent] : NULL);
 	}
 	for (i = 0; i < sc->nsys; i++)
@@ -244,45 +348,36 @@ static __attribute__((noinline)) mot_q32 spin_value(const struct mot_scene *sc,
 }
 
 /*
- * A joint's curve at a frame: mot_curve_eval() with its plainest case
- * inline (curve_priv.h's arithmetic): a plain piece (curve.h) that the
- * cursor holds, step for step as curve.c's piece_value(). The rest, and a
- * value that would take value_of()'s wide path, go through
- * mot_curve_eval(): the same bits either way.
+ * A joint's curve at a frame: the memo's piece when the frame is in its
+ * span, else mot_curve_eval(), learning the piece there. Where 128-bit
+ * integers are not the compiler's, mot_curve_eval() alone: the memo's
+ * copies of the arithmetic would cost more code than they save time (a
+ * Cortex-M4), and it is the path the other builds check them against
+ * (make check-cross). The same bits every way.
  */
 static inline __attribute__((always_inline)) mot_q32
-curve_at(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f, uint32_t *sat)
+curve_at(const struct mot_curve *c, struct mot_cursor *cur, struct mot_node_memo *m, mot_q32 f,
+	 uint32_t *sat)
 {
-	const uint32_t j = cur->seg;
+	mot_q32 r;
 
-	if (small_kernels && j < c->nseg) {
-		const struct mot_curve_seg *s = &c->seg[j];
-		int64_t p, q;
-		mot_q32 r;
-
-		if (s->plain && f >= s->f0 && f < s->f1) {
-			if (c->kind == MOT_INTERP_STEP)
-				return s->vref;
-			if (c->kind == MOT_INTERP_LINEAR)
-				p = mul62(s->c[1], frac62(f - s->f0, &s->inv_w));
-			else
-				p = poly_eval(s->c, (f - s->f0) << s->ush);
-			if (!__builtin_add_overflow(p, (int64_t)1 << (s->vsh - 1), &q) &&
-			    !__builtin_add_overflow(s->vref, q >> s->vsh, &r))
-				return r;
-		}
-	}
-	return mot_curve_eval(c, cur, f, sat);
+	if (!small_kernels || !m)
+		return mot_curve_eval(c, cur, f, sat);
+	if (f >= m->lo && f < m->hi && piece_at(m, f, &r))
+		return r;
+	return curve_learn(c, cur, m, f, sat);
 }
 
-/* The joint value of a joint node, and its spin speed. */
+/* The joint value of a joint node, and its spin speed (m: its memo, or
+ * NULL). */
 static inline __attribute__((always_inline)) mot_q32
 joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_node *n,
-	    mot_q32 frame, mot_q32 *rpm)
+	    struct mot_node_memo *m, mot_q32 frame, mot_q32 *rpm)
 {
 	*rpm = 0;
 	if (n->curve >= 0)
-		return curve_at(&sc->curves[n->curve], &ev->cursors[n->curve], frame, &ev->sat);
+		return curve_at(&sc->curves[n->curve], &ev->cursors[n->curve], m, frame,
+				&ev->sat);
 	if (n->spin >= 0)
 		return spin_value(sc, ev, n, frame, rpm);
 	return n->rest;
@@ -762,7 +857,7 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 
 	switch (n->kind) {
 	case MOT_NODE_REVOLUTE:
-		v = joint_value(sc, ev, n, frame, &r);
+		v = joint_value(sc, ev, n, NULL, frame, &r);
 		mot_sincos(v, &s, &c);
 		if (n->axis_id == MOT_AXIS_VEC)
 			tilted_rot(out, n, s, c);
@@ -771,7 +866,7 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
-		v = joint_value(sc, ev, n, frame, &r);
+		v = joint_value(sc, ev, n, NULL, frame, &r);
 		joint_offset(t, v, n->axis, &ev->sat);
 		mot_mat_translate(out, t);
 		break;
@@ -815,7 +910,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		m->moved = 1;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
-			v = joint_value(sc, ev, n, frame, &r);
+			v = joint_value(sc, ev, n, m, frame, &r);
 			if (!warm || v != m->value) {
 				struct mot_sc p = mot_sincos_pair(v);
 
@@ -833,7 +928,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 				tilted_world(w, *pos, par, n, m->s, m->c, small, &ev->sat);
 			break;
 		case MOT_NODE_PRISMATIC:
-			v = joint_value(sc, ev, n, frame, &r);
+			v = joint_value(sc, ev, n, m, frame, &r);
 			if (still && v == m->value) {
 				m->moved = 0;
 				break;

@@ -109,6 +109,15 @@ struct mot_node_memo {
 	mot_q32 value;  /* the joint value of the node's matrix */
 	mot_q32 s, c;   /* revolute joints: its sine and cosine */
 	uint32_t moved; /* the matrix was made anew in the last evaluation */
+	/* A joint's curve between the frames lo (included) and hi (excluded):
+	 * the held value `held` (piece NULL) or the piece `piece` of an
+	 * interpolating curve without a strand-wide ease, evaluated as `op`
+	 * says (scene.c). What the curve is at a frame, whatever came before:
+	 * an empty span (lo > hi) until an evaluation finds it. */
+	uint32_t op;
+	mot_q32 lo, hi;
+	mot_q32 held;
+	const struct mot_curve_seg *piece;
 	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
 	uint32_t small; /* every sum of the node's matrix is known to fit */
 	uint32_t chain; /* 1 + depth under parents that only rotate, 0 else */

@@ -211,9 +211,12 @@ static void assert_same_pose(const struct mot_scene *sc, const struct mot_pose *
  * warm memo that keeps the matrices of nodes that did not move and the
  * sines of joints whose value did not, and the kernels without overflow
  * tests of the small case, against an evaluation reset before every tick
- * (cold) with the small case switched off. Two evaluations taking turns at
- * one pose must not trust each other's work. Every scene kind, every tick
- * of a third; the shortcuts must be taken, or this tests nothing.
+ * (cold) with the small case switched off, and a joint's curve from the
+ * memo's piece, learnt at another frame, against the cold evaluation's
+ * mot_curve_eval(). Two evaluations taking turns at one pose must not
+ * trust each other's work. Every scene kind, every tick of a third, then
+ * ticks in a scrambled order (random access); the shortcuts must be taken,
+ * or this tests nothing.
  */
 static void test_shortcuts(void **state)
 {
@@ -226,7 +229,7 @@ static void test_shortcuts(void **state)
 		struct mot_eval warm, cold, one, other;
 		struct mot_pose pw, pc, shared;
 		const struct mot_timing *t;
-		uint32_t i, kept = 0, small = 0, total = 0;
+		uint32_t i, kept = 0, small = 0, total = 0, pieces = 0;
 		int64_t k, n;
 
 		if (kind == 0)
@@ -251,8 +254,10 @@ static void test_shortcuts(void **state)
 			mot_q32 f = mot_timing_tick_frame(t, k);
 
 			mot_scene_eval(&b.sc, &warm, f, &pw);
-			for (i = 0; i < b.sc.nnodes; i++)
+			for (i = 0; i < b.sc.nnodes; i++) {
 				kept += !warm.memo[i].moved;
+				pieces += warm.memo[i].lo < warm.memo[i].hi;
+			}
 			total += b.sc.nnodes;
 			assert_int_equal(mot_eval_reset(&cold, &b.sc), MOT_OK);
 			for (i = 0; i < b.sc.nnodes; i++)
@@ -266,12 +271,22 @@ static void test_shortcuts(void **state)
 			mot_scene_eval(&b.sc, &one, f, &shared);
 			assert_same_pose(&b.sc, &pw, &shared);
 		}
+		for (k = 0; k < 300; k++) {
+			/* back and forth: every span the memo learnt is the curve's */
+			mot_q32 f = mot_timing_tick_frame(t, (k * 7919) % n - 5);
+
+			mot_scene_eval(&b.sc, &warm, f, &pw);
+			assert_int_equal(mot_eval_reset(&cold, &b.sc), MOT_OK);
+			mot_scene_eval(&b.sc, &cold, f, &pc);
+			assert_same_pose(&b.sc, &pw, &pc);
+		}
 		assert_int_equal(warm.sat, 0);
 		assert_int_equal(cold.sat, 0);
 		/* the small case covers most nodes; the memo keeps some */
 		assert_true(small > b.sc.nnodes / 2 || kind == 0);
 		assert_true(small > 0);
 		assert_true(kept > total / 50);
+		assert_true(pieces > total / 8);
 		scene_pose_free(&pw);
 		scene_pose_free(&pc);
 		scene_pose_free(&shared);
