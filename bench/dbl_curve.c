@@ -260,8 +260,7 @@ static inline __attribute__((always_inline)) double eval(const struct dbl_curve 
 	if (f >= c->span_f1)
 		return c->value[n - 1];
 	if (c->span_ease) {
-		u = dbl_ease_apply(&c->span, frac(f - c->span_f0, c->span_inv));
-		f = c->span_f0 + u * (c->span_f1 - c->span_f0);
+		f = dbl_span_warp(c, f);
 		if (f <= c->span_f0)
 			return c->value[0];
 		if (f >= c->span_f1)
@@ -313,27 +312,37 @@ void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_
 		     double f)
 {
 	const struct dbl_seg *s;
+	double *lo = &p->lo, *hi = &p->hi;
 
-	p->lo = 1;
-	p->hi = 0;
+	p->lo = p->glo = 1;
+	p->hi = p->ghi = 0;
 	p->seg = NULL;
-	if (c->kind > MOT_INTERP_HERMITE || c->nkeys < 2 || c->span_ease)
+	p->warp = NULL;
+	if (c->kind > MOT_INTERP_HERMITE || c->nkeys < 2)
 		return;
+	if (f > c->span_f0 && f < c->span_f1 && c->span_ease) {
+		p->warp = c;
+		p->lo = nextafter(c->span_f0, INFINITY);
+		p->hi = c->span_f1;
+		f = dbl_span_warp(c, f);
+		lo = &p->glo;
+		hi = &p->ghi;
+	}
 	if (f <= c->span_f0) {
-		p->lo = -INFINITY;
-		p->hi = nextafter(c->span_f0, INFINITY);
+		*lo = -INFINITY;
+		*hi = nextafter(c->span_f0, INFINITY);
 		p->held = c->value[0];
 		return;
 	}
 	if (f >= c->span_f1) {
-		p->lo = c->span_f1;
-		p->hi = INFINITY;
+		*lo = c->span_f1;
+		*hi = INFINITY;
 		p->held = c->value[c->nkeys - 1];
 		return;
 	}
 	s = &c->seg[locate_seg(c, cur, f)];
-	p->lo = s->f0 > c->span_f0 ? s->f0 : nextafter(c->span_f0, INFINITY);
-	p->hi = s->f1;
+	*lo = s->f0 > c->span_f0 ? s->f0 : nextafter(c->span_f0, INFINITY);
+	*hi = s->f1;
 	if (c->kind == MOT_INTERP_STEP) {
 		p->held = s->vref;
 		return;

@@ -106,26 +106,47 @@ struct dbl_piece {
 	double lo, hi, held;
 	const struct dbl_seg *seg; /* NULL: held */
 	bool linear, eased;
+	const struct dbl_curve *warp; /* a strand-wide ease: the piece between glo and ghi */
+	double glo, ghi;
 };
 
 void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_cursor *cur,
 		     double f);
 
-/* The piece at a frame of its span (curve.c's piece_value()) */
-static inline double dbl_piece_at(const struct dbl_piece *p, double f)
+/* curve.c's span_warp() */
+static inline double dbl_span_warp(const struct dbl_curve *c, double f)
+{
+	double u = (f - c->span_f0) * c->span_inv;
+
+	u = dbl_ease_apply(&c->span, u < 0 ? 0 : u > 1 ? 1 : u);
+	return c->span_f0 + u * (c->span_f1 - c->span_f0);
+}
+
+/* The piece at a frame of its span (curve.c's piece_value()); false where
+ * the warped frame leaves it */
+static inline bool dbl_piece_at(const struct dbl_piece *p, double f, double *out)
 {
 	const struct dbl_seg *s = p->seg;
 	double u;
 
-	if (!s)
-		return p->held;
+	if (p->warp) {
+		f = dbl_span_warp(p->warp, f);
+		if (f < p->glo || f >= p->ghi)
+			return false;
+	}
+	if (!s) {
+		*out = p->held;
+		return true;
+	}
 	u = (f - s->f0) * s->inv_w;
 	u = u < 0 ? 0 : u > 1 ? 1 : u;
 	if (p->eased)
 		u = dbl_ease_apply(&s->ease, u);
 	if (p->linear)
-		return s->vref + s->c[1] * u;
-	return s->vref + ((s->c[3] * u + s->c[2]) * u + s->c[1]) * u + s->c[0];
+		*out = s->vref + s->c[1] * u;
+	else
+		*out = s->vref + ((s->c[3] * u + s->c[2]) * u + s->c[1]) * u + s->c[0];
+	return true;
 }
 
 /* A double as scene_build() quantises it (Q32.32), false when out of range. */

@@ -382,8 +382,10 @@ static double joint_value(const struct dbl_scene *sc, struct dbl_eval *ev,
 	*rpm = 0;
 	if (n->curve >= 0) {
 		/* scene.c's piece memo */
-		if (f >= m->piece.lo && f < m->piece.hi)
-			return dbl_piece_at(&m->piece, f);
+		double v;
+
+		if (f >= m->piece.lo && f < m->piece.hi && dbl_piece_at(&m->piece, f, &v))
+			return v;
 		dbl_piece_learn(&m->piece, &sc->curves[n->curve], &ev->cursors[n->curve], f);
 		return dbl_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], f);
 	}

@@ -16,16 +16,6 @@
 
 /* ---- evaluation -------------------------------------------------------------- */
 
-/* The strand-wide time warp: a frame strictly inside the span to its eased
- * frame, in [span_f0, span_f1]. */
-static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
-{
-	int64_t s = frac62(f - c->span_f0, &c->span_inv);
-
-	s = mot_ease_apply62(&c->span, s);
-	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
-}
-
 /* The value of an interpolating curve's piece s at a frame inside it: one
  * copy, called from every path but mot_curve_eval()'s plainest. */
 static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,

@@ -210,6 +210,16 @@ static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 	return s > ONE62 ? ONE62 : s;
 }
 
+/* The strand-wide time warp: a frame strictly inside the span to its eased
+ * frame, in [span_f0, span_f1] (curve.c, and scene.c's piece memo). */
+static inline mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
+{
+	int64_t s = frac62(f - c->span_f0, &c->span_inv);
+
+	s = mot_ease_apply62_in(&c->span, s);
+	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
+}
+
 /* ---- segment lookup (curve_locate.c) ------------------------------------------ */
 
 /* The last index j in [0, n) whose start is at or before f: of the key

@@ -61,8 +61,21 @@ static inline bool mot_ease_is_identity(const struct mot_ease *e)
  * exact at 0 and 1. Real-time safe: at most three products, no division. */
 int64_t mot_ease_apply62(const struct mot_ease *e, int64_t s);
 
-/* The same, inline: for the curves' playback path (curve_priv.h). */
-static inline int64_t mot_ease_apply62_in(const struct mot_ease *e, int64_t s)
+/* round(x / 2^sh) for 1 <= sh <= 63 (every shift of a prepared profile)
+ * when the result fits int64: mot_acc_round()'s bits without its tests. */
+static inline int64_t mot_ease_round(mot_acc x, unsigned sh)
+{
+	uint64_t lo = mot_acc_lo(x), hi = mot_acc_hi(x), r = lo + ((uint64_t)1 << (sh - 1));
+
+	hi += r < lo;
+	return (int64_t)((r >> sh) | (hi << (64 - sh)));
+}
+
+/* The same, inline: for the curves' playback path (curve_priv.h, scene.c).
+ * Every rounding fits: s, r and 2s - a in [0, 1], v in [1, 2], t below
+ * v/2. */
+static inline __attribute__((always_inline)) int64_t mot_ease_apply62_in(const struct mot_ease *e,
+									 int64_t s)
 {
 	int64_t t, r;
 
@@ -71,20 +84,19 @@ static inline int64_t mot_ease_apply62_in(const struct mot_ease *e, int64_t s)
 	if (s >= MOT_Q62_ONE)
 		return MOT_Q62_ONE;
 	if (s < e->a) {
-		t = mot_acc_round(mot_acc_mul(s, e->ka), e->ka_shift, NULL);
-		return mot_acc_round(mot_acc_mul(t, s), 62, NULL);
+		t = mot_ease_round(mot_acc_mul(s, e->ka), e->ka_shift);
+		return mot_ease_round(mot_acc_mul(t, s), 62);
 	}
 	r = MOT_Q62_ONE - s;
 	if (r < e->b) {
-		t = mot_acc_round(mot_acc_mul(r, e->kb), e->kb_shift, NULL);
-		return MOT_Q62_ONE - mot_acc_round(mot_acc_mul(t, r), 62, NULL);
+		t = mot_ease_round(mot_acc_mul(r, e->kb), e->kb_shift);
+		return MOT_Q62_ONE - mot_ease_round(mot_acc_mul(t, r), 62);
 	}
 	{
 		/* v (2s - a) / 2 = (2 s V - a V) / 2^62 with V = v 2^61 */
 		mot_acc sv = mot_acc_mul(s, e->v);
 
-		t = mot_acc_round(mot_acc_sub(mot_acc_add(sv, sv), mot_acc_mul(e->a, e->v)), 62,
-				  NULL);
+		t = mot_ease_round(mot_acc_sub(mot_acc_add(sv, sv), mot_acc_mul(e->a, e->v)), 62);
 	}
 	return t < 0 ? 0 : t > MOT_Q62_ONE ? MOT_Q62_ONE : t;
 }

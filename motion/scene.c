@@ -223,39 +223,53 @@ static void piece_forget(struct mot_node_memo *m)
 	m->held = 0;
 	m->piece = NULL;
 	m->op = PIECE_SHIFTED;
+	m->warp = NULL;
+	m->glo = MOT_Q32_MAX;
+	m->ghi = MOT_Q32_MIN;
 }
 
 /*
  * What the memo knows of a curve at frame f, from mot_curve_eval()'s way
- * (curve.c's eval()): without a strand-wide ease, an interpolating curve
- * holds its first value up to its first key, its last from its last key,
- * and between them is the piece of the key interval of f, evaluated
- * without any choice left. The span of the first piece starts after the
- * first key, which the held value covers.
+ * (curve.c's eval()): an interpolating curve holds its first value up to
+ * its first key, its last from its last key, and between them, at the
+ * frame or, under a strand-wide ease, at the warped frame g (which holds
+ * the first or last value again at the span's ends), is the piece of the
+ * key interval there, evaluated without any choice left. The span of the
+ * first piece starts after the first key, which the held value covers.
  */
 static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 			struct mot_cursor *cur, mot_q32 f)
 {
 	const struct mot_curve_seg *s;
+	mot_q32 *lo = &m->lo, *hi = &m->hi;
 
 	piece_forget(m);
-	if (!c->plain || c->span_ease)
+	if (!c->plain)
 		return;
+	if (f > c->span_f0 && f < c->span_f1 && c->span_ease) {
+		/* the span's inside, raw; the rest at the warped frame */
+		m->warp = c;
+		m->lo = c->span_f0 + 1;
+		m->hi = c->span_f1;
+		f = span_warp(c, f);
+		lo = &m->glo;
+		hi = &m->ghi;
+	}
 	if (f <= c->span_f0) {
-		m->lo = MOT_Q32_MIN;
-		m->hi = c->span_f0 + 1; /* |span_f0| < 2^62 */
+		*lo = MOT_Q32_MIN;
+		*hi = c->span_f0 + 1; /* |span_f0| < 2^62 */
 		m->held = c->keys[0].value;
 		return;
 	}
 	if (f >= c->span_f1) {
-		m->lo = c->span_f1;
-		m->hi = MOT_Q32_MAX;
+		*lo = c->span_f1;
+		*hi = MOT_Q32_MAX;
 		m->held = c->keys[c->nkeys - 1].value;
 		return;
 	}
 	s = &c->seg[locate_seg(c, cur, f)];
-	m->lo = s->f0 > c->span_f0 ? s->f0 : c->span_f0 + 1;
-	m->hi = s->f1;
+	*lo = s->f0 > c->span_f0 ? s->f0 : c->span_f0 + 1;
+	*hi = s->f1;
 	if (c->kind == MOT_INTERP_STEP) {
 		m->held = s->vref;
 		return;
@@ -269,8 +283,22 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->op = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
-/* The memo's piece at a frame of its span: false where value_of() would
- * take its wide path (mot_curve_eval() then takes it). */
+/* The eased parameter and the warped frame, out of line: inline, the
+ * compiler keeps their clamped results as 128-bit values and multiplies
+ * them as such. */
+static __attribute__((noinline)) int64_t piece_ease(const struct mot_ease *e, int64_t u)
+{
+	return mot_ease_apply62_in(e, u);
+}
+
+static __attribute__((noinline)) mot_q32 piece_warp(const struct mot_curve *c, mot_q32 f)
+{
+	return span_warp(c, f);
+}
+
+/* The memo's piece at a frame of its span: false where the warped frame
+ * leaves the piece, or where value_of() would take its wide path
+ * (curve_learn() then learns again and goes the whole way). */
 static inline __attribute__((always_inline)) bool piece_at(const struct mot_node_memo *m,
 							   mot_q32 f, mot_q32 *out)
 {
@@ -278,6 +306,11 @@ static inline __attribute__((always_inline)) bool piece_at(const struct mot_node
 	int64_t p, q, u;
 	int sh;
 
+	if (m->warp) {
+		f = piece_warp(m->warp, f);
+		if (f < m->glo || f >= m->ghi)
+			return false;
+	}
 	if (!s) {
 		*out = m->held;
 		return true;
@@ -287,7 +320,7 @@ static inline __attribute__((always_inline)) bool piece_at(const struct mot_node
 	} else {
 		u = frac62(f - s->f0, &s->inv_w);
 		if (m->op >= PIECE_LINEAR_EASE)
-			u = mot_ease_apply62_in(&s->ease, u);
+			u = piece_ease(&s->ease, u);
 		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
 									  poly_eval(s->c, u);
 	}

@@ -111,13 +111,17 @@ struct mot_node_memo {
 	uint32_t moved; /* the matrix was made anew in the last evaluation */
 	/* A joint's curve between the frames lo (included) and hi (excluded):
 	 * the held value `held` (piece NULL) or the piece `piece` of an
-	 * interpolating curve without a strand-wide ease, evaluated as `op`
-	 * says (scene.c). What the curve is at a frame, whatever came before:
-	 * an empty span (lo > hi) until an evaluation finds it. */
+	 * interpolating curve, evaluated as `op` says (scene.c); under a
+	 * strand-wide ease (warp: the curve), at the warped frame, and only
+	 * where that is between glo and ghi. What the curve is at a frame,
+	 * whatever came before: an empty span (lo > hi) until an evaluation
+	 * finds it. */
 	uint32_t op;
 	mot_q32 lo, hi;
 	mot_q32 held;
 	const struct mot_curve_seg *piece;
+	const struct mot_curve *warp;
+	mot_q32 glo, ghi;
 	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
 	uint32_t small; /* every sum of the node's matrix is known to fit */
 	uint32_t chain; /* 1 + depth under parents that only rotate, 0 else */
