@@ -5,7 +5,8 @@
  * frame coordinate equals the frame (FORMULAS section 6), u found by a
  * safeguarded Newton iteration on a spline piece (curve_approx.c) or on the
  * one Bezier curve (curve_bezier.c). Real-time safe: a small stack frame
- * (bezier: 62 int64), at most NEWTON_MAX_IT iterations, no division.
+ * (bezier: 62 int64), at most NEWTON_MAX_IT iterations of one 64-bit
+ * division each.
  *
  * Every evaluator the iteration calls is in this file or inline in
  * curve_priv.h, as when the curves were one file: the loop's code, and so
@@ -13,52 +14,46 @@
  */
 #include "curve_priv.h"
 
-#include "trig_table.h" /* the seed of 1/x (mot_trig_recip_q14) */
-
 #define NEWTON_MAX_IT 64
 #define NEWTON_TOL ((int64_t)1 << 31) /* 2^-31: a Newton step this small is the last */
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
  * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-30, with |q| < 2^62;
- * false when it would not fit. The reciprocal of d comes from Newton-Raphson
- * on its top 31 bits: trig.c's table of 1/x (within 2^-8), then two steps,
- * 2^-16 and 2^-32 (Hacker's Delight / Goldschmidt), products only. A Newton
- * step of the curve solve needs only a good direction and size, the solve's
- * own convergence makes up the rest, and no target has to divide at run
- * time. Each step is a dependent product chain in a latency-bound loop:
- * the table saves the third step of a linear seed.
+ * false when it would not fit. One 64-bit division of |r| moved up to 62
+ * bits by d cut to its top 31: a quotient of 31 or 32 bits, exact, so the
+ * same on every target. A Newton step of the curve solve needs only a good
+ * direction and size, the solve's own convergence makes up the rest. The
+ * division is the hardware's where it has one for 64 bits (x86_64,
+ * aarch64: a dozen cycles, where a reciprocal by products took two dozen
+ * and four times the instructions) and libgcc's elsewhere.
  */
 static bool ratio62(int64_t r, int64_t d, int64_t *q)
 {
-	unsigned n = mot_clz64((uint64_t)d);
-	uint64_t y = ((uint64_t)d << n) >> 33; /* d = y 2^(33 - n), y in [2^30, 2^31) */
-	/* 2^62 / y in Q31: the Q14 seed of 1 / (y / 2^31) */
-	int64_t z = (int64_t)mot_trig_recip_q14[(y >> 22) & 255] << 17;
-	mot_acc p;
-	int it;
+	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, a, b, x;
+	unsigned lr, ld;
+	int e;
 
-	/* e = 2^62 (1 - y z), |e| <= 2^54: z e / 2^62 in two shifts (>> of a
-	 * negative int64 is arithmetic in gcc and clang, as fix.h relies on) */
-	for (it = 0; it < 2; it++) {
-		int64_t e = ((int64_t)1 << 62) - (int64_t)y * z;
-
-		z += (z * (e >> 31)) >> 31;
+	if (ar == 0) {
+		*q = 0;
+		return true;
 	}
-	/* r / d = r z 2^-62 2^(n - 33), so r / d in Q2.62 is r z 2^(n - 33) */
-	p = mot_acc_mul(r, z);
-	if (n < 33) {
-		uint32_t ovf = 0;
-
-		*q = mot_acc_round(p, 33 - n, &ovf);
-		if (ovf)
-			return false;
+	/* one count each: mot_clz64()'s two halves cost a branch each here */
+	lr = 64 - (unsigned)__builtin_clzll(ar);
+	ld = 64 - (unsigned)__builtin_clzll((uint64_t)d);
+	a = lr <= 62 ? ar << (62 - lr) : ar >> (lr - 62); /* [2^61, 2^62) */
+	b = ld >= 31 ? (uint64_t)d >> (ld - 31) : (uint64_t)d << (31 - ld); /* [2^30, 2^31) */
+	x = a / b; /* (2^30, 2^32): |r| / d = x 2^(lr - ld - 31) */
+	e = (int)lr - (int)ld + 31;
+	if (e >= 0) {
+		if (e > 31 || x >> (62 - e))
+			return false; /* |q| >= 2^62 */
+		x <<= e;
 	} else {
-		if (mot_cv_acc_bitlen(p) + (n - 33) > 62)
-			return false;
-		*q = (int64_t)mot_acc_lo(acc_shl(p, n - 33));
+		x = -e >= 64 ? 0 : x >> -e;
 	}
-	return *q > -ONE62 && *q < ONE62;
+	*q = r < 0 ? -(int64_t)x : (int64_t)x;
+	return true;
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 1%: the Newton start on a piece
