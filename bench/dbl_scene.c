@@ -533,7 +533,7 @@ static void revolute_world(struct dbl_mat *w, double pos[3], const struct dbl_ma
 	}
 }
 
-/* scene.c's mot_scene_eval(), memo and all */
+/* scene.c's mot_scene_eval(), memo, two passes and all */
 void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double frame,
 		    struct dbl_pose *out)
 {
@@ -543,25 +543,37 @@ void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double fram
 	uint32_t i, k;
 
 	for (i = 0; i < sc->nnodes; i++) {
+		/* scene.c's first pass: joint values, sines and cosines */
+		const struct dbl_node *n = &sc->nodes[i];
+		struct dbl_memo *m = &ev->memo[i];
+		double v = 0, r = 0;
+
+		if (n->kind != MOT_NODE_FREE) {
+			v = joint_value(sc, ev, n, m, frame, &r);
+			m->fresh = !warm || v != m->value;
+			if (m->fresh) {
+				m->value = v;
+				if (n->kind == MOT_NODE_REVOLUTE)
+					sincos(2 * M_PI * v, &m->s, &m->c);
+			}
+		}
+		out->value[i] = v;
+		out->rpm[i] = r;
+	}
+	for (i = 0; i < sc->nnodes; i++) {
 		const struct dbl_node *n = &sc->nodes[i];
 		const struct dbl_mat *par = n->parent >= 0 ? &out->world[n->parent] : &id;
 		const bool still = warm && (n->parent < 0 || !ev->memo[n->parent].moved);
 		struct dbl_memo *m = &ev->memo[i];
 		struct dbl_mat *w = &out->world[i], local;
-		double *pos = out->pos[i], v = 0, r = 0, t[3];
+		double *pos = out->pos[i], t[3];
 
 		m->moved = true;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
-			v = joint_value(sc, ev, n, m, frame, &r);
-			if (!warm || v != m->value) {
-				m->value = v;
-				sincos(2 * M_PI * v, &m->s, &m->c);
-			} else if (still) {
+			if (still && !m->fresh) {
 				m->moved = false;
-				break;
-			}
-			if (n->axis_id != MOT_AXIS_VEC) {
+			} else if (n->axis_id != MOT_AXIS_VEC) {
 				revolute_world(w, pos, par, n->axis_id, n->pivot, m->s, m->c);
 			} else {
 				tilted_rot(&local, n, m->s, m->c);
@@ -569,14 +581,12 @@ void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double fram
 			}
 			break;
 		case MOT_NODE_PRISMATIC:
-			v = joint_value(sc, ev, n, m, frame, &r);
-			if (still && v == m->value) {
+			if (still && !m->fresh) {
 				m->moved = false;
 				break;
 			}
-			m->value = v;
 			for (k = 0; k < 3; k++)
-				t[k] = v * n->axis[k];
+				t[k] = m->value * n->axis[k];
 			translate_world(w, pos, par, n->pivot, t);
 			break;
 		default:
@@ -592,8 +602,6 @@ void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double fram
 			}
 			break;
 		}
-		out->value[i] = v;
-		out->rpm[i] = r;
 	}
 	ev->memo_world = out->world;
 }

@@ -81,7 +81,7 @@ struct dbl_scene {
 
 struct dbl_memo {
 	double value, s, c;
-	bool moved;
+	bool moved, fresh;
 	struct dbl_piece piece; /* the joint's curve (scene.c's piece memo) */
 };
 

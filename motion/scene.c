@@ -355,7 +355,7 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 		struct mot_node_memo *m = &ev->memo[i];
 
 		m->value = m->s = m->c = 0;
-		m->moved = 1;
+		m->moved = m->fresh = 1;
 		piece_forget(m);
 		memo_prepare(m, sc, nd, nd->parent >= 0 ? &ev->memo[nd->parent] : NULL);
 	}
@@ -914,13 +914,17 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 }
 
 /*
- * Every node in index order, parents first. With a warm memo (scene.h) a
- * joint first compares its value with the one its matrix was made with:
- * equal, it keeps its sine and cosine, and, if its parent did not move
- * either, its matrix and position in the pose. A free node without a strand
- * follows its parent alone; one with a strand is made anew. A node of the
- * small case (above) whose parent's translation and own offset are small
- * takes the kernels without overflow tests.
+ * Every node in index order, parents first, in two passes. The first takes
+ * every joint's value and, for a revolute joint whose value changed, its
+ * sine and cosine: work with no order between nodes, which the processor
+ * overlaps from one joint to the next. The second makes the matrices,
+ * each from its parent's. With a warm memo (scene.h) a joint whose value
+ * is the one its matrix was made with keeps its sine and cosine, and, if
+ * its parent did not move either, its matrix and position in the pose. A
+ * free node without a strand follows its parent alone; one with a strand
+ * is made anew. A node of the small case (above) whose parent's
+ * translation and own offset are small takes the kernels without overflow
+ * tests.
  */
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out)
@@ -933,44 +937,51 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 	mot_q32(*pos)[3] = out->pos, *val = out->value, *rpm = out->rpm;
 	uint32_t i;
 
-	for (; n < end; n++, m++, w++, pos++, val++, rpm++) {
+	for (; n < end; n++, m++, val++, rpm++) {
+		mot_q32 v = 0, r = 0;
+
+		if (n->kind != MOT_NODE_FREE) {
+			v = joint_value(sc, ev, n, m, frame, &r);
+			m->fresh = !warm || v != m->value;
+			if (m->fresh) {
+				m->value = v;
+				if (n->kind == MOT_NODE_REVOLUTE) {
+					struct mot_sc p = mot_sincos_pair(v);
+
+					m->s = p.s;
+					m->c = p.c;
+				}
+			}
+		}
+		*val = v;
+		*rpm = r;
+	}
+	for (n = sc->nodes, m = memo; n < end; n++, m++, w++, pos++) {
 		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
 		const bool still = warm && (n->parent < 0 || !memo[n->parent].moved);
 		struct mot_mat local;
-		mot_q32 v = 0, r = 0, t[3];
+		mot_q32 t[3];
 		const bool small = m->small;
 
 		m->moved = 1;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
-			v = joint_value(sc, ev, n, m, frame, &r);
-			if (!warm || v != m->value) {
-				struct mot_sc p = mot_sincos_pair(v);
-
-				m->value = v;
-				m->s = p.s;
-				m->c = p.c;
-			} else if (still) {
+			if (still && !m->fresh)
 				m->moved = 0;
-				break;
-			}
-			if (n->axis_id != MOT_AXIS_VEC)
+			else if (n->axis_id != MOT_AXIS_VEC)
 				revolute_world(w, *pos, par, n->axis_id, n->pivot, m->s, m->c, small,
 					       &ev->sat);
 			else
 				tilted_world(w, *pos, par, n, m->s, m->c, small, &ev->sat);
 			break;
 		case MOT_NODE_PRISMATIC:
-			v = joint_value(sc, ev, n, m, frame, &r);
-			if (still && v == m->value) {
+			if (still && !m->fresh) {
 				m->moved = 0;
-				break;
-			}
-			m->value = v;
-			if (n->axis_id != MOT_AXIS_VEC) {
-				prismatic_world(w, *pos, par, n->axis_id, n->pivot, v, small, &ev->sat);
+			} else if (n->axis_id != MOT_AXIS_VEC) {
+				prismatic_world(w, *pos, par, n->axis_id, n->pivot, m->value, small,
+						&ev->sat);
 			} else {
-				joint_offset(t, v, n->axis, &ev->sat);
+				joint_offset(t, m->value, n->axis, &ev->sat);
 				translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
 			}
 			break;
@@ -988,8 +999,6 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			}
 			break;
 		}
-		*val = v;
-		*rpm = r;
 	}
 	ev->memo_world = out->world;
 	out->by = ev;

@@ -108,7 +108,8 @@ enum mot_aim_src {
 struct mot_node_memo {
 	mot_q32 value;  /* the joint value of the node's matrix */
 	mot_q32 s, c;   /* revolute joints: its sine and cosine */
-	uint32_t moved; /* the matrix was made anew in the last evaluation */
+	uint16_t moved; /* the matrix was made anew in the last evaluation */
+	uint16_t fresh; /* this evaluation's joint value is not `value`'s (scene.c) */
 	/* A joint's curve between the frames lo (included) and hi (excluded):
 	 * the held value `held` (piece NULL) or the piece `piece` of an
 	 * interpolating curve, evaluated as `op` says (scene.c); under a
