@@ -75,6 +75,14 @@ def main():
     sin_q62 = [rnd(sin(PI / 2 * i / n_sin) * 2 ** 62) for i in range(n_sin + 1)]
     sin_q62[n_sin] = 1 << 62  # sin(pi/2) is exactly 1; the series gives it to 60 digits
 
+    # the whole turn and a quarter more, from the quarter wave by symmetry
+    # (the same values, for trig.c's sincos without folding)
+    sin_turn_q62 = []
+    for j in range(5 * n_sin):
+        q, i = divmod(j % (4 * n_sin), n_sin)
+        v = sin_q62[i] if q % 2 == 0 else sin_q62[n_sin - i]
+        sin_turn_q62.append(-v if q >= 2 else v)
+
     n_atan = 1 << ATAN_BITS
     atan_q58 = [rnd(atan(D(i) / n_atan) / (2 * PI) * 2 ** 58) for i in range(n_atan + 1)]
     assert atan_q58[0] == 0 and atan_q58[n_atan] == 1 << 55  # 0 and exactly 1/8 turn
@@ -112,6 +120,8 @@ def main():
 #define MOT_TRIG_TABLE_H
 
 #include <stdint.h>
+
+#include "fix.h" /* MOT_HAVE_INT128 */
 """)
     for name, value, what in consts:
         print(f"/* {what} */\n#define {name} ((int64_t){value}LL)")
@@ -120,6 +130,15 @@ def main():
 static const int64_t mot_trig_sin_q62[{n_sin + 1}] = {{
 {rows(sin_q62, 3, lambda v: f"{v}LL")}
 }};
+
+#if MOT_HAVE_INT128
+/* sin(j/{4 * n_sin} turn), j = 0..{5 * n_sin - 1}, Q62: the table above unfolded over a turn
+ * and a quarter, so that cos is entry j + {n_sin}. For 64-bit targets, where
+ * trig.c's sincos reads it instead of folding the quadrants. */
+static const int64_t mot_trig_sin_turn_q62[{5 * n_sin}] = {{
+{rows(sin_turn_q62, 3, lambda v: f"{v}LL")}
+}};
+#endif
 
 /* atan(i/{n_atan}) in turns, i = 0..{n_atan}, Q58. */
 static const int64_t mot_trig_atan_q58[{n_atan + 1}] = {{
