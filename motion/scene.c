@@ -207,13 +207,16 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 /* ---- a joint's curve: the piece memo ----------------------------------------- */
 
 /* How the memo evaluates its piece (struct mot_node_memo): curve.c's
- * piece_value() with what it decides per evaluation decided once. */
+ * piece_value() with what it decides per evaluation decided once (how),
+ * and which of them the first pass takes inline (op). */
 enum {
+	PIECE_HELD,        /* no piece: the value `held` */
 	PIECE_SHIFTED,     /* a hermite piece in s' (curve.h) */
 	PIECE_LINEAR,      /* u = (f - f0) / (f1 - f0), linear */
 	PIECE_CUBIC,       /* the same, hermite */
 	PIECE_LINEAR_EASE, /* u eased, linear */
 	PIECE_CUBIC_EASE,  /* u eased, hermite */
+	PIECE_SLOW,        /* op only: the rest, out of line (joint_slow()) */
 };
 
 static void piece_forget(struct mot_node_memo *m)
@@ -222,10 +225,22 @@ static void piece_forget(struct mot_node_memo *m)
 	m->hi = MOT_Q32_MIN;
 	m->held = 0;
 	m->piece = NULL;
-	m->op = PIECE_SHIFTED;
+	m->op = m->how = PIECE_HELD;
 	m->warp = NULL;
 	m->glo = MOT_Q32_MAX;
 	m->ghi = MOT_Q32_MIN;
+}
+
+/* The memo of a joint without a curve: its rest value, or a spin, always. */
+static void piece_fixed(struct mot_node_memo *m, const struct mot_node *n)
+{
+	piece_forget(m);
+	if (n->kind == MOT_NODE_FREE || n->curve >= 0)
+		return;
+	m->lo = MOT_Q32_MIN;
+	m->hi = MOT_Q32_MAX;
+	m->held = n->rest;
+	m->op = m->how = n->spin >= 0 ? PIECE_SLOW : PIECE_HELD;
 }
 
 /*
@@ -276,11 +291,11 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 	}
 	m->piece = s;
 	if (s->ush >= 0)
-		m->op = PIECE_SHIFTED;
+		m->how = PIECE_SHIFTED;
 	else if (c->seg_ease && !mot_ease_is_identity(&s->ease))
-		m->op = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR_EASE : PIECE_CUBIC_EASE;
+		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR_EASE : PIECE_CUBIC_EASE;
 	else
-		m->op = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
+		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
 /* The eased parameter and the warped frame, out of line: inline, the
@@ -315,15 +330,38 @@ static inline __attribute__((always_inline)) bool piece_at(const struct mot_node
 		*out = m->held;
 		return true;
 	}
-	if (m->op == PIECE_SHIFTED) {
+	if (m->how == PIECE_SHIFTED) {
 		p = poly_eval(s->c, (f - s->f0) << s->ush);
 	} else {
 		u = frac62(f - s->f0, &s->inv_w);
-		if (m->op >= PIECE_LINEAR_EASE)
+		if (m->how == PIECE_LINEAR_EASE || m->how == PIECE_CUBIC_EASE)
 			u = piece_ease(&s->ease, u);
-		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
-									  poly_eval(s->c, u);
+		p = m->how == PIECE_LINEAR || m->how == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
+									    poly_eval(s->c, u);
 	}
+	sh = s->vsh;
+	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
+	       !__builtin_add_overflow(s->vref, q >> sh, out);
+}
+
+/* The first pass's own case (op): a held value, or a piece in s' or linear
+ * without any ease, at a frame of its span; false where value_of() would
+ * take its wide path. */
+static inline __attribute__((always_inline)) bool piece_fast(const struct mot_node_memo *m,
+							     mot_q32 f, mot_q32 *out)
+{
+	const struct mot_curve_seg *s = m->piece;
+	int64_t p, q;
+	int sh;
+
+	if (m->op == PIECE_HELD) {
+		*out = m->held;
+		return true;
+	}
+	if (m->op == PIECE_SHIFTED)
+		p = poly_eval(s->c, (f - s->f0) << s->ush);
+	else
+		p = mul62(s->c[1], frac62(f - s->f0, &s->inv_w));
 	sh = s->vsh;
 	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
 	       !__builtin_add_overflow(s->vref, q >> sh, out);
@@ -331,12 +369,11 @@ static inline __attribute__((always_inline)) bool piece_at(const struct mot_node
 
 /* A frame outside the memo's span: learn the piece there, and the value
  * the whole way. */
-static __attribute__((noinline)) mot_q32 curve_learn(const struct mot_curve *c,
-						     struct mot_cursor *cur,
-						     struct mot_node_memo *m, mot_q32 f,
-						     uint32_t *sat)
+static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
+			   struct mot_node_memo *m, mot_q32 f, uint32_t *sat)
 {
 	piece_learn(m, c, cur, f);
+	m->op = !m->warp && m->how <= PIECE_LINEAR ? m->how : PIECE_SLOW;
 	return mot_curve_eval(c, cur, f, sat);
 }
 
@@ -356,7 +393,7 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 
 		m->value = m->s = m->c = 0;
 		m->moved = m->fresh = 1;
-		piece_forget(m);
+		piece_fixed(m, nd);
 		memo_prepare(m, sc, nd, nd->parent >= 0 ? &ev->memo[nd->parent] : NULL);
 	}
 	for (i = 0; i < sc->nsys; i++)
@@ -380,40 +417,48 @@ static __attribute__((noinline)) mot_q32 spin_value(const struct mot_scene *sc,
 			   &ev->sat);
 }
 
-/*
- * A joint's curve at a frame: the memo's piece when the frame is in its
- * span, else mot_curve_eval(), learning the piece there. Where 128-bit
- * integers are not the compiler's, mot_curve_eval() alone: the memo's
- * copies of the arithmetic would cost more code than they save time (a
- * Cortex-M4), and it is the path the other builds check them against
- * (make check-cross). The same bits every way.
- */
-static inline __attribute__((always_inline)) mot_q32
-curve_at(const struct mot_curve *c, struct mot_cursor *cur, struct mot_node_memo *m, mot_q32 f,
-	 uint32_t *sat)
-{
-	mot_q32 r;
-
-	if (!small_kernels || !m)
-		return mot_curve_eval(c, cur, f, sat);
-	if (f >= m->lo && f < m->hi && piece_at(m, f, &r))
-		return r;
-	return curve_learn(c, cur, m, f, sat);
-}
-
-/* The joint value of a joint node, and its spin speed (m: its memo, or
- * NULL). */
+/* The joint value of a joint node, and its spin speed (mot_node_local(),
+ * and the first pass where 128-bit integers are not the compiler's). */
 static inline __attribute__((always_inline)) mot_q32
 joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_node *n,
-	    struct mot_node_memo *m, mot_q32 frame, mot_q32 *rpm)
+	    mot_q32 frame, mot_q32 *rpm)
 {
 	*rpm = 0;
 	if (n->curve >= 0)
-		return curve_at(&sc->curves[n->curve], &ev->cursors[n->curve], m, frame,
-				&ev->sat);
+		return mot_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], frame,
+				      &ev->sat);
 	if (n->spin >= 0)
 		return spin_value(sc, ev, n, frame, rpm);
 	return n->rest;
+}
+
+/*
+ * A joint's value, and its spin speed, where the first pass does not take
+ * the memo's value inline (mot_scene_eval()): the memo's piece of any kind
+ * when the frame is in its span, else mot_curve_eval(), learning the piece
+ * there. Where 128-bit integers are not the compiler's, joint_value()
+ * alone: the memo's copies of the arithmetic would cost more code than
+ * they save time (a Cortex-M4), and it is the path the other builds check
+ * them against (make check-cross). The same bits every way.
+ */
+static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
+						    struct mot_eval *ev,
+						    const struct mot_node *n,
+						    struct mot_node_memo *m, mot_q32 frame,
+						    mot_q32 *rpm)
+{
+	const struct mot_curve *c;
+	struct mot_cursor *cur;
+	mot_q32 r;
+
+	if (!small_kernels || n->curve < 0)
+		return joint_value(sc, ev, n, frame, rpm);
+	*rpm = 0;
+	c = &sc->curves[n->curve];
+	cur = &ev->cursors[n->curve];
+	if (frame >= m->lo && frame < m->hi && piece_at(m, frame, &r))
+		return r;
+	return curve_learn(c, cur, m, frame, &ev->sat);
 }
 
 /* A rotation kept as four component curves: their value normalised. */
@@ -890,7 +935,7 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 
 	switch (n->kind) {
 	case MOT_NODE_REVOLUTE:
-		v = joint_value(sc, ev, n, NULL, frame, &r);
+		v = joint_value(sc, ev, n, frame, &r);
 		mot_sincos(v, &s, &c);
 		if (n->axis_id == MOT_AXIS_VEC)
 			tilted_rot(out, n, s, c);
@@ -899,7 +944,7 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
-		v = joint_value(sc, ev, n, NULL, frame, &r);
+		v = joint_value(sc, ev, n, frame, &r);
 		joint_offset(t, v, n->axis, &ev->sat);
 		mot_mat_translate(out, t);
 		break;
@@ -941,7 +986,9 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		mot_q32 v = 0, r = 0;
 
 		if (n->kind != MOT_NODE_FREE) {
-			v = joint_value(sc, ev, n, m, frame, &r);
+			if (!small_kernels || frame < m->lo || frame >= m->hi || m->op == PIECE_SLOW ||
+			    !piece_fast(m, frame, &v))
+				v = joint_slow(sc, ev, n, m, frame, &r);
 			m->fresh = !warm || v != m->value;
 			if (m->fresh) {
 				m->value = v;

@@ -112,12 +112,13 @@ struct mot_node_memo {
 	uint16_t fresh; /* this evaluation's joint value is not `value`'s (scene.c) */
 	/* A joint's curve between the frames lo (included) and hi (excluded):
 	 * the held value `held` (piece NULL) or the piece `piece` of an
-	 * interpolating curve, evaluated as `op` says (scene.c); under a
+	 * interpolating curve, evaluated as `how` says, inline where `op`
+	 * says so (scene.c); under a
 	 * strand-wide ease (warp: the curve), at the warped frame, and only
 	 * where that is between glo and ghi. What the curve is at a frame,
 	 * whatever came before: an empty span (lo > hi) until an evaluation
 	 * finds it. */
-	uint32_t op;
+	uint16_t op, how;
 	mot_q32 lo, hi;
 	mot_q32 held;
 	const struct mot_curve_seg *piece;
