@@ -344,8 +344,8 @@ static inline __attribute__((always_inline)) bool piece_at(const struct mot_node
 	       !__builtin_add_overflow(s->vref, q >> sh, out);
 }
 
-/* The first pass's own case (op): a held value, or a piece in s' or linear
- * without any ease, at a frame of its span; false where value_of() would
+/* The first pass's own case (op): a held value or a piece without a
+ * strand-wide ease, at a frame of its span; false where value_of() would
  * take its wide path. */
 static inline __attribute__((always_inline)) bool piece_fast(const struct mot_node_memo *m,
 							     mot_q32 f, mot_q32 *out)
@@ -358,10 +358,16 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 		*out = m->held;
 		return true;
 	}
-	if (m->op == PIECE_SHIFTED)
+	if (m->op == PIECE_SHIFTED) {
 		p = poly_eval(s->c, (f - s->f0) << s->ush);
-	else
-		p = mul62(s->c[1], frac62(f - s->f0, &s->inv_w));
+	} else {
+		int64_t u = frac62(f - s->f0, &s->inv_w);
+
+		if (m->op >= PIECE_LINEAR_EASE)
+			u = piece_ease(&s->ease, u);
+		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
+									  poly_eval(s->c, u);
+	}
 	sh = s->vsh;
 	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
 	       !__builtin_add_overflow(s->vref, q >> sh, out);
@@ -373,7 +379,7 @@ static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
 			   struct mot_node_memo *m, mot_q32 f, uint32_t *sat)
 {
 	piece_learn(m, c, cur, f);
-	m->op = !m->warp && m->how <= PIECE_LINEAR ? m->how : PIECE_SLOW;
+	m->op = !m->warp ? m->how : PIECE_SLOW;
 	return mot_curve_eval(c, cur, f, sat);
 }
 
