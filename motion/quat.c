@@ -156,19 +156,58 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 	*out = r;
 }
 
-int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
+/* mot_quat_to_rot_q62() where an entry does not fit: saturating. */
+static __attribute__((noinline)) void rot_q62_sat(int64_t r[3][3], const struct mot_quat *q,
+						  uint32_t *sat)
 {
 	mot_acc e[3][3];
-	uint64_t ov = 0;
-	int i, j;
+	int i;
 
-	if (!rot_exact(e, q))
+	if (rot_exact(e, q)) /* it is: the caller checked */
+		for (i = 0; i < 9; i++)
+			r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
+}
+
+/* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62 */
+static inline __attribute__((always_inline)) void rot_pair(int64_t *plus, int64_t *minus,
+							   mot_q32 a, mot_q32 b, mot_q32 c,
+							   mot_q32 d, uint64_t *ov)
+{
+	mot_acc p = mot_acc_mul(a, b), q = mot_acc_mul(c, d);
+
+	*plus = mot_acc_round_ov(mot_acc_add(p, q), 1, ov);
+	*minus = mot_acc_round_ov(mot_acc_sub(p, q), 1, ov);
+}
+
+/*
+ * Each entry from its two products as soon as they are made, so that few
+ * 128-bit values live at once: e = 2 (p + q) rounded from Q64.64 to Q2.62
+ * is round((p + q) / 2), and 1 - 2 (p + q) is round((2^63 - p - q) / 2),
+ * the same bits as rot_exact()'s sums rounded by 4.
+ */
+int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
+{
+	const mot_q32 lim = (mot_q32)1 << 62;
+	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
+	const mot_acc h = mot_acc_from(1, 63);
+	mot_acc a, b;
+	uint64_t ov = 0;
+
+	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
+	    z >= lim || z <= -lim)
 		return MOT_E_RANGE;
-	for (i = 0; i < 3; i++)
-		for (j = 0; j < 3; j++)
-			r[i][j] = mot_acc_round_ov(e[i][j], 2, &ov);
-	for (i = 0; ov && i < 9; i++)
-		r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
+	rot_pair(&r[0][1], &r[1][0], x, y, w, z, &ov);
+	rot_pair(&r[2][0], &r[0][2], x, z, w, y, &ov);
+	rot_pair(&r[1][2], &r[2][1], y, z, w, x, &ov);
+	a = mot_acc_mul(x, x);
+	b = mot_acc_mul(y, y);
+	r[2][2] = mot_acc_round_ov(mot_acc_sub(mot_acc_sub(h, a), b), 1, &ov);
+	b = mot_acc_sub(h, mot_acc_mul(z, z));
+	r[1][1] = mot_acc_round_ov(mot_acc_sub(b, a), 1, &ov);
+	a = mot_acc_mul(y, y);
+	r[0][0] = mot_acc_round_ov(mot_acc_sub(b, a), 1, &ov);
+	if (ov)
+		rot_q62_sat(r, q, sat);
 	return MOT_OK;
 }
 
