@@ -318,8 +318,13 @@ void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_
 	p->hi = p->ghi = 0;
 	p->seg = NULL;
 	p->warp = NULL;
-	if (c->kind > MOT_INTERP_HERMITE || c->nkeys < 2)
+	p->whole = false;
+	if (c->kind > MOT_INTERP_HERMITE || c->nkeys < 2) {
+		p->lo = -INFINITY;
+		p->hi = INFINITY;
+		p->whole = true;
 		return;
+	}
 	if (f > c->span_f0 && f < c->span_f1 && c->span_ease) {
 		p->warp = c;
 		p->lo = nextafter(c->span_f0, INFINITY);

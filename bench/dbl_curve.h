@@ -108,6 +108,7 @@ struct dbl_piece {
 	bool linear, eased;
 	const struct dbl_curve *warp; /* a strand-wide ease: the piece between glo and ghi */
 	double glo, ghi;
+	bool whole; /* no piece: dbl_curve_eval() every time */
 };
 
 void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_cursor *cur,
@@ -136,7 +137,7 @@ static inline bool dbl_piece_at(const struct dbl_piece *p, double f, double *out
 	}
 	if (!s) {
 		*out = p->held;
-		return true;
+		return !p->whole;
 	}
 	u = (f - s->f0) * s->inv_w;
 	u = u < 0 ? 0 : u > 1 ? 1 : u;

@@ -384,8 +384,13 @@ static double joint_value(const struct dbl_scene *sc, struct dbl_eval *ev,
 		/* scene.c's piece memo */
 		double v;
 
-		if (f >= m->piece.lo && f < m->piece.hi && dbl_piece_at(&m->piece, f, &v))
-			return v;
+		if (f >= m->piece.lo && f < m->piece.hi) {
+			if (dbl_piece_at(&m->piece, f, &v))
+				return v;
+			if (m->piece.whole)
+				return dbl_curve_eval(&sc->curves[n->curve],
+						      &ev->cursors[n->curve], f);
+		}
 		dbl_piece_learn(&m->piece, &sc->curves[n->curve], &ev->cursors[n->curve], f);
 		return dbl_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], f);
 	}

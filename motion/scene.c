@@ -217,6 +217,7 @@ enum {
 	PIECE_LINEAR_EASE, /* u eased, linear */
 	PIECE_CUBIC_EASE,  /* u eased, hermite */
 	PIECE_SLOW,        /* op only: the rest, out of line (joint_slow()) */
+	PIECE_WHOLE,       /* how only: no piece, mot_curve_eval() every time */
 };
 
 static void piece_forget(struct mot_node_memo *m)
@@ -259,8 +260,13 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 	mot_q32 *lo = &m->lo, *hi = &m->hi;
 
 	piece_forget(m);
-	if (!c->plain)
+	if (!c->plain) {
+		/* an approximating kind, a compact curve, one key: always */
+		m->lo = MOT_Q32_MIN;
+		m->hi = MOT_Q32_MAX;
+		m->how = PIECE_WHOLE;
 		return;
+	}
 	if (f > c->span_f0 && f < c->span_f1 && c->span_ease) {
 		/* the span's inside, raw; the rest at the warped frame */
 		m->warp = c;
@@ -379,7 +385,7 @@ static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
 			   struct mot_node_memo *m, mot_q32 f, uint32_t *sat)
 {
 	piece_learn(m, c, cur, f);
-	m->op = !m->warp ? m->how : PIECE_SLOW;
+	m->op = !m->warp && m->how != PIECE_WHOLE ? m->how : PIECE_SLOW;
 	return mot_curve_eval(c, cur, f, sat);
 }
 
@@ -462,6 +468,8 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 	*rpm = 0;
 	c = &sc->curves[n->curve];
 	cur = &ev->cursors[n->curve];
+	if (m->how == PIECE_WHOLE)
+		return mot_curve_eval(c, cur, frame, &ev->sat);
 	if (frame >= m->lo && frame < m->hi && piece_at(m, frame, &r))
 		return r;
 	return curve_learn(c, cur, m, frame, &ev->sat);
