@@ -1024,21 +1024,23 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		mot_q32 t[3];
 		const bool small = m->small;
 
+		/* nothing moved: a joint with its value, a free node without a
+		 * strand (one with a strand is made anew) */
+		if (still && (n->kind != MOT_NODE_FREE ? !m->fresh : n->strand < 0)) {
+			m->moved = 0;
+			continue;
+		}
 		m->moved = 1;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
-			if (still && !m->fresh)
-				m->moved = 0;
-			else if (n->axis_id != MOT_AXIS_VEC)
+			if (n->axis_id != MOT_AXIS_VEC)
 				revolute_world(w, *pos, par, n->axis_id, n->pivot, m->s, m->c, small,
 					       &ev->sat);
 			else
 				tilted_world(w, *pos, par, n, m->s, m->c, small, &ev->sat);
 			break;
 		case MOT_NODE_PRISMATIC:
-			if (still && !m->fresh) {
-				m->moved = 0;
-			} else if (n->axis_id != MOT_AXIS_VEC) {
+			if (n->axis_id != MOT_AXIS_VEC) {
 				prismatic_world(w, *pos, par, n->axis_id, n->pivot, m->value, small,
 						&ev->sat);
 			} else {
@@ -1047,17 +1049,12 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			}
 			break;
 		default:
-			if (n->strand < 0) {
-				if (still)
-					m->moved = 0;
-				else
-					translate_world(w, *pos, par, n->pivot, zero, small, &ev->sat);
-			} else {
-				if (free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
-					node_world(w, *pos, par, &local, n->pivot, t, small, &ev->sat);
-				else
-					translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
-			}
+			if (n->strand < 0)
+				translate_world(w, *pos, par, n->pivot, zero, small, &ev->sat);
+			else if (free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
+				node_world(w, *pos, par, &local, n->pivot, t, small, &ev->sat);
+			else
+				translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
 			break;
 		}
 	}
