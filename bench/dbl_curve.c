@@ -212,7 +212,7 @@ static double solve_u(const struct dbl_curve *c, const struct dbl_seg *s, double
 		dxold = dx;
 		if (newton) {
 			dx = fabs(u - un);
-			tol = NEWTON_TOL;
+			tol = s->tol;
 		} else {
 			dx = (hi - lo) / 2;
 			un = lo + dx;
@@ -449,6 +449,27 @@ static void basis(const struct dbl_curve *c, double b1, double b2, double nb[4][
 	}
 }
 
+/* curve_approx.c's newton_bits(), in frames: the last step leaves u within
+ * (max |F''| / (2 min F')) (2 du)^2 of the root, the frame needs it within
+ * 2^-36 frames over max F' (a 16th of the core's LSB), and the core's step
+ * its own error, 2^-29 of it, no more; 2^-16 at most, 2^-31 where F' may
+ * reach 0 */
+static double newton_tol(const double fc[4])
+{
+	double d0 = fc[1], d1 = fc[1] + 2 * fc[2] + 3 * fc[3], m = d0 < d1 ? d0 : d1;
+	double dmax = fabs(fc[1]) + 2 * fabs(fc[2]) + 3 * fabs(fc[3]);
+	double m2 = fmax(fabs(2 * fc[2]), fabs(2 * fc[2] + 6 * fc[3])), k, kr;
+
+	if (fc[3] > 0 && fc[2] < 0 && -fc[2] < 3 * fc[3])
+		m = fc[1] - fc[2] * fc[2] / (3 * fc[3]);
+	if (!(m > 0))
+		return NEWTON_TOL;
+	k = ceil((log2(m2 > 0 ? m2 : 1) - log2(m) + 1 + 36 + log2(dmax)) / 2);
+	kr = ceil(log2(dmax) + 8);
+	k = fmin(fmax(fmax(k, kr), 16), 31);
+	return ldexp(1, -(int)k);
+}
+
 static void prep_spline(struct dbl_curve *c, uint32_t j, double nb[4][4], double den)
 {
 	struct dbl_seg *s = &c->seg[j];
@@ -491,6 +512,7 @@ static void prep_spline(struct dbl_curve *c, uint32_t j, double nb[4][4], double
 		s->start = START_CUBE0;
 	else if (fabs(nf[1] - 3 * nf[3]) + fabs(nf[2] + 3 * nf[3]) <= 1e-12 * big)
 		s->start = START_CUBE1;
+	s->tol = s->start == START_CHORD ? newton_tol(s->fc) : NEWTON_TOL;
 }
 
 /* Hermite piece j: Catmull-Rom tangents times h (one-sided at the ends),
@@ -527,6 +549,7 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 		s->f1 = c->frame[n - 1];
 		s->inv_w = 1 / (s->f1 - s->f0);
 		s->start = START_CHORD;
+		s->tol = NEWTON_TOL;
 		prep_power(c);
 		return;
 	}

@@ -33,6 +33,7 @@ struct dbl_seg {
 	double inv_w; /* 1 / (f1 - f0) */
 	double inv_h; /* 1 / width of key interval j */
 	int start;    /* Newton start rule */
+	double tol;   /* a Newton step below it is the last (curve_approx.c's ntol) */
 	struct dbl_ease ease;
 	double area;  /* integral from frame 0 to key j */
 };

@@ -408,6 +408,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 		s->fc[0] = s->fc[1] = s->fc[2] = s->fc[3] = 0;
 		s->vsh = s->fsh = 0;
 		s->start = START_CHORD;
+		s->ntol = NEWTON_TOL_BITS;
 		s->ush = -1;
 		s->plain = 0;
 		s->inv_w.m = s->inv_h.m = 0;

@@ -141,6 +141,8 @@ struct mot_curve_seg {
 				  * (Q2.62), a shift; -1: in u = (f - f0) / (f1 - f0) */
 	uint8_t plain;           /* step, linear or hermite without any ease, vsh in
 				  * [1, 62]: scene.c's inline path may take it */
+	uint8_t ntol;            /* a Newton step below 2^-ntol is the solve's last
+				  * (curve_approx.c: what the piece needs, 31 at most) */
 	union {
 		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */

@@ -90,6 +90,52 @@ static void basis(const struct mot_curve *c, int64_t nb[4][4], uint64_t *den)
 		nb[2][p] = (p == 0 ? (int64_t)*den : 0) - nb[0][p] - nb[1][p] - nb[3][p];
 }
 
+static uint64_t umag(mot_acc x)
+{
+	return mot_acc_is_neg(x) ? mot_acc_lo(mot_acc_neg(x)) : mot_acc_lo(x);
+}
+
+/*
+ * The Newton tolerance of a chord-started piece (seg->ntol): frame(u) =
+ * fref + F(u) / 2^fsh, and a last step du leaves u within
+ * (max |F''| / (2 min F')) (2 du)^2 of the root (Taylor's remainder, the
+ * error before the step at most twice the step), where the frame needs u
+ * within 2^-4 of a raw unit over max F', and the step's own error (ratio62,
+ * 2^-29 of it) no more. From bit lengths, each rounded the safe way; 16 at
+ * least, NEWTON_TOL_BITS where F' may reach 0 or the piece needs more.
+ */
+static uint8_t newton_bits(const int64_t fc[4], int fsh)
+{
+	/* F'(u) = fc1 + 2 fc2 u + 3 fc3 u^2 and F''(u) = 2 fc2 + 6 fc3 u on [0, 1],
+	 * |fc| summing to 2^61 at most: 128 bits hold every term */
+	mot_acc d0 = mot_acc_from(fc[1], 0), c2 = mot_acc_from(fc[2], 1);
+	mot_acc c3 = mot_acc_add(mot_acc_from(fc[3], 1), mot_acc_from(fc[3], 0));
+	mot_acc d1 = mot_acc_add(mot_acc_add(d0, c2), c3), m = mot_acc_is_neg(mot_acc_sub(d1, d0)) ? d1 : d0;
+	mot_acc e1 = mot_acc_add(c2, mot_acc_add(c3, c3));
+	uint64_t e0m = umag(c2), e1m = umag(e1), dmax, m2;
+	int lm, k, kr;
+
+	if (fc[3] > 0 && fc[2] < 0 && (uint64_t)-fc[2] < 3 * (uint64_t)fc[3]) {
+		/* the vertex u = -fc2 / (3 fc3) inside: min F' = fc1 - fc2^2 / (3 fc3),
+		 * the quotient rounded up */
+		uint64_t r, q = mot_acc_udiv(mot_acc_mul(fc[2], fc[2]), 3 * (uint64_t)fc[3], &r, NULL);
+
+		m = mot_acc_sub(d0, mot_acc_from((int64_t)(q + (r != 0)), 0));
+	}
+	if (mot_acc_is_neg(m) || mot_cv_acc_bitlen(m) == 0)
+		return NEWTON_TOL_BITS;
+	dmax = umag(d0) + e0m + umag(c3); /* |fc1| + 2 |fc2| + 3 |fc3| */
+	m2 = e0m > e1m ? e0m : e1m;
+	lm = (int)mot_cv_acc_bitlen(m) - 1;
+	/* 2^-2k (M2 / (2 m)) 4 <= 2^(fsh - 4) / Dmax */
+	k = (int)bitlen64(m2) - lm + 1 - fsh + 4 + (int)bitlen64(dmax);
+	k = k <= 0 ? 0 : (k + 1) / 2;
+	kr = (int)bitlen64(dmax) - fsh + 4 - 29 + 1; /* 2^-(k + 29) Dmax <= 2^(fsh - 4) */
+	k = k > kr ? k : kr;
+	k = k < 16 ? 16 : k;
+	return (uint8_t)(k < NEWTON_TOL_BITS ? k : NEWTON_TOL_BITS);
+}
+
 /* Spline piece j on the extended control points E(j)..E(j+3), E(m) = key
  * clamp(m - 2, 0, n - 1): both polynomials relative to E(j+1), their frame
  * interval [f0, ...) and the Newton start rule. */
@@ -153,6 +199,7 @@ static int prep_piece(struct mot_curve *c, uint32_t j, int64_t nb[4][4], uint64_
 			 mot_cv_acc_bitlen(mot_acc_add(nf[2], n3)) == 0)
 			s->start = START_CUBE1;
 	}
+	s->ntol = s->start == START_CHORD ? newton_bits(s->fc, s->fsh) : NEWTON_TOL_BITS;
 	return MOT_OK;
 }
 

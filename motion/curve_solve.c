@@ -15,7 +15,6 @@
 #include "curve_priv.h"
 
 #define NEWTON_MAX_IT 64
-#define NEWTON_TOL ((int64_t)1 << 31) /* 2^-31: a Newton step this small is the last */
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
@@ -164,10 +163,12 @@ struct solve {
  *
  * Determinism: the start is a function of f alone (the chord fraction, or its
  * cube root), the iteration is pure integer arithmetic and the stopping rule
- * is fixed: stop after a Newton step below 2^-31 (the error is then about
- * the square of it) or once the bracket is narrower than 2^-50, or after
- * NEWTON_MAX_IT iterations. Random and sequential access therefore give the
- * same u, bit for bit, on every target.
+ * is fixed: stop after a Newton step below 2^-ntol, the piece's (the error
+ * is then about the square of it: curve_approx.c bounds it for what the
+ * frame needs; 2^-31 where it cannot, and on a Bezier curve), or once the
+ * bracket is narrower than 2^-50, or after NEWTON_MAX_IT iterations. Random
+ * and sequential access therefore give the same u, bit for bit, on every
+ * target.
  */
 static int64_t solve_u(struct solve *sv, int64_t u)
 {
@@ -219,7 +220,7 @@ static int64_t solve_u(struct solve *sv, int64_t u)
 			dx = u - un;
 			if (dx < 0)
 				dx = -dx;
-			tol = NEWTON_TOL;
+			tol = (int64_t)1 << (62 - s->ntol);
 		} else {
 			dx = (hi - lo) / 2;
 			un = lo + dx;
