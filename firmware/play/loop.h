@@ -136,6 +136,10 @@ enum loop_state {
 	LOOP_STEP_EXPOSE,
 	LOOP_STOPPING,
 	LOOP_ENDED,
+	/* live mode (loop_live.h) */
+	LOOP_HOLD,
+	LOOP_JOG,
+	LOOP_MOVE,
 };
 
 enum loop_end {
@@ -164,6 +168,7 @@ enum loop_cause {
 	LOOP_CAUSE_READY,       /* step mode: no camera-ready edge in time */
 	LOOP_CAUSE_JOURNAL,     /* the journal could not take the frame */
 	LOOP_CAUSE_SATURATION,  /* fixed-point arithmetic saturated */
+	LOOP_CAUSE_DISABLE,     /* live mode: the drives were disabled */
 };
 
 /* What ended the run, for the message at the edge. */
@@ -198,6 +203,7 @@ struct loop_cfg {
 	int64_t max_ticks; /* controlled stop after this many ticks, 0 = none */
 	uint32_t status_every; /* ticks between status samples (>= 1) */
 	bool wait_for_journal; /* virtual clock: wait for the journal's service */
+	bool live;         /* no run planned: loop_live_init makes it a live loop */
 };
 
 /* A status sample, pushed into the status ring. */

@@ -127,6 +127,7 @@ struct loop {
 	struct loop_step step;
 	int64_t *limited;         /* n: the result's, written here */
 	struct loop_result *res;
+	struct loop_live *live;   /* NULL but in live mode (loop_live.c) */
 	struct loop_safety safety; /* last: the edge buffer is large and seldom used */
 };
 
@@ -221,5 +222,21 @@ void loop_triggers(struct loop *L, int64_t due);
 void loop_triggers_off(struct loop *L);
 /* [rt] A pulse is under way. */
 bool loop_pulses_active(const struct loop *L);
+
+/* ---- loop_tick.c ---- */
+
+/* [rt] The ordinary status sample of this tick into *s. */
+void loop_status_fill(const struct loop *L, struct loop_status *s);
+
+/* ---- loop_live.c (live mode only) ---- */
+
+/* [rt] The commands waiting, at the start of a tick. */
+void loop_live_commands(struct loop *L);
+/* [rt] This tick's setpoints in HOLD, JOG and MOVE. */
+void loop_live_sequence(struct loop *L);
+/* [rt] A segment that ended goes back to HOLD; what ends the run stays. */
+void loop_live_tick_end(struct loop *L);
+/* [rt] The live status sample. */
+void loop_live_status(struct loop *L);
 
 #endif /* STRAND_LOOP_PRIV_H */

@@ -5,6 +5,7 @@
  * the plan into the first pass. Every function here is [init], but for
  * the two name tables, which any thread may read.
  */
+#include "loop_live.h"
 #include "loop_priv.h"
 
 #include <errno.h>
@@ -21,7 +22,8 @@ static const char *const state_names[] = {
 	[LOOP_POSTROLL] = "post-roll",	 [LOOP_STEP_NEXT] = "step",
 	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
 	[LOOP_STEP_EXPOSE] = "expose",	 [LOOP_STOPPING] = "stopping",
-	[LOOP_ENDED] = "ended",
+	[LOOP_ENDED] = "ended",		 [LOOP_HOLD] = "hold",
+	[LOOP_JOG] = "jog",		 [LOOP_MOVE] = "move",
 };
 
 static const char *const cause_names[] = {
@@ -41,16 +43,17 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_READY] = "camera not ready",
 	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
+	[LOOP_CAUSE_DISABLE] = "drives disabled",
 };
 
 const char *loop_state_name(enum loop_state s)
 {
-	return s <= LOOP_ENDED ? state_names[s] : "?";
+	return s <= LOOP_MOVE ? state_names[s] : "?";
 }
 
 const char *loop_cause_name(enum loop_cause c)
 {
-	return c <= LOOP_CAUSE_SATURATION ? cause_names[c] : "?";
+	return c <= LOOP_CAUSE_DISABLE ? cause_names[c] : "?";
 }
 
 /* ---- the block ---- */
@@ -324,8 +327,9 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	L->seq.lead = -min_off;
 	L->seq.tail = max_off;
 	read_rig(L);
-	rc = cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
-					   plan_continuous(L, err, errsize);
+	/* a live loop plans each segment when a command asks for it */
+	rc = cfg->live ? 0 : cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
+							   plan_continuous(L, err, errsize);
 	if (rc) {
 		loop_free(L);
 		return rc;
@@ -343,5 +347,6 @@ void loop_free(struct loop *L)
 {
 	STRAND_ASSERT_NOT_RT();
 
+	loop_live_free(L);
 	free(L); /* the block */
 }
