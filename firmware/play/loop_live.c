@@ -34,6 +34,10 @@ struct loop_live {
 	int64_t seg_first;
 	int64_t wake_ns;        /* hal_mono_ns() at the tick's start */
 	struct loop_report last;
+	int64_t at_frame;       /* the frame the rig is at, -1 off any */
+	int64_t move_frame;     /* a MOVE's, -1 for a pose */
+	uint8_t st_state;       /* the state of the last sample pushed */
+	bool st_pending;        /* a sample the ring had no room for */
 	bool quit;
 };
 
@@ -42,6 +46,10 @@ int loop_live_init(struct loop *L, const struct loop_live_cfg *lc, char *err, si
 	struct loop_live *lv;
 
 	STRAND_ASSERT_NOT_RT();
+	if (!lc->estop || !lc->signal || !lc->cmds || !lc->acks) {
+		snprintf(err, errsize, "live mode: rings and requests not given");
+		return -EINVAL;
+	}
 	if (L->n > LOOP_LIVE_OUT_MAX) {
 		snprintf(err, errsize, "%u outputs: live control takes at most %d", L->n,
 			 LOOP_LIVE_OUT_MAX);
@@ -62,6 +70,8 @@ int loop_live_init(struct loop *L, const struct loop_live_cfg *lc, char *err, si
 	lv->cfg = *lc;
 	lv->fl.items = lv->items;
 	lv->seg_first = -1;
+	lv->at_frame = -1;
+	lv->move_frame = -1;
 	lv->last.channel = -1;
 	lv->last.out = -1;
 	L->live = lv;
@@ -261,6 +271,7 @@ static void STRAND_RT take(struct loop *L, const struct loop_cmd *c)
 			if (L->seq.state == LOOP_HOLD && c->speed != 0) {
 				L->seq.state = LOOP_JOG;
 				lv->seg_first = -1;
+				lv->at_frame = -1;
 			}
 		}
 		break;
@@ -282,6 +293,8 @@ static void STRAND_RT take(struct loop *L, const struct loop_cmd *c)
 		}
 		L->seq.state = LOOP_MOVE;
 		lv->seg_first = -1;
+		lv->move_frame = c->frame;
+		lv->at_frame = -1;
 		break;
 	case LOOP_CMD_PLAY:
 		code = at_rest(L) ? take_play(L, c, &bad) : LOOP_CMD_BUSY;
@@ -325,6 +338,11 @@ void STRAND_RT loop_live_commands(struct loop *L)
 	int i;
 
 	lv->wake_ns = hal_mono_ns();
+	if (atomic_load_explicit(lv->cfg.estop, memory_order_acquire))
+		loop_request_stop(L, 2, LOOP_CAUSE_ESTOP);
+	i = atomic_load_explicit(lv->cfg.signal, memory_order_relaxed);
+	if (i)
+		loop_request_stop(L, i >= 2 ? 2 : 1, i >= 2 ? LOOP_CAUSE_IMMEDIATE : LOOP_CAUSE_SIGNAL);
 	for (i = 0; i < LOOP_LIVE_CMDS_PER_TICK && hal_ring_pop(lv->cfg.cmds, &lv->cmd); i++)
 		take(L, &lv->cmd);
 }
@@ -390,9 +408,11 @@ static void STRAND_RT jog_step(struct loop *L)
 		q = mot_add_sat(L->prev[i], move_d2q(v * dt), NULL);
 		/* on the limit, not a rounding beyond it */
 		if (v > 0 && move_q2d(q) > o->max)
-			q = move_d2q(o->max);
+			for (q = move_d2q(o->max); move_q2d(q) > o->max; q--)
+				;
 		if (v < 0 && move_q2d(q) < o->min)
-			q = move_d2q(o->min);
+			for (q = move_d2q(o->min); move_q2d(q) < o->min; q++)
+				;
 		L->val[i] = q;
 	}
 	if (!moving)
@@ -415,6 +435,7 @@ void STRAND_RT loop_live_sequence(struct loop *L)
 			return;
 		}
 		s->state = LOOP_HOLD;
+		L->live->at_frame = L->live->move_frame;
 		/* the last sample was the target */
 		__attribute__((fallthrough));
 	default:
@@ -431,8 +452,10 @@ void STRAND_RT loop_live_tick_end(struct loop *L)
 	struct loop_live *lv = L->live;
 	struct loop_report *r = &L->res->rep;
 
-	if (L->seq.state == LOOP_HOLD && lv->cfg.idle_nap) {
-		/* virtual time at rest: the wall clock's pace, not a busy core */
+	if ((L->seq.state == LOOP_HOLD || L->seq.state == LOOP_JOG) && lv->cfg.idle_nap) {
+		/* virtual time at rest and in a jog: the wall clock's pace, not
+		 * a busy core, and a dead-man that a client's refreshes can
+		 * keep up with */
 		struct timespec ts;
 		int64_t t = hal_mono_ns() + 1000000;
 
@@ -464,9 +487,15 @@ void STRAND_RT loop_live_status(struct loop *L)
 	const struct lat_stats *lat = &L->res->lat;
 	uint32_t i;
 
-	if (L->seq.state != LOOP_ENDED && L->tick % L->cfg.status_every)
+	if (lv->seg_first >= 0 && L->res->last_frame >= 0)
+		lv->at_frame = L->res->last_frame;
+	/* every state a sample of its own (a console must see a move end),
+	 * and one the ring had no room for again at the next tick */
+	if (L->seq.state != LOOP_ENDED && L->tick % L->cfg.status_every && !lv->st_pending &&
+	    lv->st_state == (uint8_t)L->seq.state)
 		return;
 	loop_status_fill(L, &st->s);
+	st->at_frame = lv->at_frame;
 	st->cmd_seq = lv->cmd_seq;
 	st->seg_first = lv->seg_first;
 	st->lat_n = lat->n;
@@ -491,6 +520,8 @@ void STRAND_RT loop_live_status(struct loop *L)
 		if (!so->has_act)
 			so->fe = 0;
 	}
-	if (!hal_ring_push(L->status, st))
+	lv->st_state = (uint8_t)L->seq.state;
+	lv->st_pending = !hal_ring_push(L->status, st);
+	if (lv->st_pending)
 		L->res->status_dropped++;
 }

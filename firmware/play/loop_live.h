@@ -31,6 +31,7 @@
 #ifndef STRAND_LOOP_LIVE_H
 #define STRAND_LOOP_LIVE_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -71,7 +72,7 @@ struct loop_cmd {
 	uint32_t out;        /* JOG */
 	double speed;        /* JOG: fraction of vmax, -1..1 */
 	mot_q32 pose[LOOP_LIVE_OUT_MAX]; /* MOVE */
-	int32_t bad_out;     /* unused in */
+	int64_t frame;       /* MOVE: the frame whose pose it is, -1 */
 	struct loop_cfg cfg; /* PLAY: mode, from, to, loop, ping_pong, passes, times */
 	uint32_t nframes;    /* PLAY step: frames[0..nframes) */
 	struct frame_item frames[LOOP_LIVE_FRAME_ITEMS];
@@ -107,6 +108,8 @@ struct loop_live_status {
 	struct loop_status s;
 	uint64_t cmd_seq;       /* the last command taken */
 	int64_t seg_first;      /* the segment's first frame, -1 outside one */
+	int64_t at_frame;       /* the frame the rig is at (the last fired in a
+				 * segment, a move's frame), -1 off any */
 	int64_t lat_n, lat_min_ns, lat_sum_ns; /* wake-ups so far */
 	int64_t t_ns;           /* the tick's due time */
 	struct loop_report rep; /* the last segment's end (end NONE: none yet) */
@@ -125,6 +128,11 @@ struct loop_live_cfg {
 	struct hal_ring *acks;   /* struct loop_ack, the owner's to pop */
 	int64_t deadman_ticks;   /* a jog lapses after this many ticks without a refresh */
 	bool idle_nap;           /* virtual clock: pace the ticks at rest at wall speed */
+	/* the owner's requests, read at the start of every tick: an e-stop
+	 * (the run halts: drives off at once) and a signal's stop level (1
+	 * controlled, 2 immediate); never waiting behind a command */
+	const _Atomic bool *estop;
+	const _Atomic int *signal;
 };
 
 /* [init] Make L a live loop (after loop_init with cfg.live): it holds the
