@@ -68,6 +68,7 @@ int cli_scene_args(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, 
 struct loop_report;
 int cli_play_exit(const struct loop_report *r);
 
-extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info, cmd_play, cmd_journal;
+extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info, cmd_play, cmd_journal,
+	cmd_serve;
 
 #endif /* STRAND_CLI_H */
