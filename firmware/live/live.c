@@ -418,9 +418,10 @@ int live_service(struct live *lv)
 		if (atomic_load(&lv->signal_req))
 			atomic_store(&lv->finished, true);
 		pthread_mutex_lock(&lv->snap_mu);
+		if (lv->snap.state != lv->state || strcmp(lv->snap.reason, lv->reason))
+			lv->snap.serial = ++lv->serial; /* news for the clients */
 		lv->snap.state = lv->state;
-		if (lv->state == LIVE_ESTOPPED || lv->state == LIVE_FAULTED || lv->reason[0])
-			snprintf(lv->snap.reason, sizeof(lv->snap.reason), "%s", lv->reason);
+		snprintf(lv->snap.reason, sizeof(lv->snap.reason), "%s", lv->reason);
 		lv->snap.loop_state = lv->state == LIVE_DISABLED ? "disabled" :
 				      live_state_name(lv->state);
 		for (uint32_t i = 0; i < lv->snap.nout; i++)

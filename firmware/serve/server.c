@@ -101,11 +101,15 @@ static bool token_ok(struct server *s, struct lws *wsi)
 
 static bool ticket_ok(struct server *s, struct lws *wsi)
 {
-	char t[64];
+	char arg[80], *t = NULL;
 	int64_t now = hal_mono_ns();
 	int i;
 
-	if (!lws_get_urlarg_by_name(wsi, "ticket", t, sizeof(t)))
+	for (i = 0; lws_hdr_copy_fragment(wsi, arg, sizeof(arg), WSI_TOKEN_HTTP_URI_ARGS, i) > 0;
+	     i++)
+		if (!strncmp(arg, "ticket=", 7))
+			t = arg + 7;
+	if (!t)
 		return false;
 	for (i = 0; i < TICKETS; i++) {
 		if (s->tickets[i].until > now && same_secret(s->tickets[i].t, t)) {
