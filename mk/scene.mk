@@ -41,7 +41,7 @@ FUZZ_SRC    := tests/fuzz/fuzz_load.c $(LIB_SRC) $(CLI_LIB_SRC) $(MOTION_SRC)
 
 $(FUZZ_DIR)/fuzz_load: $(FUZZ_SRC) $(ALL_HDR) | $(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
-	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags yaml-0.1) $(FUZZ_SRC) \
+	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags $(FW_PKGS)) $(FUZZ_SRC) \
 		$(FW_LIBS) -o $@
 
 # The seed corpus: the examples, the test scenes and the golden error cases

@@ -7,5 +7,12 @@
 
 TEST_STEPS = unit check-layers check-freestanding check-cross check-cortexm $(EXTRA_TEST_STEPS)
 
+# The packages first, one apt-get at a time; then everything the steps
+# share built on every CPU (the steps themselves run one after the other:
+# several of them time what they run).
+NPROC := $(shell nproc 2>/dev/null || echo 2)
+
 test:
+	$(Q)$(MAKE) --no-print-directory deps
+	$(Q)$(MAKE) --no-print-directory -j$(NPROC) all $(BUILD)/strand-simdrive
 	$(Q)sh mk/run-steps.sh '$(MAKE)' $(BUILD)/test-logs $(TEST_STEPS)

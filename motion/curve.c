@@ -26,6 +26,21 @@ static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
 }
 
+/* A compact curve (keys only) strictly inside its span: step holds key i,
+ * linear is v(i) + (f - f(i)) dv / h with one exact product and division
+ * (|f - f(i)| < 2^63, |dv| < 2^63, the quotient within dv). */
+static mot_q32 compact_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f,
+			    uint32_t *sat)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t i = locate_key(c, cur, f);
+
+	if (c->kind == MOT_INTERP_STEP)
+		return k[i].value;
+	return k[i].value + mot_muldiv(f - k[i].frame, k[i + 1].value - k[i].value,
+				       k[i + 1].frame - k[i].frame, sat);
+}
+
 static inline __attribute__((always_inline)) mot_q32
 eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iters, uint32_t *sat)
 {
@@ -52,6 +67,8 @@ eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iter
 		if (frame >= c->span_f1)
 			return k[n - 1].value;
 	}
+	if (c->compact)
+		return compact_eval(c, cur, frame, sat);
 	if (c->kind >= MOT_INTERP_BSPLINE) {
 		if (c->seg_ease) {
 			/* the key interval's warp, in frames, before the solve */
@@ -120,16 +137,43 @@ uint32_t mot_curve_seg_count(enum mot_interp kind, uint32_t nkeys)
 	return 0;
 }
 
-/* The pieces of each kind (one key has none: every frame holds its value). */
-static int prep_pieces(struct mot_curve *c)
+/* The pieces of each kind (one key has none: every frame holds its value;
+ * nor has a compact curve). */
+static int prep_pieces(struct mot_curve *c, const struct mot_tangent *tangents)
 {
-	if (c->nkeys == 1)
+	if (c->nkeys == 1 || c->compact)
 		return MOT_OK;
 	if (c->kind == MOT_INTERP_BEZIER)
 		return mot_cv_prep_bezier(c);
 	if (c->kind >= MOT_INTERP_BSPLINE)
 		return mot_cv_prep_spline(c);
-	return mot_cv_prep_interp(c);
+	return mot_cv_prep_interp(c, tangents);
+}
+
+/* Explicit tangents: hermite only, each below MOT_LEN_LIMIT, and h m below
+ * 2^31 units on each interval it shapes, so that the cubic's numerators stay
+ * within curve_interp.c's bounds. */
+static int check_tangents(const struct mot_curve *c, const struct mot_tangent *t)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t n = c->nkeys, i;
+
+	if (c->kind != MOT_INTERP_HERMITE)
+		return MOT_E_INVAL;
+	for (i = 0; i < n; i++) {
+		if (t[i].set & ~(MOT_TANGENT_IN | MOT_TANGENT_OUT))
+			return MOT_E_INVAL;
+		if (mot_abs(t[i].in) >= MOT_LEN_LIMIT || mot_abs(t[i].out) >= MOT_LEN_LIMIT)
+			return MOT_E_RANGE;
+		/* |h m| < 2^31 units: the product of the raw Q32.32 numbers below 2^95 */
+		if (i > 0 && mot_cv_acc_bitlen(mot_acc_mul(k[i].frame - k[i - 1].frame,
+							   t[i].in)) > 95)
+			return MOT_E_RANGE;
+		if (i + 1 < n && mot_cv_acc_bitlen(mot_acc_mul(k[i + 1].frame - k[i].frame,
+							       t[i].out)) > 95)
+			return MOT_E_RANGE;
+	}
+	return MOT_OK;
 }
 
 static bool in_unit(mot_q32 x)
@@ -145,7 +189,7 @@ static int check(const struct mot_curve *c, const struct mot_curve_opts *o, uint
 
 	if (c->kind == MOT_INTERP_BEZIER && n > MOT_BEZIER_MAX_KEYS)
 		return MOT_E_CAPACITY;
-	if (!c->seg || nseg < mot_curve_seg_count(c->kind, n))
+	if (!o->compact && (!c->seg || nseg < mot_curve_seg_count(c->kind, n)))
 		return MOT_E_CAPACITY;
 	for (i = 0; i < n; i++) {
 		if (mot_abs(k[i].frame) >= MOT_LEN_LIMIT || mot_abs(k[i].value) >= MOT_LEN_LIMIT)
@@ -166,14 +210,20 @@ static int check(const struct mot_curve *c, const struct mot_curve_opts *o, uint
 	if (c->kind == MOT_INTERP_BETA &&
 	    (o->beta1 < 0 || o->beta1 > MOT_BETA1_MAX || o->beta2 < 0 || o->beta2 > MOT_BETA2_MAX))
 		return MOT_E_INVAL;
-	return MOT_OK;
+	if (o->compact && (c->kind > MOT_INTERP_LINEAR || o->integral || o->ease_in_frames ||
+			   o->ease_out_frames))
+		return MOT_E_INVAL;
+	for (i = 0; o->compact && i < n; i++)
+		if (k[i].ease_in || k[i].ease_out)
+			return MOT_E_INVAL;
+	return o->tangents ? check_tangents(c, o->tangents) : MOT_OK;
 }
 
 int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_key *keys,
 		   uint32_t nkeys, const struct mot_curve_opts *opts, struct mot_curve_seg *seg,
 		   uint32_t nseg, uint32_t *sat)
 {
-	static const struct mot_curve_opts defaults = { MOT_Q32_ONE, 0, 0, 0, false };
+	static const struct mot_curve_opts defaults = { MOT_Q32_ONE, 0, 0, 0, false, NULL, false };
 	uint32_t i;
 	int err;
 
@@ -185,7 +235,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	c->kind = (uint32_t)kind;
 	c->keys = keys;
 	c->seg = seg;
-	c->seg_ease = c->span_ease = c->integral = c->power = false;
+	c->seg_ease = c->span_ease = c->integral = c->power = c->compact = false;
 	if (!opts)
 		opts = &defaults;
 	if (mot_curve_seg_count(kind, 1) == 0 || (nkeys > 0 && !keys))
@@ -198,7 +248,8 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 		err = MOT_E_INVAL;
 	if (err)
 		goto fail;
-	c->nseg = mot_curve_seg_count(kind, nkeys);
+	c->compact = opts->compact;
+	c->nseg = c->compact ? 0 : mot_curve_seg_count(kind, nkeys);
 	c->beta1 = opts->beta1;
 	c->beta2 = opts->beta2;
 	c->span_f0 = keys[0].frame;
@@ -239,7 +290,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 		if (err)
 			goto fail;
 	}
-	err = prep_pieces(c);
+	err = prep_pieces(c, opts->tangents);
 	if (err)
 		goto fail;
 	c->integral = opts->integral;

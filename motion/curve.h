@@ -77,11 +77,36 @@ struct mot_key {
 #define MOT_BETA1_MAX MOT_Q32_INT(256)
 #define MOT_BETA2_MAX MOT_Q32_INT(1 << 24)
 
+/*
+ * An explicit tangent on a key of a hermite curve: the slope arriving at the
+ * key (in) and leaving it (out), value per frame. It is what an animator's
+ * Bezier handle is when the handle sits a third of the interval away (the
+ * Bezier control point v + h m / 3), and what glTF's CUBICSPLINE in- and
+ * out-tangents are (per second there; divide by the frame rate). A side not
+ * in `set` takes the Catmull-Rom tangent of FORMULAS section 6.
+ */
+struct mot_tangent {
+	mot_q32 in, out; /* value per frame, |m| < MOT_LEN_LIMIT, |h m| < 2^31 */
+	uint32_t set;    /* MOT_TANGENT_IN | MOT_TANGENT_OUT: the sides given */
+};
+#define MOT_TANGENT_IN  1u
+#define MOT_TANGENT_OUT 2u
+
 struct mot_curve_opts {
 	mot_q32 beta1, beta2;    /* Beta-spline bias (>= 0) and tension (>= 0) */
 	mot_q32 ease_in_frames;  /* strand-wide slow-in, frames (0 = none) */
 	mot_q32 ease_out_frames; /* strand-wide slow-out, frames (0 = none) */
 	bool integral;           /* prepare running integrals (rpm strands) */
+	/* hermite only: one entry per key, or NULL (Catmull-Rom everywhere);
+	 * read at init only */
+	const struct mot_tangent *tangents;
+	/* step and linear only, without ease or integral: keep the keys alone,
+	 * no segment array (seg may be NULL, nseg 0). For sampled motion, a
+	 * key every frame: 32 bytes a key where a prepared curve takes 32 +
+	 * sizeof(struct mot_curve_seg). A linear value is then one exact
+	 * product and division, round(v(i) + (f - f(i)) dv / h), within 1/2
+	 * LSB like the prepared one but not always the same bits. */
+	bool compact;
 };
 
 /*
@@ -126,6 +151,7 @@ struct mot_curve {
 	bool power;             /* bezier evaluated in power form (curve_bezier.c) */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
+	bool compact;           /* keys only (opts->compact) */
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
 	mot_q32 span_f0, span_f1;    /* first and last key frame */
@@ -146,7 +172,8 @@ struct mot_cursor {
 
 /* Segments that mot_curve_init() needs for nkeys keys of this kind (0 for an
  * invalid kind or nkeys == 0): one per key interval for step, linear,
- * hermite and bezier, nkeys + 1 for bspline and beta, at least 1. */
+ * hermite and bezier, nkeys + 1 for bspline and beta, at least 1. A compact
+ * curve (opts->compact) needs none. */
 uint32_t mot_curve_seg_count(enum mot_interp kind, uint32_t nkeys);
 
 /*
@@ -160,7 +187,11 @@ uint32_t mot_curve_seg_count(enum mot_interp kind, uint32_t nkeys);
  * MOT_E_INVAL (ease fractions outside [0, 1] or summing above 1 on an
  * interval, strand ease negative or longer than the span, beta1 or beta2
  * outside [0, MOT_BETA1_MAX] / [0, MOT_BETA2_MAX] for a Beta-spline,
- * integral requested for an approximating kind or with any ease). On error
+ * integral requested for an approximating kind or with any ease, tangents
+ * on a kind other than hermite or with set bits other than MOT_TANGENT_*,
+ * compact on a kind other than step and linear or with ease or integral),
+ * MOT_E_RANGE for a tangent of MOT_LEN_LIMIT or more or whose h m reaches
+ * 2^31 units on its interval (its handle beyond the core's range). On error
  * the curve evaluates to 0 and sets MOT_SAT_DOMAIN. keys and seg must
  * outlive the curve. Init only (divides; O(nkeys)).
  */

@@ -38,10 +38,13 @@ static mot_acc acc_times(mot_acc x, unsigned k)
 
 /* Hermite piece i: numerators of c[] in powers of s relative to v(i), at
  * scale 2^58 (FORMULAS section 6): the tangent terms h m(i), h m(i+1) with
- * the chord of each tangent (one-sided at the ends), then
+ * the chord of each tangent (one-sided at the ends), or an explicit tangent
+ * (key i's out, key i+1's in: h m exactly, h m 2^58 = h m 2^26 of the raw
+ * numbers, below 2^121 as curve.c checks), then
  *   c1 = h m(i), c2 = 3 dv - 2 h m(i) - h m(i+1), c3 = -2 dv + h m(i) + h m(i+1).
  * Every term is below 2^121, every sum below 2^124. */
-static void prep_hermite(const struct mot_curve *c, uint32_t i, mot_acc num[4], uint64_t *den)
+static void prep_hermite(const struct mot_curve *c, const struct mot_tangent *tan, uint32_t i,
+			 mot_acc num[4], uint64_t *den)
 {
 	const struct mot_key *k = c->keys;
 	uint32_t n = c->nkeys, t;
@@ -50,8 +53,12 @@ static void prep_hermite(const struct mot_curve *c, uint32_t i, mot_acc num[4], 
 
 	for (t = 0; t < 2; t++) {
 		uint32_t j = i + t, a = j == 0 ? 0 : j - 1, b = j == n - 1 ? j : j + 1;
+		uint32_t side = t ? MOT_TANGENT_IN : MOT_TANGENT_OUT;
 
-		tm[t] = tangent58(k[b].value - k[a].value, h, k[b].frame - k[a].frame);
+		if (tan && (tan[j].set & side))
+			tm[t] = acc_shl(mot_acc_mul(h, t ? tan[j].in : tan[j].out), 26);
+		else
+			tm[t] = tangent58(k[b].value - k[a].value, h, k[b].frame - k[a].frame);
 	}
 	num[0] = mot_acc_zero();
 	num[1] = tm[0];
@@ -60,7 +67,7 @@ static void prep_hermite(const struct mot_curve *c, uint32_t i, mot_acc num[4], 
 	*den = (uint64_t)1 << 58;
 }
 
-int mot_cv_prep_interp(struct mot_curve *c)
+int mot_cv_prep_interp(struct mot_curve *c, const struct mot_tangent *tan)
 {
 	const struct mot_key *k = c->keys;
 	uint32_t n = c->nkeys, j, p;
@@ -80,7 +87,7 @@ int mot_cv_prep_interp(struct mot_curve *c)
 		if (c->kind == MOT_INTERP_LINEAR)
 			num[1] = mot_acc_from(k[j + 1].value - k[j].value, 0);
 		else if (c->kind == MOT_INTERP_HERMITE)
-			prep_hermite(c, j, num, &den);
+			prep_hermite(c, tan, j, num, &den);
 		err = err ? err : mot_cv_poly_prep(s->c, &s->vsh, num, den);
 		if (!err && c->kind == MOT_INTERP_HERMITE) {
 			/* the mean value, c[p] / (p + 1), in its own block scale

@@ -238,9 +238,10 @@ static inline int64_t *power_slot(const struct mot_curve *c, uint32_t j)
 
 /* ---- preparation, by kind (init only) --------------------------------------------- */
 
-/* The pieces of a step, linear or hermite curve of two keys or more
+/* The pieces of a step, linear or hermite curve of two keys or more, with
+ * a hermite curve's explicit tangents (one per key, or NULL)
  * (curve_interp.c). */
-int mot_cv_prep_interp(struct mot_curve *c);
+int mot_cv_prep_interp(struct mot_curve *c, const struct mot_tangent *tan);
 
 /* The pieces of a bspline or beta curve of two keys or more (curve_approx.c). */
 int mot_cv_prep_spline(struct mot_curve *c);

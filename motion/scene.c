@@ -99,6 +99,12 @@ int mot_scene_validate(const struct mot_scene *sc)
 				return MOT_E_INVAL;
 		if (!opt_in_range(sc->free[i].rot, sc->nrot))
 			return MOT_E_INVAL;
+		for (k = 0; k < 4; k++)
+			if (!opt_in_range(sc->free[i].quat[k], sc->ncurves) ||
+			    (sc->free[i].quat[k] < 0) != (sc->free[i].quat[0] < 0))
+				return MOT_E_INVAL;
+		if (sc->free[i].rot >= 0 && sc->free[i].quat[0] >= 0)
+			return MOT_E_INVAL;
 	}
 	if (sc->camera)
 		for (k = 0; k < MOT_CAM_NCHANNELS; k++)
@@ -143,6 +149,23 @@ static mot_q32 joint_value(const struct mot_scene *sc, struct mot_eval *ev,
 	return n->rest;
 }
 
+/* A rotation kept as four component curves: their value normalised. */
+static void quat_of_curves(struct mot_quat *q, const struct mot_scene *sc, struct mot_eval *ev,
+			   const int32_t qc[4], mot_q32 frame)
+{
+	mot_q32 v[4];
+	struct mot_quat raw;
+	unsigned k;
+
+	for (k = 0; k < 4; k++)
+		v[k] = mot_curve_eval(&sc->curves[qc[k]], &ev->cursors[qc[k]], frame, &ev->sat);
+	raw = (struct mot_quat){ v[0], v[1], v[2], v[3] };
+	if (mot_quat_normalize(q, &raw, &ev->sat) != MOT_OK) {
+		mot_quat_identity(q);
+		ev->sat |= MOT_SAT_DOMAIN;
+	}
+}
+
 /*
  * The linear part S . H . R and the translation of a free node (channels
  * without keys at their rest values). Returns false when the node has no
@@ -154,7 +177,7 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 {
 	struct mot_decomp d;
 	mot_q32 v[MOT_FREE_NCHANNELS], g = mot_warp_apply(&fs->warp, frame, &ev->sat);
-	bool rot = fs->rot >= 0, shs = false;
+	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false;
 	int64_t r[3][3];
 	uint64_t ov = 0;
 	uint32_t k, j;
@@ -189,8 +212,11 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 					 { t[0], t[1], t[2] } } };
 		return true;
 	}
-	mot_rot_track_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
-			   g, &ev->sat);
+	if (fs->rot >= 0)
+		mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
+				   &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g, &ev->sat);
+	else
+		quat_of_curves(&d.rot, sc, ev, fs->quat, g);
 	if (!shs && mot_quat_to_rot_q62(r, &d.rot, &ev->sat) == MOT_OK) {
 		for (k = 0; k < 3; k++)
 			for (j = 0; j < 3; j++)

@@ -77,8 +77,30 @@ int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, 
 	}
 	r->nkeys = nkeys;
 	r->squad = squad;
+	r->compact = false;
 	r->keys = keys;
 	r->seg = seg;
+	return MOT_OK;
+}
+
+int mot_rot_track_init_compact(struct mot_rot_track *r, const struct mot_rot_key *keys,
+			       uint32_t nkeys)
+{
+	uint32_t i;
+
+	if (nkeys == 0)
+		return MOT_E_NOKEYS;
+	for (i = 0; i < nkeys; i++) {
+		if (keys[i].ease_in || keys[i].ease_out)
+			return MOT_E_INVAL;
+		if (i > 0 && keys[i].frame <= keys[i - 1].frame)
+			return MOT_E_ORDER;
+	}
+	r->nkeys = nkeys;
+	r->squad = false;
+	r->compact = true;
+	r->keys = keys;
+	r->seg = NULL;
 	return MOT_OK;
 }
 
@@ -123,14 +145,21 @@ void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
 	uint32_t i;
 
 	if (r->nkeys == 1 || frame <= r->keys[0].frame) {
-		*out = r->nkeys == 1 ? r->keys[0].q : r->seg[0].arc.a;
+		*out = r->nkeys == 1 || r->compact ? r->keys[0].q : r->seg[0].arc.a;
 		return;
 	}
 	if (frame >= r->keys[r->nkeys - 1].frame) {
-		*out = r->seg[r->nkeys - 2].arc.b;
+		*out = r->compact ? r->keys[r->nkeys - 1].q : r->seg[r->nkeys - 2].arc.b;
 		return;
 	}
 	i = rot_find(r, cur, frame);
+	if (r->compact) {
+		const struct mot_rot_key *k = r->keys;
+
+		s = mot_muldiv(frame - k[i].frame, MOT_Q32_ONE, k[i + 1].frame - k[i].frame, sat);
+		mot_quat_slerp(out, &k[i].q, &k[i + 1].q, s, sat);
+		return;
+	}
 	sg = &r->seg[i];
 	s = mot_recip_ratio(frame - r->keys[i].frame, &sg->inv_h, sat);
 	if (s > MOT_Q32_ONE) /* rounding of the reciprocal, never more than 1 LSB */

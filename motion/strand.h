@@ -42,14 +42,24 @@ struct mot_rot_seg {
 struct mot_rot_track {
 	uint32_t nkeys;
 	bool squad;
+	bool compact; /* keys only: each slerp prepared when it is evaluated */
 	const struct mot_rot_key *keys;
-	struct mot_rot_seg *seg; /* nkeys - 1 entries */
+	struct mot_rot_seg *seg; /* nkeys - 1 entries; NULL when compact */
 };
 
 /* Validate (MOT_E_NOKEYS, MOT_E_ORDER, MOT_E_INVAL for ease fractions,
  * MOT_E_CAPACITY when nseg < nkeys - 1) and prepare. Init only. */
 int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, uint32_t nkeys,
 		       bool squad, struct mot_rot_seg *seg, uint32_t nseg, uint32_t *sat);
+
+/* A slerp track kept as its keys alone, for sampled motion (a key every
+ * frame): 56 bytes a key where a prepared track takes 56 +
+ * sizeof(struct mot_rot_seg). Each evaluation prepares the slerp of its
+ * interval (mot_quat_slerp: the shorter arc, about 100 ns more) and takes
+ * its parameter with one division; no squad, no ease (MOT_E_INVAL for an
+ * ease fraction), otherwise mot_rot_track_init()'s checks. Init only. */
+int mot_rot_track_init_compact(struct mot_rot_track *r, const struct mot_rot_key *keys,
+			       uint32_t nkeys);
 
 /* Rotation at a frame; holds the end keys outside them. Real-time safe. */
 void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
@@ -80,10 +90,19 @@ enum mot_free_channel {
 	MOT_FREE_NCHANNELS,
 };
 
+/*
+ * A free node's rotation is a track of unit quaternions (rot), or four
+ * scalar curves of w, x, y, z whose value is normalised at every evaluation
+ * (quat): a rotation interpolated component by component, as glTF's
+ * CUBICSPLINE and STEP rotations are (a cubic through the keys with their
+ * tangents, then q / |q|). At most one of the two; a zero quaternion
+ * evaluates to the identity and sets MOT_SAT_DOMAIN.
+ */
 struct mot_free_strand {
 	int32_t channel[MOT_FREE_NCHANNELS]; /* curve index in the scene, or -1 */
 	int32_t rot;                         /* rotation track index, or -1 */
 	struct mot_warp warp;
+	int32_t quat[4];                     /* curves of w, x, y, z, or all -1 */
 };
 
 /* ---- spin (FORMULAS section 8) ------------------------------------------------ */

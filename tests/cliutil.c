@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <setjmp.h>
 #include <cmocka.h>
 
@@ -41,3 +42,37 @@ void run_free(struct run *r)
 	free(r->err);
 }
 
+
+void tmp_file(char *out, size_t size, const char *ext, const void *data, size_t len)
+{
+	char path[] = "/tmp/strand-test-XXXXXX";
+	int fd = mkstemp(path);
+	FILE *f;
+
+	assert_true(fd >= 0);
+	close(fd);
+	snprintf(out, size, "%s%s", path, ext);
+	assert_int_equal(rename(path, out), 0);
+	f = fopen(out, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(data, 1, len, f), len);
+	fclose(f);
+}
+
+void import_error(const char *ext, const void *data, size_t len, const char *want)
+{
+	char path[64], args[128];
+	struct run r;
+
+	tmp_file(path, sizeof(path), ext, data, len);
+	snprintf(args, sizeof(args), "import %s", path);
+	strand(&r, args);
+	unlink(path);
+	if (r.rc != 2 || !strstr(r.err, want))
+		fprintf(stderr, "import of %s: exit %d: %s", want, r.rc, r.err);
+	assert_int_equal(r.rc, 2);
+	assert_non_null(strstr(r.err, want));
+	assert_true(!strncmp(r.err, path, strlen(path)));
+	assert_int_equal(strchr(r.err, '\n') - r.err + 1, (long)strlen(r.err));
+	run_free(&r);
+}

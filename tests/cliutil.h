@@ -21,4 +21,12 @@ struct run {
 void strand(struct run *r, const char *args);
 void run_free(struct run *r);
 
+/* A new file /tmp/strand-test-XXXXXX<ext> holding len bytes of data; its
+ * name in out (size bytes). The caller unlinks it. */
+void tmp_file(char *out, size_t size, const char *ext, const void *data, size_t len);
+
+/* `strand import` of a file (extension ext) holding data: exit 2 and one
+ * line on stderr, starting with the file's name and containing want. */
+void import_error(const char *ext, const void *data, size_t len, const char *want);
+
 #endif /* CLIUTIL_H */

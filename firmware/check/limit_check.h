@@ -1,52 +1,73 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * limit_check.h - joint limits over a whole timeline, at tick resolution (the
- * work of `strand check`).
+ * limit_check.h - a run's whole timeline against its channels' limits,
+ * tick by tick, before anything moves (the work of `strand check` and of
+ * `strand play` before its first tick).
  *
- * Every tick of the span is evaluated, exactly as playback will, and each
- * joint's value, velocity and acceleration compared with its limits. A run
- * of consecutive ticks breaking the same limit is one violation: an
- * interval with its worst value.
+ * What a continuous pass plays is walked sample by sample, exactly as the
+ * loop will play it, and every sample put to the loop's own predicate
+ * (plan/limit.h) with the limits the run enforces:
  *
- * Velocity and acceleration are finite differences over h ticks, h =
- * ceil(tick_hz / 1000) (one tick at rates up to 1 kHz), attributed to the
- * tick they end at (velocity) or centre on (acceleration). A joint value is
- * quantised to one Q32.32 step (8.4e-8 degree), so differences carry noise
- * of a few steps per difference; a limit counts as broken only beyond that
- * noise (4 steps per difference), which at 1 kHz is 3.4e-4 deg/s and
- * 0.34 deg/s^2 - far below any servo's limits.
+ *   run-up     from rest, each channel's ramp up to the scene's speed at the
+ *              pass's first pose (plan/runup.h); it must start inside the
+ *              position limits
+ *   scene      every scene tick of the pass, the range and just beyond it
+ *              (plan/timeline.h: the triggers' offsets, the last frame's
+ *              tick when it falls after the last frame's instant)
+ *   post-roll  from the speed of the last tick to rest, braking at each
+ *              channel's acceleration limit (plan/move.h)
+ *
+ * A run of --loop repeats its first pass; one of --ping-pong has up to three
+ * kinds (forwards, backwards, forwards from the second frame), each walked.
+ * The pre-roll, the bridges between passes and step mode's moves go from
+ * rest to rest within the limits by construction (move.h) between poses the
+ * walk has checked; step mode's poses at the frames are checked for the
+ * position limits. A run of consecutive samples breaking the same limit is
+ * one violation: an interval with its worst value.
  */
 #ifndef STRAND_LIMIT_CHECK_H
 #define STRAND_LIMIT_CHECK_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
-#include "scene/scene_desc.h"
+#include "plan/limit.h"
+#include "scene/source.h"
 
-/*
- * LIM_STOP: a controlled stop begun at that tick (every axis decelerating at
- * its acceleration limit, as SIGINT, a fault or a stop input do) would carry
- * the joint past its min or max. A joint with an acceleration limit and a
- * position limit is checked for it at every tick: its stopping point
- *     x + sign(v) (v^2 / (2 a) + |v| / tick_hz)
- * (the second term covers the tick the stop starts in) must stay inside the
- * limits, so that a stop anywhere on a timeline that passes `check` is safe.
- * worst is that stopping point, limit the bound it crosses.
- */
-enum lim_kind { LIM_MIN, LIM_MAX, LIM_VEL, LIM_ACC, LIM_STOP, LIM_NKINDS };
+/* A channel the run drives, and the limits it is held to. */
+struct lim_channel {
+	const char *name;      /* as the scene names it: "base.angle" */
+	uint32_t src;          /* the source's channel index */
+	enum src_unit unit;
+	struct lim_bounds lim; /* core units; INFINITY where none */
+};
+
+/* What the run plays. */
+struct lim_run {
+	int64_t from, to;      /* frames, from <= to */
+	bool loop, ping_pong;
+	int64_t passes;        /* with loop or ping_pong; 0: no end */
+	int64_t lead, tail;    /* ticks: the triggers' earliest and latest offsets */
+	bool step;             /* step mode: the frames' poses, at rest */
+};
+
+enum lim_segment { LIM_SEG_SCENE, LIM_SEG_RUNUP, LIM_SEG_POSTROLL, LIM_SEG_FRAME };
 
 struct lim_violation {
-	uint32_t node;
+	uint32_t channel;          /* index into the channels */
 	enum lim_kind kind;
-	double worst;             /* value, velocity or acceleration (signed), file units */
-	double limit;             /* the limit it breaks (signed like worst) */
-	int64_t tick_first, tick_last;
-	double frame_first, frame_last; /* exact frame times of those ticks */
+	enum lim_segment seg;
+	int dir;                   /* the pass's direction (-1: a ping-pong's way back) */
+	double worst;              /* value, velocity, acceleration or stopping point, core units */
+	double limit;              /* the limit it breaks (signed like worst) */
+	int64_t tick_first, tick_last;  /* scene ticks (LIM_SEG_SCENE), else steps of the segment */
+	double frame_first, frame_last; /* exact frame times; run-up and post-roll: the pass's
+					 * first and last frame */
 };
 
 struct lim_result {
 	uint32_t violations;
-	int64_t ticks;        /* ticks evaluated */
+	int64_t samples;      /* samples put to the predicate */
 	uint32_t sat;         /* the core's sticky saturation bits */
 	double sat_frame;     /* the first frame where sat became non-zero */
 };
@@ -54,14 +75,14 @@ struct lim_result {
 typedef void (*lim_report_fn)(void *ctx, const struct lim_violation *v);
 
 /*
- * Check frames [from, to] of a built scene against d's limits, calling
- * report for each violation as it closes (in time order per limit). 0, or
+ * Walk the run over src (its channels are selected here: the caller selects
+ * its own again afterwards) and report each violation as it closes. 0, or
  * -ENOMEM. Not real-time: it allocates its state.
  */
-int lim_check(const struct scene_desc *d, const struct mot_scene *sc, int64_t from, int64_t to,
-	      lim_report_fn report, void *ctx, struct lim_result *res);
+int lim_check(struct play_source *src, const struct lim_channel *ch, uint32_t n,
+	      const struct lim_run *run, lim_report_fn report, void *ctx, struct lim_result *res);
 
-/* "min", "max", "velocity", "acceleration" */
+/* "min", "max", "velocity", "acceleration", "stopping distance" */
 const char *lim_kind_name(enum lim_kind k);
 
 #endif /* STRAND_LIMIT_CHECK_H */

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check/run_check.h"
 #include "exitcode.h"
 
 int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
@@ -107,4 +108,11 @@ int cli_scene_args(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, 
 	*path = argv[first];
 	rc = cli_open_scene(*path, sf, b, err);
 	return rc ? rc : -1;
+}
+
+int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run *r)
+{
+	char msg[160];
+
+	return run_check_options(r, msg, sizeof(msg)) ? cli_usage(cmd, err, "%s", msg) : -1;
 }

@@ -34,6 +34,12 @@ int cli_main(int argc, char **argv, FILE *out, FILE *err);
 int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
+struct lim_run;
+
+/* The run's options against each other (check/run_check.h): -1 when they
+ * agree, else the usage error's exit code, said on err. */
+int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run *r);
+
 /* A scene file's error as the one line `file:line:column: message` (or
  * `file: message` when it has no position), and the exit code it means. */
 int cli_scene_error(FILE *err, const char *path, const struct load_err *e);
@@ -69,6 +75,6 @@ struct loop_report;
 int cli_play_exit(const struct loop_report *r);
 
 extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info, cmd_play, cmd_journal,
-	cmd_serve;
+	cmd_import, cmd_serve;
 
 #endif /* STRAND_CLI_H */

@@ -1,82 +1,145 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * cmd_check.c - `strand check SCENE`: validate a scene file, then every
- * joint limit over the whole timeline at tick resolution (limit_check.c).
+ * cmd_check.c - `strand check SCENE`: validate a scene file, then walk what
+ * a run would play, tick by tick, against every limit the run would hold
+ * its channels to (check/run_check.h), and its CAN buses' load.
  */
 #include <getopt.h>
 #include <string.h>
 
 #include "check/check_bus.h"
-#include "check/limit_check.h"
+#include "check/run_check.h"
 #include "cli.h"
 #include "exitcode.h"
-#include "scene/channel.h"
+#include "opt.h"
+#include "rig/rig_auto.h"
 
-struct report {
-	FILE *out;
-	const struct scene_desc *d;
+enum { OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_LOOP, OPT_PING_PONG, OPT_PASSES };
+
+static const struct option check_options[] = {
+	{ "sim", no_argument, NULL, OPT_SIM },
+	{ "mode", required_argument, NULL, OPT_MODE },
+	{ "from", required_argument, NULL, OPT_FROM },
+	{ "to", required_argument, NULL, OPT_TO },
+	{ "loop", no_argument, NULL, OPT_LOOP },
+	{ "ping-pong", no_argument, NULL, OPT_PING_PONG },
+	{ "passes", required_argument, NULL, OPT_PASSES },
+	{ "help", no_argument, NULL, 'h' },
+	{ NULL, 0, NULL, 0 },
 };
 
-static void print_violation(void *ctx, const struct lim_violation *v)
-{
-	const struct report *r = ctx;
-	const struct sd_node *n = &r->d->nodes[v->node];
-	bool rev = n->kind == MOT_NODE_REVOLUTE;
-	const char *unit = rev ? "deg" : "units";
-	const char *per = v->kind == LIM_VEL ? "/s" : v->kind == LIM_ACC ? "/s^2" : "";
+struct opts {
+	const struct cli_cmd *cmd;
+	FILE *err;
+	struct lim_run run;
+	bool sim, have_from, have_to;
+};
 
-	/* 7 digits: a velocity or acceleration is a difference of quantised
-	 * values, and more digits would print only that noise (limit_check.h) */
-	if (v->kind == LIM_STOP) {
-		fprintf(r->out,
-			"%s.%s: a controlled stop would end at %.7g %s, beyond limit %.7g %s, "
-			"frames %.10g to %.10g\n",
-			n->name, rev ? "angle" : "position", v->worst, unit, v->limit, unit,
-			v->frame_first, v->frame_last);
-		return;
+static int on_opt(void *ctx, int opt, const char *arg)
+{
+	struct opts *o = ctx;
+	long long v;
+
+	switch (opt) {
+	case OPT_SIM:
+		o->sim = true;
+		return -1;
+	case OPT_MODE:
+		if (strcmp(arg, "continuous") && strcmp(arg, "step"))
+			return cli_usage(o->cmd, o->err, "--mode %s: continuous or step", arg);
+		o->run.step = !strcmp(arg, "step");
+		return -1;
+	case OPT_FROM:
+	case OPT_TO:
+		if (!opt_long(arg, 0, INT32_MAX, &v))
+			return cli_usage(o->cmd, o->err, "%s %s: a frame number",
+					 opt == OPT_FROM ? "--from" : "--to", arg);
+		if (opt == OPT_FROM) {
+			o->run.from = v;
+			o->have_from = true;
+		} else {
+			o->run.to = v;
+			o->have_to = true;
+		}
+		return -1;
+	case OPT_LOOP:
+		o->run.loop = true;
+		return -1;
+	case OPT_PING_PONG:
+		o->run.ping_pong = true;
+		return -1;
+	case OPT_PASSES:
+		if (!opt_long(arg, 1, INT32_MAX, &v))
+			return cli_usage(o->cmd, o->err, "--passes %s: a count of 1 or more", arg);
+		o->run.passes = v;
+		return -1;
+	default:
+		return cli_usage(o->cmd, o->err, "unknown option");
 	}
-	fprintf(r->out, "%s.%s: %s %.7g %s%s beyond limit %.7g %s%s, frames %.10g to %.10g\n",
-		n->name, rev ? "angle" : "position", lim_kind_name(v->kind), v->worst, unit, per,
-		v->limit, unit, per, v->frame_first, v->frame_last);
 }
 
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
-	static const struct option opts[] = { { "help", no_argument, NULL, 'h' }, { 0 } };
+	struct opts o = { .cmd = cmd, .err = err };
+	struct run_check lc = { .out = out };
 	struct scene_file sf;
 	struct scene_built b;
-	struct lim_result res;
-	struct report r;
-	uint32_t i, joints = 0;
+	struct source_scene ss;
+	struct rig_auto ra;
+	const struct rig_desc *rig;
 	const char *path;
+	int64_t ticks;
 	int rc;
 
-	rc = cli_scene_args(cmd, argc, argv, out, err, opts, NULL, NULL, &path, &sf, &b);
+	rc = cli_scene_args(cmd, argc, argv, out, err, check_options, on_opt, &o, &path, &sf, &b);
 	if (rc >= 0)
 		return rc;
-	r.out = out;
-	r.d = &sf.desc;
-	if (lim_check(&sf.desc, &b.sc, (int64_t)sf.desc.frame_first, (int64_t)sf.desc.frame_last,
-		      print_violation, &r, &res)) {
+	memset(&ra, 0, sizeof(ra));
+	rc = STRAND_EXIT_INTERNAL;
+	if (source_scene_init(&ss, &sf.desc, &b.sc)) {
 		fprintf(err, "strand check: out of memory\n");
+		goto out_scene;
+	}
+	if (!o.have_from)
+		o.run.from = ss.s.frame_first;
+	if (!o.have_to)
+		o.run.to = ss.s.frame_last;
+	rc = cli_limits_usage(cmd, err, &o.run);
+	if (rc >= 0)
+		goto out;
+	rig = &sf.rig;
+	if (o.sim && !rig->noutputs && !rig->ntriggers) {
+		/* the rig strand play --sim makes for a scene without one */
 		rc = STRAND_EXIT_INTERNAL;
-	} else if (res.sat) {
-		fprintf(err, "%s: the core's arithmetic saturated at frame %.10g: values too large for its Q32.32 format\n",
-			path, res.sat_frame);
+		if (rig_auto_build(&ra, &sf.desc, &ss.s, o.run.from)) {
+			fprintf(err, "strand check: out of memory\n");
+			goto out;
+		}
+		rig = &ra.d;
+	}
+	rc = run_check(&lc, &ss, rig, &o.run);
+	if (rc) {
+		fprintf(err, "strand check: %s\n", strerror(-rc));
+		rc = STRAND_EXIT_INTERNAL;
+	} else if (lc.res.sat) {
+		fprintf(err, "%s: the core's arithmetic saturated at frame %.10g: values too large "
+			"for its Q32.32 format\n", path, lc.res.sat_frame);
 		rc = STRAND_EXIT_INTERNAL;
 	} else {
-		for (i = 0; i < sf.desc.nnodes; i++) {
-			const struct sd_limits *l = &sf.desc.nodes[i].limits;
-
-			joints += l->has_min || l->has_max || l->has_vel || l->has_acc;
-		}
-		fprintf(out, "%s: %u violation%s; %u joint%s with limits, frames %g to %g, %lld ticks\n",
-			path, res.violations, res.violations == 1 ? "" : "s", joints,
-			joints == 1 ? "" : "s", sf.desc.frame_first, sf.desc.frame_last,
-			(long long)res.ticks);
-		check_buses(out, &sf.rig, sf.desc.tick_hz);
-		rc = res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
+		ticks = mot_timing_trigger_tick(&ss.s.timing, o.run.to) -
+			mot_timing_trigger_tick(&ss.s.timing, o.run.from) + 1;
+		fprintf(out, "%s: %u violation%s; %u channel%s with limits, frames %lld to %lld, "
+			"%lld ticks\n", path, lc.res.violations, lc.res.violations == 1 ? "" : "s",
+			run_check_count(&lc), run_check_count(&lc) == 1 ? "" : "s",
+			(long long)o.run.from, (long long)o.run.to, (long long)ticks);
+		check_buses(out, rig, sf.desc.tick_hz);
+		rc = lc.res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
+out:
+	run_check_free(&lc);
+	rig_auto_free(&ra);
+	source_scene_free(&ss);
+out_scene:
 	scene_built_free(&b);
 	scene_file_free(&sf);
 	return rc;
@@ -84,14 +147,19 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 
 const struct cli_cmd cmd_check = {
 	.name = "check",
-	.summary = "validate a scene and verify every joint limit at tick resolution",
-	.help = "usage: strand check SCENE.yaml\n\n"
-		"Validate the scene file, then play its whole span (timing.frames) at\n"
-		"tick resolution, as the controller will, and compare every joint with its\n"
-		"limits: min and max value, velocity and acceleration. Each run of ticks\n"
-		"breaking a limit is one line:\n"
+	.summary = "validate a scene and verify every limit over what a run plays",
+	.help = "usage: strand check SCENE.yaml [--from F] [--to F] [--loop | --ping-pong]\n"
+		"                   [--passes N] [--mode continuous|step] [--sim]\n\n"
+		"Validate the scene file, then walk what strand play would play, tick by tick,\n"
+		"as the controller will: the run-up into each pass, the scene's ticks, the\n"
+		"post-roll to rest. Every channel the rig drives is held to its output's limits\n"
+		"(its node's where the output gives none), every other joint to its node's:\n"
+		"min and max value, velocity, acceleration, and where a controlled stop would\n"
+		"leave it. Each run of ticks breaking a limit is one line:\n"
 		"  CHANNEL: KIND WORST UNIT beyond limit LIMIT UNIT, frames FIRST to LAST\n"
-		"then a summary line.\n\n"
+		"then a summary line. The options are strand play's, and check what such a run\n"
+		"plays (default: the scene's span, once); --sim checks a scene without a rig\n"
+		"against the simulated rig strand play --sim makes for it.\n\n"
 		"exit codes: 0 within limits, 1 limits violated, 2 invalid scene, 3 usage,\n"
 		"            4 I/O, 8 the core's arithmetic saturated\n",
 	.run = run,

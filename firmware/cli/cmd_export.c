@@ -9,14 +9,17 @@
  * so the frame column is that tick's exact frame time, at most one tick
  * after the frame itself; `--at ticks` samples every tick.
  */
+#include <errno.h>
 #include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 #include "exitcode.h"
+#include "plan/timeline.h"
 #include "report/numfmt.h"
 #include "scene/channel.h"
+#include "scene/source_scene.h"
 
 #define FRAME_LIMIT 1073741823LL
 #define OUT_BUF (1u << 16)
@@ -98,8 +101,8 @@ static void header(struct sink *s, const struct chan_list *ch, bool jsonl)
 	s->used += (size_t)sprintf(p, jsonl ? "]\n" : "\n");
 }
 
-static void row(struct sink *s, const struct chan_list *ch, const struct mot_pose *pose,
-		int64_t tick, mot_q32 frame, bool jsonl)
+static void row(struct sink *s, const struct chan_list *ch, const mot_q32 *v, int64_t tick,
+		mot_q32 frame, bool jsonl)
 {
 	uint32_t i;
 	char *p = sink_room(s, 2 * NUMFMT_MAX + 4);
@@ -112,7 +115,7 @@ static void row(struct sink *s, const struct chan_list *ch, const struct mot_pos
 	for (i = 0; i < ch->n; i++) {
 		p = sink_room(s, NUMFMT_MAX + 2);
 		*p++ = ',';
-		s->used += 1 + numfmt_double(p, chan_value(&ch->c[i], pose));
+		s->used += 1 + numfmt_double(p, chan_value_q32(&ch->c[i], v[i]));
 	}
 	p = sink_room(s, 3);
 	if (jsonl)
@@ -121,65 +124,90 @@ static void row(struct sink *s, const struct chan_list *ch, const struct mot_pos
 	s->used++;
 }
 
+/*
+ * Every channel, selected in the source in the list's order, over the
+ * range [from, to] as a run of those frames plays it (plan/timeline.h):
+ * ticks beyond the range's own, such as the last frame's when it falls
+ * after the frame's instant, carry each position on at its speed.
+ */
+static int range_of(struct source_scene *ss, const struct opts *o, struct timeline *tl,
+		    bool **extend, mot_q32 **mem, uint32_t *sat)
+{
+	uint32_t n = ss->all.n, i, *sel = calloc(n + 1, sizeof(*sel));
+	int rc = -ENOMEM;
+
+	*extend = calloc(n + 1, sizeof(**extend));
+	*mem = calloc(TIMELINE_WORDS(n) + 1, sizeof(**mem));
+	if (sel && *extend && *mem) {
+		for (i = 0; i < n; i++) {
+			struct src_channel sc;
+
+			sel[i] = i;
+			(*extend)[i] = src_lookup(&ss->s, ss->all.c[i].name, &sc) == (int)i &&
+				       timeline_extends(sc.unit);
+		}
+		rc = src_select(&ss->s, sel, n);
+	}
+	free(sel);
+	if (!rc)
+		timeline_init(tl, &ss->s, n, *extend, o->from, o->to, *mem, sat);
+	return rc;
+}
+
 static int export(FILE *out, FILE *err, const char *path, const struct scene_file *sf,
 		  const struct mot_scene *sc, const struct opts *o)
 {
 	const struct mot_timing *t = &sc->timing;
-	struct chan_list ch = { 0 };
 	struct sink s = { out, NULL, 0, false };
-	struct mot_eval ev = { 0 };
-	struct mot_pose pose;
+	struct source_scene ss;
+	struct timeline tl;
+	bool *extend = NULL;
+	mot_q32 *mem = NULL, *v = NULL;
+	uint32_t sat = 0;
 	int64_t k, k_last;
 	long long f;
 	int rc = STRAND_EXIT_OK;
 
+	if (source_scene_init(&ss, &sf->desc, sc)) {
+		fprintf(err, "strand export: out of memory\n");
+		return STRAND_EXIT_INTERNAL;
+	}
 	s.buf = malloc(OUT_BUF);
-	if (!s.buf || chan_list_make(&ch, &sf->desc) || scene_eval_new(&ev, sc)) {
-		free(s.buf);
-		chan_list_free(&ch);
-		scene_eval_free(&ev);
+	v = calloc(ss.all.n + 1, sizeof(*v));
+	if (!s.buf || !v || range_of(&ss, o, &tl, &extend, &mem, &sat)) {
 		fprintf(err, "strand export: out of memory\n");
-		return STRAND_EXIT_INTERNAL;
+		rc = STRAND_EXIT_INTERNAL;
+		goto out;
 	}
-	if (scene_pose_new(&pose, sc)) {
-		free(s.buf);
-		chan_list_free(&ch);
-		scene_eval_free(&ev);
-		fprintf(err, "strand export: out of memory\n");
-		return STRAND_EXIT_INTERNAL;
-	}
-	header(&s, &ch, o->jsonl);
+	header(&s, &ss.all, o->jsonl);
 	if (o->ticks) {
 		k_last = mot_timing_trigger_tick(t, o->to);
 		for (k = mot_timing_trigger_tick(t, o->from); k <= k_last && !s.failed; k += o->every) {
-			mot_q32 fr = mot_timing_tick_frame(t, k);
-
-			mot_scene_eval(sc, &ev, fr, &pose);
-			row(&s, &ch, &pose, k, fr, o->jsonl);
+			timeline_eval(&tl, k, v, &sat);
+			row(&s, &ss.all, v, k, mot_timing_tick_frame(t, k), o->jsonl);
 		}
 	} else {
 		for (f = o->from; f <= o->to && !s.failed; f += o->every) {
-			mot_q32 fr;
-
 			k = mot_timing_trigger_tick(t, f);
-			fr = mot_timing_tick_frame(t, k);
-			mot_scene_eval(sc, &ev, fr, &pose);
-			row(&s, &ch, &pose, k, fr, o->jsonl);
+			timeline_eval(&tl, k, v, &sat);
+			row(&s, &ss.all, v, k, mot_timing_tick_frame(t, k), o->jsonl);
 		}
 	}
 	sink_flush(&s);
 	if (s.failed || fflush(out)) {
 		fprintf(err, "strand export: cannot write the output\n");
 		rc = STRAND_EXIT_IO;
-	} else if (ev.sat) {
+	} else if (sat) {
 		fprintf(err, "%s: the core's arithmetic saturated: values too large for its Q32.32 format\n",
 			path);
 		rc = STRAND_EXIT_INTERNAL;
 	}
-	scene_pose_free(&pose);
-	scene_eval_free(&ev);
-	chan_list_free(&ch);
+out:
+	free(extend);
+	free(mem);
+	free(v);
 	free(s.buf);
+	source_scene_free(&ss);
 	return rc;
 }
 

@@ -113,11 +113,12 @@ static void strands(FILE *out, const struct scene_file *sf)
 		const struct sf_strand *s = &sf->strand[i];
 		const struct sd_node *n = &d->nodes[i];
 		const char *what;
+		char rot[48];
 
 		if (!s->present)
 			continue;
-		what = n->kind == MOT_NODE_FREE ? (s->squad ? "transform, rotation squad" :
-							      "transform, rotation slerp") :
+		snprintf(rot, sizeof(rot), "transform, rotation %s", s->rotation ? s->rotation : "slerp");
+		what = n->kind == MOT_NODE_FREE ? rot :
 		       s->rpm ? "rpm" : n->kind == MOT_NODE_REVOLUTE ? "angle" : "position";
 		fprintf(out, "  %-16s %-8s %4u key%s  frames %g to %g  (%s)\n", n->name,
 			interp_name[s->interp], s->nkeys, s->nkeys == 1 ? " " : "s",

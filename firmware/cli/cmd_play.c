@@ -16,7 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "check/limit_check.h"
+#include "check/run_check.h"
 #include "cli.h"
 #include "exitcode.h"
 #include "play/frames.h"
@@ -37,7 +37,8 @@ enum {
 	OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_FRAMES, OPT_LOOP, OPT_PING_PONG,
 	OPT_PASSES, OPT_DURATION, OPT_SETTLE, OPT_EXPOSURE, OPT_TIMEOUT, OPT_JOURNAL,
 	OPT_NO_JOURNAL, OPT_TELEMETRY, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK,
-	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET,
+	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET, OPT_CHASE, OPT_TC_OFFSET,
+	OPT_FREEWHEEL,
 };
 
 static const struct option play_options[] = {
@@ -64,6 +65,9 @@ static const struct option play_options[] = {
 	{ "camera-log", required_argument, NULL, OPT_CAMERA_LOG },
 	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
 	{ "quiet", no_argument, NULL, OPT_QUIET },
+	{ "chase", required_argument, NULL, OPT_CHASE },
+	{ "tc-offset", required_argument, NULL, OPT_TC_OFFSET },
+	{ "freewheel", required_argument, NULL, OPT_FREEWHEEL },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -73,7 +77,7 @@ struct cli {
 	FILE *err;
 	struct play_opts o;
 	const char *frames, *lat_hist;
-	bool have_from, have_to, no_journal, quiet, step;
+	bool have_from, have_to, no_journal, quiet, step, freewheel_given;
 	long long from, to;
 	double duration_s, settle_ms, exposure_ms, timeout_s;
 	const char *duration_arg, *timeout_arg; /* as given, for their messages */
@@ -207,6 +211,18 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	case OPT_QUIET:
 		c->quiet = true;
 		return -1;
+	case OPT_CHASE:
+		c->o.chase.spec = arg;
+		return -1;
+	case OPT_TC_OFFSET:
+		c->o.chase.tc_offset = arg;
+		return -1;
+	case OPT_FREEWHEEL:
+		if (!opt_double(arg, 0, DBL_MAX, &c->o.chase.freewheel_ms) ||
+		    c->o.chase.freewheel_ms > 3600000)
+			return cli_usage(c->cmd, c->err, "--freewheel %s: 0 to 3600000 ms", arg);
+		c->freewheel_given = true;
+		return -1;
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
 	}
@@ -314,45 +330,46 @@ static int write_hist(const char *path, const struct lat_stats *s)
 	return fclose(f) ? -errno : 0;
 }
 
-struct first_violation {
-	const struct scene_desc *d;
-	struct lim_violation v;
-	bool any;
-};
-
-static void keep_first(void *ctx, const struct lim_violation *v)
+/*
+ * strand check's walk over what this run will play, with the limits its
+ * rig holds each channel to (an automatic rig's derived ones included),
+ * before any device starts: 0 clean, else the exit code, having said why.
+ */
+static int check_first(struct cli *c, const char *path, struct source_scene *ss,
+		       const struct rig_desc *rig, struct frame_list *fl)
 {
-	struct first_violation *f = ctx;
+	struct run_check lc = { .out = NULL };
+	struct lim_run run = {
+		.from = c->o.loop.from, .to = c->o.loop.to, .loop = c->o.loop.loop,
+		.ping_pong = c->o.loop.ping_pong, .passes = c->o.loop.passes, .step = c->step,
+	};
+	char line[512];
+	int rc;
 
-	if (!f->any)
-		f->v = *v;
-	f->any = true;
-}
-
-/* `strand check` over what will play: 0 clean, else the exit code. */
-static int check_first(struct cli *c, const char *path, const struct scene_file *sf,
-		       const struct scene_built *b, int64_t from, int64_t to)
-{
-	struct first_violation fv = { .d = &sf->desc };
-	struct lim_result res;
-	const struct sd_node *n;
-
-	if (lim_check(&sf->desc, &b->sc, from, to, keep_first, &fv, &res)) {
-		fprintf(c->err, "strand play: out of memory\n");
-		return STRAND_EXIT_INTERNAL;
+	if (c->step && fl->n) {
+		/* step mode shoots the frames it lists: their poses */
+		run.from = frames_min(fl);
+		run.to = frames_max(fl);
 	}
-	if (!res.violations || c->o.loop.force)
-		return 0;
-	n = &sf->desc.nodes[fv.v.node];
-	fprintf(c->err,
-		"%s: strand check finds %u limit violation%s, the first: %s.%s %s %.7g beyond "
-		"%.7g at frames %.10g to %.10g.\n"
-		"strand play refuses it ('strand check %s' lists them all); --force plays it,\n"
-		"clamping every setpoint to its limits.\n",
-		path, res.violations, res.violations == 1 ? "" : "s", n->name,
-		n->kind == MOT_NODE_REVOLUTE ? "angle" : "position", lim_kind_name(fv.v.kind),
-		fv.v.worst, fv.v.limit, fv.v.frame_first, fv.v.frame_last, path);
-	return STRAND_EXIT_VIOLATION;
+	rc = run_check(&lc, ss, rig, &run);
+	if (rc) {
+		fprintf(c->err, "strand play: %s\n", strerror(-rc));
+		rc = STRAND_EXIT_INTERNAL;
+	} else if (lc.res.sat) {
+		fprintf(c->err, "%s: the core's arithmetic saturated at frame %.10g: values too "
+			"large for its Q32.32 format\n", path, lc.res.sat_frame);
+		rc = STRAND_EXIT_INTERNAL;
+	} else if (lc.res.violations && !c->o.loop.force) {
+		run_check_line(line, sizeof(line), &lc, &lc.first);
+		fprintf(c->err,
+			"%s: strand check finds %u limit violation%s, the first: %s.\n"
+			"strand play refuses it ('strand check %s' with the same options lists "
+			"them all); --force plays it,\nclamping every setpoint to its limits.\n",
+			path, lc.res.violations, lc.res.violations == 1 ? "" : "s", line, path);
+		rc = STRAND_EXIT_VIOLATION;
+	}
+	run_check_free(&lc);
+	return rc;
 }
 
 int cli_play_exit(const struct loop_report *r)
@@ -416,6 +433,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	c.exposure_ms = 100;
 	c.timeout_s = 10;
 	c.timeout_arg = "10";
+	c.o.chase.freewheel_ms = 500;
 	rc = cli_scene_args(cmd, argc, argv, out, err, play_options, on_opt, &c, &path, &sf, &b);
 	if (rc >= 0)
 		return rc;
@@ -427,16 +445,13 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		cli_usage(cmd, err, "--frames is for --mode step");
 		goto out;
 	}
-	if (c.step && (c.o.loop.loop || c.o.loop.ping_pong)) {
-		cli_usage(cmd, err, "--loop and --ping-pong are for continuous mode");
+	if (c.o.chase.spec && (c.step || c.o.loop.loop || c.o.loop.ping_pong)) {
+		cli_usage(cmd, err, "--chase plays the scene as the source runs: not with --mode "
+			  "step, --loop or --ping-pong");
 		goto out;
 	}
-	if (c.o.loop.loop && c.o.loop.ping_pong) {
-		cli_usage(cmd, err, "--loop or --ping-pong, not both");
-		goto out;
-	}
-	if (c.o.loop.passes && !c.o.loop.loop && !c.o.loop.ping_pong) {
-		cli_usage(cmd, err, "--passes goes with --loop or --ping-pong");
+	if (!c.o.chase.spec && (c.o.chase.tc_offset || c.freewheel_given)) {
+		cli_usage(cmd, err, "--tc-offset and --freewheel go with --chase");
 		goto out;
 	}
 	rc = STRAND_EXIT_INTERNAL;
@@ -446,10 +461,15 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	}
 	c.o.loop.from = c.have_from ? c.from : src.s.frame_first;
 	c.o.loop.to = c.have_to ? c.to : src.s.frame_last;
-	rc = check_first(&c, path, &sf, &b, c.step ? src.s.frame_first : c.o.loop.from,
-			 c.step ? src.s.frame_last : c.o.loop.to);
-	if (rc)
-		goto out;
+	{
+		struct lim_run r = { .from = c.o.loop.from, .to = c.o.loop.to,
+				     .loop = c.o.loop.loop, .ping_pong = c.o.loop.ping_pong,
+				     .passes = c.o.loop.passes, .step = c.step };
+
+		rc = cli_limits_usage(cmd, err, &r);
+		if (rc >= 0)
+			goto out;
+	}
 	rig = &sf.rig;
 	if (!rig->noutputs && !rig->ntriggers) {
 		rc = STRAND_EXIT_SCENE;
@@ -458,7 +478,8 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 				"play it on a simulated one with --sim\n", path);
 			goto out;
 		}
-		if (rig_auto_build(&ra, &sf.desc, &src.s)) {
+		rc = STRAND_EXIT_INTERNAL;
+		if (rig_auto_build(&ra, &sf.desc, &src.s, c.o.loop.from)) {
 			fprintf(err, "strand play: out of memory\n");
 			goto out;
 		}
@@ -489,6 +510,9 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		}
 		c.o.loop.frames = &fl;
 	}
+	rc = check_first(&c, path, &src, rig, &fl);
+	if (rc)
+		goto out;
 	if (!c.no_journal) {
 		if (!c.journal[0])
 			default_journal(c.journal, sizeof(c.journal), src.s.name);
@@ -575,6 +599,13 @@ const struct cli_cmd cmd_play = {
 		"  --camera-log FILE     the first simulated camera logs its trigger edges there\n"
 		"  --latency-hist FILE   the wake-up latency histogram (us count lines)\n"
 		"  --quiet               no status line, no summary\n"
+		"  --chase SPEC          follow an external clock: ltc:DEVICE (LTC on an ALSA\n"
+		"                        capture device), ltc:sim[:K=V,...] (simulated), or\n"
+		"                        gpio:CHIP:LINE (a frame pulse): wait for it, lock, play\n"
+		"                        from the frame it names (see README \"Time from outside\")\n"
+		"  --tc-offset TC        the source's timecode of the scene's frame 0 (00:00:00:00)\n"
+		"  --freewheel MS        run on without the source this long, then a controlled\n"
+		"                        stop and a new cue when it is back (500)\n"
 		"\n"
 		"SIGINT or SIGTERM: every axis comes to rest within its limits (exit 5); a second\n"
 		"SIGINT disables the drives at once. During the devices' start-up it is given up\n"

@@ -78,6 +78,10 @@
 /* A double every IEEE 754 binary64 machine stores alike, for the header. */
 #define JOURNAL_PROBE (-1.5)
 
+/* The header's mode: bits. */
+#define JOURNAL_MODE_STEP 1  /* step mode (else continuous) */
+#define JOURNAL_MODE_CHASE 2 /* --chase: records hold the source's frame */
+
 enum journal_state {
 	JOURNAL_EMPTY = 0,
 	JOURNAL_ARMED = 1,
@@ -105,7 +109,7 @@ struct journal_hdr {
 	uint32_t nout;
 	uint32_t rate_num, rate_den;
 	uint32_t tick_hz;
-	uint32_t mode; /* 0 continuous, 1 step */
+	uint32_t mode; /* JOURNAL_MODE_* */
 	int64_t start_wall_ns;
 	int64_t capacity; /* records the run planned; -1: a run without an end */
 	char scene[64];
@@ -125,7 +129,8 @@ struct journal_rec {
 	int64_t wall_ns;  /* the same instant on CLOCK_REALTIME */
 	double ferr;      /* worst |following error| during the frame, core units */
 	int32_t ferr_out; /* its output, -1 when no output has feedback */
-	uint32_t pad;
+	uint32_t src_frame; /* --chase: the source's frame at the edge's due
+			     * time, plus one (its label's number in the day); 0: none */
 	int64_t sp[];     /* nout setpoints, Q32.32 core units */
 };
 

@@ -92,7 +92,7 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 	struct journal_hdr hh, *h = NULL;
 	const struct journal_out *o;
 	struct journal_rec *r = NULL;
-	struct timecode tc;
+	struct timecode tc, src_tc;
 	struct stat st;
 	int fd, err = 0;
 	uint32_t i;
@@ -130,12 +130,16 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 	}
 	o = (const struct journal_out *)((const char *)h + out_offset(h->version));
 	timecode_init(&tc, h->rate_num, h->rate_den);
-	fprintf(out, "frame,timecode,tick,trigger,state,due_ns,mono_ns,late_us,wall,ferr,ferr_channel");
+	/* the source counts at most 30 labels a second (play.c) */
+	timecode_init(&src_tc, (double)h->rate_num / h->rate_den > 30.5 ? h->rate_num / 2 :
+			       h->rate_num, h->rate_den);
+	fprintf(out, "frame,timecode,%stick,trigger,state,due_ns,mono_ns,late_us,wall,ferr,"
+		"ferr_channel", h->mode & JOURNAL_MODE_CHASE ? "source_tc," : "");
 	for (i = 0; i < h->nout; i++)
 		fprintf(out, ",%.*s", JOURNAL_NAME_MAX, o[i].name);
 	fputc('\n', out);
 	for (off = h->hdr_bytes; off + (off_t)h->rec_bytes <= st.st_size; off += h->rec_bytes) {
-		char tcs[24], wall[48];
+		char tcs[48], wall[48];
 		uint32_t state;
 
 		if (pread(fd, r, h->rec_bytes, off) != (ssize_t)h->rec_bytes) {
@@ -147,6 +151,16 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		if (state == JOURNAL_EMPTY)
 			break; /* the end of a journal whose writer was killed */
 		timecode_format(&tc, r->frame, tcs, sizeof(tcs));
+		if (h->mode & JOURNAL_MODE_CHASE) { /* and the source's */
+			size_t l = strlen(tcs);
+
+			tcs[l++] = ',';
+			if (r->src_frame)
+				timecode_format(&src_tc, (int64_t)r->src_frame - 1, tcs + l,
+						(unsigned)(sizeof(tcs) - l));
+			else
+				tcs[l] = '\0';
+		}
 		if (state == JOURNAL_FIRED) {
 			wall_iso(r->wall_ns, wall, sizeof(wall));
 			fprintf(out, "%lld,%s,%lld,%u,fired,%lld,%lld,%.3f,%s,",

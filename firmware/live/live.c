@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check/limit_check.h"
+#include "check/run_check.h"
 #include "hal/rt.h"
 #include "play/play.h"
 
@@ -103,15 +103,21 @@ int live_scene_open(struct live_scene **out, const char *path, char *err, size_t
 	return rc;
 }
 
-int live_scene_bind(struct live_scene *s, const struct rig *rig)
+/* src's channels: the rig's outputs', in their order. */
+static int select_rig(struct play_source *src, const struct rig *rig)
 {
 	uint32_t idx[LOOP_LIVE_OUT_MAX], i;
-	int rc;
 
 	for (i = 0; i < rig->nout && i < LOOP_LIVE_OUT_MAX; i++)
 		idx[i] = rig->out[i].src;
-	rc = src_select(&s->src.s, idx, i);
-	return rc ? rc : src_select(&s->twin.s, idx, i);
+	return src_select(src, idx, i);
+}
+
+int live_scene_bind(struct live_scene *s, const struct rig *rig)
+{
+	int rc = select_rig(&s->src.s, rig);
+
+	return rc ? rc : select_rig(&s->twin.s, rig);
 }
 
 void live_scene_free(struct live_scene *s)
@@ -130,39 +136,36 @@ void live_scene_free(struct live_scene *s)
 	free(s);
 }
 
-struct first_violation {
-	struct lim_violation v;
-	bool any;
-};
-
-static void keep_first(void *ctx, const struct lim_violation *v)
+int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run, char *msg,
+		     size_t size)
 {
-	struct first_violation *f = ctx;
+	struct run_check c = { .out = NULL };
+	char line[LIVE_MSG];
+	int rc = run_check_options(run, msg, size);
 
-	if (!f->any)
-		f->v = *v;
-	f->any = true;
-}
-
-int live_scene_check(struct live_scene *s, int64_t from, int64_t to, char *msg, size_t size)
-{
-	struct first_violation fv = { .any = false };
-	struct lim_result res;
-	const struct sd_node *n;
-
-	if (lim_check(&s->sf.desc, &s->b.sc, from, to, keep_first, &fv, &res)) {
-		snprintf(msg, size, "out of memory");
-		return -ENOMEM;
+	if (rc)
+		return rc;
+	/* on the twin, which the loop never reads; its channels the rig's
+	 * again afterwards (run_check selects its own) */
+	rc = run_check(&c, &s->twin, lv->rd, run);
+	if (lv->rig_built && select_rig(&s->twin.s, &lv->rig) && !rc)
+		rc = -ENOMEM;
+	if (rc) {
+		snprintf(msg, size, "%s: the limit check: %s", s->path, strerror(-rc));
+	} else if (c.res.sat) {
+		snprintf(msg, size, "%s: the core's arithmetic saturated at frame %.10g: values too "
+			 "large for its Q32.32 format", s->path, c.res.sat_frame);
+		rc = -ERANGE;
+	} else if (c.res.violations && !lv->o.force) {
+		run_check_line(line, sizeof(line), &c, &c.first);
+		snprintf(msg, size, "%s: strand check finds %u limit violation%s, the first: %s "
+			 "(strand check lists them all; --force plays it, clamping every setpoint "
+			 "to its limits)", s->path, c.res.violations,
+			 c.res.violations == 1 ? "" : "s", line);
+		rc = -EDOM;
 	}
-	if (!res.violations)
-		return 0;
-	n = &s->sf.desc.nodes[fv.v.node];
-	snprintf(msg, size, "%s: strand check finds %u limit violation%s, the first: %s.%s %s "
-		 "%.7g beyond %.7g at frames %.10g to %.10g", s->path, res.violations,
-		 res.violations == 1 ? "" : "s", n->name,
-		 n->kind == MOT_NODE_REVOLUTE ? "angle" : "position", lim_kind_name(fv.v.kind),
-		 fv.v.worst, fv.v.limit, fv.v.frame_first, fv.v.frame_last);
-	return -EDOM;
+	run_check_free(&c);
+	return rc;
 }
 
 /* ---- open and close ---- */
@@ -208,6 +211,7 @@ int live_rig_up(struct live *lv, char *err, size_t errsize)
 	uint32_t i;
 	int rc;
 
+	lv->rig_sc = lv->sc;
 	lv->rd = &lv->sc->sf.rig;
 	if (!lv->rd->noutputs && !lv->rd->ntriggers) {
 		if (!lv->o.sim) {
@@ -215,7 +219,8 @@ int live_rig_up(struct live *lv, char *err, size_t errsize)
 				 "triggers:); serve it on a simulated one with --sim", lv->sc->path);
 			return -EINVAL;
 		}
-		if (rig_auto_build(&lv->ra, &lv->sc->sf.desc, &lv->sc->src.s)) {
+		if (rig_auto_build(&lv->ra, &lv->sc->sf.desc, &lv->sc->src.s,
+				   lv->sc->src.s.frame_first)) {
 			snprintf(err, errsize, "out of memory");
 			return -ENOMEM;
 		}
@@ -259,6 +264,17 @@ void live_rig_down(struct live *lv)
 	lv->rig_built = false;
 	rig_auto_free(&lv->ra);
 	memset(&lv->ra, 0, sizeof(lv->ra));
+	lv->rd = NULL;
+	if (lv->rig_sc != lv->sc)
+		live_scene_free(lv->rig_sc);
+	lv->rig_sc = NULL;
+}
+
+void live_scene_swap(struct live *lv, struct live_scene *s)
+{
+	if (lv->sc != lv->rig_sc)
+		live_scene_free(lv->sc);
+	lv->sc = s;
 }
 
 int live_open(struct live **out, const char *scene, const struct live_opts *o, char *err,

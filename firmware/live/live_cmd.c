@@ -228,6 +228,7 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 	struct frame_list fl = { 0 };
 	struct loop_ack a;
 	struct loop_cfg *cfg = &c.cfg;
+	struct lim_run run;
 	int64_t from = p->has_from ? p->from : s->frame_first;
 	int64_t to = p->has_to ? p->to : s->frame_last;
 	int rc;
@@ -307,11 +308,12 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 		}
 		frames_free(&fl);
 	}
-	if (!lv->o.force) {
-		rc = live_scene_check(lv->sc, from, to, msg, size);
-		if (rc)
-			return rc;
-	}
+	/* held to exactly what strand check verifies, as strand play is */
+	run = (struct lim_run){ .from = from, .to = to, .loop = p->loop, .ping_pong = p->ping_pong,
+				.passes = p->passes, .step = p->step };
+	rc = live_scene_check(lv, lv->sc, &run, msg, size);
+	if (rc)
+		return rc;
 	rc = live_send(lv, &c, &a, msg, size);
 	if (!rc)
 		lv->goto_frame = -1;

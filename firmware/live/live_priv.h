@@ -18,6 +18,7 @@
 #include "hal/clock.h"
 #include "hal/ring.h"
 #include "hal/thread.h"
+#include "check/limit_check.h"
 #include "load/load.h"
 #include "play/loop.h"
 #include "rig/rig.h"
@@ -44,6 +45,10 @@ struct live {
 	pthread_mutex_t mu;      /* the commands and the session's state */
 	pthread_mutex_t snap_mu; /* snap */
 	struct live_scene *sc;
+	/* the scene the rig was built from: its names and devices' settings
+	 * are the rig's, so it lives as long as the rig (a teach replaces sc
+	 * alone: the same rig, other keys) */
+	struct live_scene *rig_sc;
 	struct rig_auto ra;
 	const struct rig_desc *rd;
 	struct rig rig;
@@ -82,17 +87,24 @@ struct live {
 };
 
 /* live.c */
+/* The session's scene becomes s (the old one freed unless the rig holds
+ * it). */
+void live_scene_swap(struct live *lv, struct live_scene *s);
 int live_scene_open(struct live_scene **out, const char *path, char *err, size_t errsize);
 int live_scene_parse(struct live_scene **out, const char *path, const char *text, size_t len,
 		     char *err, size_t errsize);
 /* Both sources select the rig's channels. */
 int live_scene_bind(struct live_scene *s, const struct rig *rig);
 void live_scene_free(struct live_scene *s);
-/* strand check over [from, to]: 0, or -EDOM with the first violation. */
-int live_scene_check(struct live_scene *s, int64_t from, int64_t to, char *msg, size_t size);
+/* strand check of run over s on the session's rig (check/run_check.h), as
+ * strand play makes it before anything moves: 0, or -EINVAL (the options
+ * disagree), -EDOM (a violation, the first in msg; not with --force),
+ * -ERANGE (saturated), -ENOMEM. */
+int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run, char *msg,
+		     size_t size);
 
 /* Build the rig for lv->sc, start its devices, disable the drives; and
- * the reverse. */
+ * the reverse (which frees rig_sc when it is no longer sc). */
 int live_rig_up(struct live *lv, char *err, size_t errsize);
 void live_rig_down(struct live *lv);
 

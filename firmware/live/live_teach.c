@@ -86,6 +86,7 @@ static int apply(struct live *lv, const char *text, size_t len, const char *path
 	struct live_scene *ns;
 	struct loop_cmd c = { .kind = LOOP_CMD_SOURCE };
 	struct loop_ack a;
+	struct lim_run run;
 	const char *dst = path ? path : lv->sc->path;
 	bool bak_made = false;
 	int rc;
@@ -102,11 +103,10 @@ static int apply(struct live *lv, const char *text, size_t len, const char *path
 		live_scene_free(ns);
 		return -EINVAL;
 	}
-	if (!lv->o.force) {
-		rc = live_scene_check(ns, ns->src.s.frame_first, ns->src.s.frame_last, msg, size);
-		if (rc)
-			goto fail;
-	}
+	run = (struct lim_run){ .from = ns->src.s.frame_first, .to = ns->src.s.frame_last };
+	rc = live_scene_check(lv, ns, &run, msg, size);
+	if (rc)
+		goto fail;
 	rc = live_scene_bind(ns, &lv->rig);
 	if (rc) {
 		snprintf(msg, size, "out of memory");
@@ -154,8 +154,7 @@ static int apply(struct live *lv, const char *text, size_t len, const char *path
 		return 0;
 	}
 keep:
-	live_scene_free(lv->sc);
-	lv->sc = ns;
+	live_scene_swap(lv, ns);
 	pthread_mutex_lock(&lv->snap_mu);
 	lv->generation++;
 	pthread_mutex_unlock(&lv->snap_mu);
@@ -328,17 +327,10 @@ int live_load(struct live *lv, const char *name, char *msg, size_t size)
 	rc = live_scene_open(&ns, path, msg, size);
 	if (rc)
 		goto out;
-	old = lv->sc;
 	loop_free(lv->L);
 	lv->L = NULL;
-	if (lv->rig_started)
-		rig_stop(&lv->rig);
-	lv->rig_started = false;
-	if (lv->rig_built)
-		rig_free(&lv->rig);
-	lv->rig_built = false;
-	rig_auto_free(&lv->ra);
-	memset(&lv->ra, 0, sizeof(lv->ra));
+	live_rig_down(lv);
+	old = lv->sc;
 	lv->sc = ns;
 	rc = live_rig_up(lv, msg, size);
 	if (rc) {

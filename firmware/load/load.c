@@ -101,6 +101,8 @@ static int sections(struct ld *l, yaml_node_t *root)
 		return ld_nomem(l);
 	if (v[T_STRANDS])
 		err = ld_strands(l, v[T_STRANDS]);
+	if (!err)
+		err = ld_mimics(l);
 	if (!err && v[T_CAMERA])
 		err = ld_camera(l, v[T_CAMERA]);
 	if (!err && v[T_CYCLES])

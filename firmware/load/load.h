@@ -50,6 +50,7 @@ struct sf_strand {
 	bool present;
 	enum mot_interp interp;
 	bool squad;          /* free nodes: rotation by squad */
+	const char *rotation; /* free nodes: slerp, squad, cubic or step */
 	bool rpm;            /* revolute joints keyed by speed */
 	uint32_t nkeys;      /* keys in the file */
 	const double *key_frames; /* nkeys frames, as written */

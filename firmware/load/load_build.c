@@ -39,7 +39,7 @@ static const struct sf_curve_marks *curve_marks(const struct scene_file *sf,
 			return &nm->value;
 		else if (!strcmp(e->what, "spin"))
 			return &nm->spin;
-		else if (!strcmp(e->what, "rotation"))
+		else if (!strncmp(e->what, "rotation", 8))
 			return &nm->rot;
 		for (i = 0; i < MOT_FREE_NCHANNELS; i++)
 			if (!strcmp(e->what, sd_free_names[i]))

@@ -122,3 +122,28 @@ int ld_curve_check(struct ld *l, const struct sd_curve *c, const struct sf_curve
 				  c->ease_in, c->ease_out, span);
 	return 0;
 }
+
+int ld_tangent_check(struct ld *l, const struct sd_curve *c, const struct ld_mark *marks,
+		     const char *field, double scale)
+{
+	const struct sd_key *k = c->keys;
+	uint32_t i;
+
+	for (i = 0; i < c->nkeys; i++) {
+		double hin = i ? k[i].frame - k[i - 1].frame : 0;
+		double hout = i + 1 < c->nkeys ? k[i + 1].frame - k[i].frame : 0;
+
+		if (!k[i].tan_set)
+			continue;
+		if (c->interp != MOT_INTERP_HERMITE)
+			return ld_fail_at(l, marks[i], -EINVAL,
+					  "'%s' is a tangent, which only a hermite curve takes (this one is '%s')",
+					  field, interp_names[c->interp]);
+		if (((k[i].tan_set & MOT_TANGENT_IN) && fabs(hin * k[i].tan_in * scale) >= 0x1p31) ||
+		    ((k[i].tan_set & MOT_TANGENT_OUT) && fabs(hout * k[i].tan_out * scale) >= 0x1p31))
+			return ld_fail_at(l, marks[i], -ERANGE,
+					  "a tangent of this key times its interval reaches beyond the core's range (below 2^31 %s)",
+					  scale == 1 ? "units" : "turns");
+	}
+	return 0;
+}

@@ -23,8 +23,42 @@ struct fkey {
 	bool has[G_COUNT];
 	double v[3][3];         /* translate, scale, shear */
 	double q[4];
+	/* explicit tangents per frame: translate, scale (tset[g]) and quat */
+	double tin[2][3], tout[2][3], qin[4], qout[4];
+	uint32_t tset[2], qset;
 	struct ld_mark mark;
 };
+
+/* The tangent fields of a key: translate_in/out, scale_in/out, quat_in/out. */
+static int tangent_fields(struct ld *l, yaml_node_t **v, struct fkey *fk)
+{
+	static const int field[3][2] = { { K_TRANSLATE_IN, K_TRANSLATE_OUT },
+					 { K_SCALE_IN, K_SCALE_OUT },
+					 { K_QUAT_IN, K_QUAT_OUT } };
+	static const int value[3] = { K_TRANSLATE, K_SCALE, K_QUAT };
+	int g, side, err;
+
+	for (g = 0; g < 3; g++)
+		for (side = 0; side < 2; side++) {
+			yaml_node_t *n = v[field[g][side]];
+			size_t dim = g == 2 ? 4 : 3;
+			double *out = g == 2 ? (side ? fk->qout : fk->qin) :
+				      (side ? fk->tout[g] : fk->tin[g]);
+			uint32_t *set = g == 2 ? &fk->qset : &fk->tset[g];
+
+			if (!n)
+				continue;
+			if (!v[value[g]])
+				return ld_fail(l, n, -EINVAL,
+					       "'%s' is the tangent of '%s', which this key does not set",
+					       ld_key_fields[field[g][side]], ld_key_fields[value[g]]);
+			err = ld_vec(l, n, dim, 1.0, "per frame", out);
+			if (err)
+				return err;
+			*set |= side ? MOT_TANGENT_OUT : MOT_TANGENT_IN;
+		}
+	return 0;
+}
 
 static const char *const group_field[3] = { "translate", "scale", "shear" };
 
@@ -101,8 +135,8 @@ static int free_key(struct ld *l, uint32_t node, yaml_node_t *map, struct fkey *
 	if (err)
 		return err;
 	if (v[K_MATRIX]) {
-		for (f = K_TRANSLATE; f < K_MATRIX; f++)
-			if (v[f])
+		for (f = K_TRANSLATE; f < K_COUNT; f++)
+			if (v[f] && f != K_MATRIX)
 				return ld_fail(l, v[f], -EINVAL,
 					       "'matrix' sets the whole transform; a key with it cannot also set '%s'",
 					       ld_key_fields[f]);
@@ -138,7 +172,7 @@ static int free_key(struct ld *l, uint32_t node, yaml_node_t *map, struct fkey *
 		err = quat_field(l, v[K_QUAT], fk->q);
 		fk->has[G_R] = true;
 	}
-	return err;
+	return err ? err : tangent_fields(l, v, fk);
 }
 
 /* The three channel curves of one group over the keys that set it. */
@@ -172,16 +206,72 @@ static int group_curves(struct ld *l, uint32_t node, const struct fkey *fk, size
 				continue;
 			keys[j] = fk[i].k;
 			keys[j].value = fk[i].v[g][ch];
+			if (g < G_H) {
+				keys[j].tan_in = fk[i].tin[g][ch];
+				keys[j].tan_out = fk[i].tout[g][ch];
+				keys[j].tan_set = fk[i].tset[g];
+			}
 			marks[j++] = fk[i].mark;
 		}
 		c->keys = keys;
 		c->nkeys = (uint32_t)count;
 		cm->at = nm->value.at;
 		cm->key = marks;
-		err = ld_curve_check(l, c, cm);
+		err = ld_tangent_check(l, c, marks, g == G_T ? "translate_in' or 'translate_out" :
+					       "scale_in' or 'scale_out", 1.0);
+		if (!err)
+			err = ld_curve_check(l, c, cm);
 		if (err)
 			return err;
 	}
+	return 0;
+}
+
+/* A rotation as four curves of its components, normalised when evaluated:
+ * cubic (hermite, with quat_in / quat_out tangents) or step. */
+static int rotation_curves(struct ld *l, uint32_t node, const struct fkey *fk, size_t n,
+			   enum mot_interp interp)
+{
+	struct sd_free *sf = &l->nodes[node].free;
+	struct sf_curve_marks *cm = &l->mk->node[node].rot;
+	struct ld_mark *marks;
+	size_t count = 0, i, j;
+	int c, err;
+
+	for (i = 0; i < n; i++)
+		count += fk[i].has[G_R];
+	if (!count)
+		return 0;
+	marks = pool_array(l->pool, count, sizeof(*marks));
+	if (!marks)
+		return ld_nomem(l);
+	for (c = 0; c < 4; c++) {
+		struct sd_key *keys = pool_array(l->pool, count, sizeof(*keys));
+
+		if (!keys)
+			return ld_nomem(l);
+		for (i = j = 0; i < n; i++) {
+			if (!fk[i].has[G_R])
+				continue;
+			if (fk[i].k.ease_in || fk[i].k.ease_out)
+				return ld_fail_at(l, fk[i].mark, -EINVAL,
+						  "a cubic or step rotation takes no ease_in or ease_out (shape it with quat_in and quat_out)");
+			memset(&keys[j], 0, sizeof(keys[j]));
+			keys[j].frame = fk[i].k.frame;
+			keys[j].value = fk[i].q[c];
+			keys[j].tan_in = fk[i].qin[c];
+			keys[j].tan_out = fk[i].qout[c];
+			keys[j].tan_set = fk[i].qset;
+			marks[j++] = fk[i].mark;
+		}
+		sf->quat[c] = (struct sd_curve){ .interp = interp, .nkeys = (uint32_t)count,
+						 .keys = keys, .beta1 = 1 };
+		err = ld_tangent_check(l, &sf->quat[c], marks, "quat_in' or 'quat_out", 1.0);
+		if (err)
+			return err;
+	}
+	cm->at = l->mk->node[node].value.at;
+	cm->key = marks;
 	return 0;
 }
 
@@ -204,6 +294,9 @@ static int rotation_track(struct ld *l, uint32_t node, const struct fkey *fk, si
 	for (i = j = 0; i < n; i++) {
 		if (!fk[i].has[G_R])
 			continue;
+		if (fk[i].qset)
+			return ld_fail_at(l, fk[i].mark, -EINVAL,
+					  "'quat_in' and 'quat_out' are tangents of a cubic rotation; this strand's rotation is slerp or squad");
 		keys[j].frame = fk[i].k.frame;
 		keys[j].ease_in = fk[i].k.ease_in;
 		keys[j].ease_out = fk[i].k.ease_out;
@@ -223,30 +316,53 @@ static int rotation_track(struct ld *l, uint32_t node, const struct fkey *fk, si
 	return 0;
 }
 
-int ld_free_strand(struct ld *l, uint32_t node, yaml_node_t *interp, yaml_node_t *ease,
-		   yaml_node_t *beta, yaml_node_t *rotation, yaml_node_t *keys)
+/* The interpolation of each group (translate, scale, shear): one name for
+ * all, or a mapping {translate: linear, scale: step, shear: hermite} with
+ * hermite for a group it leaves out. */
+static int group_opts(struct ld *l, const struct ld_free_opts *o, struct sd_curve tmpl[3],
+		      struct ld_mark *ease_mark)
 {
-	static const char *const rot_names[] = { "slerp", "squad", NULL };
+	static const char *const groups[] = { "translate", "scale", "shear", NULL };
+	yaml_node_t *v[3] = { NULL, NULL, NULL };
+	bool per_group = o->interp && o->interp->type == YAML_MAPPING_NODE;
+	int g, err = 0;
+
+	if (per_group)
+		err = ld_map(l, o->interp, "interpolation", groups, v);
+	for (g = 0; !err && g < 3; g++) {
+		struct ld_curve_opts co = { per_group ? v[g] : o->interp, o->ease, o->beta };
+
+		memset(&tmpl[g], 0, sizeof(tmpl[g]));
+		err = ld_curve_opts(l, &co, &tmpl[g], ease_mark);
+	}
+	return err;
+}
+
+int ld_free_strand(struct ld *l, uint32_t node, const struct ld_free_opts *o)
+{
+	static const char *const rot_names[] = { "slerp", "squad", "cubic", "step", NULL };
 	struct sd_node *sn = &l->nodes[node];
 	struct sf_strand *st = &l->strand[node];
 	struct sf_node_marks *nm = &l->mk->node[node];
-	struct ld_curve_opts o = { interp, ease, beta };
-	struct sd_curve tmpl = { 0 };
+	struct sd_curve tmpl[3];
 	yaml_node_item_t *it;
 	struct fkey *fk;
 	double *frames, span;
 	size_t count, i;
-	int err, squad = 0, g;
+	int err, rot = 0, g;
+	bool compact = false;
 
-	err = ld_curve_opts(l, &o, &tmpl, &nm->ease);
-	if (!err && rotation)
-		err = ld_enum(l, rotation, "rotation interpolation", rot_names, &squad);
+	err = group_opts(l, o, tmpl, &nm->ease);
+	if (!err && o->rotation)
+		err = ld_enum(l, o->rotation, "rotation interpolation", rot_names, &rot);
+	if (!err && o->compact)
+		err = ld_bool(l, o->compact, &compact);
 	if (!err)
-		err = ld_seq(l, keys, "keys", &it, &count);
+		err = ld_seq(l, o->keys, "keys", &it, &count);
 	if (err)
 		return err;
 	if (count == 0)
-		return ld_fail(l, keys, -EINVAL, "a strand needs at least one key");
+		return ld_fail(l, o->keys, -EINVAL, "a strand needs at least one key");
 	fk = pool_array(l->pool, count, sizeof(*fk));
 	frames = pool_array(l->pool, count, sizeof(*frames));
 	if (!fk || !frames)
@@ -258,24 +374,36 @@ int ld_free_strand(struct ld *l, uint32_t node, yaml_node_t *interp, yaml_node_t
 		frames[i] = fk[i].k.frame;
 	}
 	span = frames[count - 1] - frames[0];
-	if (tmpl.ease_in + tmpl.ease_out > span)
-		return ld_fail(l, ease, -EINVAL,
+	if (tmpl[0].ease_in + tmpl[0].ease_out > span)
+		return ld_fail(l, o->ease, -EINVAL,
 			       "ease in %.10g + out %.10g frames is longer than the keys' span of %.10g frames",
-			       tmpl.ease_in, tmpl.ease_out, span);
+			       tmpl[0].ease_in, tmpl[0].ease_out, span);
+	/* compact is a storage choice: step and linear channels and slerp
+	 * rotations without ease keep their keys alone (curve.h, strand.h) */
+	compact = compact && !tmpl[0].ease_in && !tmpl[0].ease_out;
+	for (i = 0; compact && i < count; i++)
+		compact = !fk[i].k.ease_in && !fk[i].k.ease_out;
 	for (g = G_T; g <= G_H; g++) {
-		err = group_curves(l, node, fk, count, g, &tmpl);
+		tmpl[g].compact = compact && tmpl[g].interp <= MOT_INTERP_LINEAR;
+		err = group_curves(l, node, fk, count, g, &tmpl[g]);
 		if (err)
 			return err;
 	}
-	err = rotation_track(l, node, fk, count);
+	if (rot >= 2)
+		err = rotation_curves(l, node, fk, count,
+				      rot == 2 ? MOT_INTERP_HERMITE : MOT_INTERP_STEP);
+	else
+		err = rotation_track(l, node, fk, count);
 	if (err)
 		return err;
 	sn->has_free = true;
-	sn->free.squad = squad == 1;
-	sn->free.ease_in = tmpl.ease_in;
-	sn->free.ease_out = tmpl.ease_out;
-	st->interp = tmpl.interp;
-	st->squad = squad == 1;
+	sn->free.squad = rot == 1;
+	sn->free.rot_compact = compact && rot == 0;
+	sn->free.ease_in = tmpl[0].ease_in;
+	sn->free.ease_out = tmpl[0].ease_out;
+	st->interp = tmpl[0].interp;
+	st->squad = rot == 1;
+	st->rotation = rot_names[rot];
 	st->nkeys = (uint32_t)count;
 	st->key_frames = frames;
 	return 0;

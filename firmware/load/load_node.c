@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { N_NAME, N_PARENT, N_PIVOT, N_JOINT, N_REST, N_LIMITS, N_COUNT };
+enum { N_NAME, N_PARENT, N_PIVOT, N_JOINT, N_REST, N_LIMITS, N_MIMIC, N_COUNT };
 static const char *const node_keys[] = { "name", "parent", "pivot", "joint", "rest", "limits",
-					 NULL };
+					 "mimic", NULL };
 
 static int by_name_cmp(const void *a, const void *b, void *names)
 {
@@ -198,6 +198,49 @@ static int parents(struct ld *l, yaml_node_t **parent_node)
 	return 0;
 }
 
+/* `mimic: {joint: NAME, multiplier: M, offset: O}` on joint i. */
+static int mimic(struct ld *l, uint32_t i, yaml_node_t *n, const yaml_node_t *rest)
+{
+	static const char *const keys[] = { "joint", "multiplier", "offset", NULL };
+	struct ld_mimic *mm = &l->mimic[i];
+	const struct sd_node *sn = &l->nodes[i];
+	yaml_node_t *v[3];
+	char buf[64];
+	int err, m;
+
+	err = ld_map(l, n, "mimic", keys, v);
+	if (!err)
+		err = ld_require(l, n, "mimic", v[0], "joint");
+	if (err)
+		return err;
+	if (sn->kind == MOT_NODE_FREE)
+		return ld_fail(l, n, -EINVAL, "'mimic' makes a joint follow another, but '%s' is a free node",
+			       sn->name);
+	if (rest)
+		return ld_fail(l, rest, -EINVAL,
+			       "'%s' mimics a joint: its rest is the master's, mapped (give 'offset' instead)",
+			       sn->name);
+	m = -1;
+	if (v[0]->type == YAML_SCALAR_NODE)
+		m = ld_find_node(l, (const char *)v[0]->data.scalar.value,
+				 v[0]->data.scalar.length);
+	if (m < 0)
+		return ld_fail(l, v[0], -EINVAL, "mimic of unknown joint %s",
+			       ld_describe(v[0], buf, sizeof(buf)));
+	if ((uint32_t)m == i)
+		return ld_fail(l, v[0], -EINVAL, "'%s' cannot mimic itself", sn->name);
+	mm->master = m;
+	mm->at = n;
+	mm->mult = 1;
+	mm->offset = 0;
+	if (v[1])
+		err = ld_num(l, v[1], &mm->mult);
+	if (!err && v[2])
+		err = ld_q32(l, v[2], sn->kind == MOT_NODE_REVOLUTE ? 1.0 / 360 : 1.0,
+			     sn->kind == MOT_NODE_REVOLUTE ? "degrees" : "scene units", &mm->offset);
+	return err;
+}
+
 static int node_body(struct ld *l, uint32_t i, yaml_node_t **v)
 {
 	struct sd_node *sn = &l->nodes[i];
@@ -220,6 +263,8 @@ static int node_body(struct ld *l, uint32_t i, yaml_node_t **v)
 		err = ld_q32(l, v[N_REST], sn->kind == MOT_NODE_REVOLUTE ? 1.0 / 360 : 1.0,
 			     sn->kind == MOT_NODE_REVOLUTE ? "degrees" : "scene units", &sn->rest);
 	}
+	if (!err && v[N_MIMIC])
+		err = mimic(l, i, v[N_MIMIC], v[N_REST]);
 	if (!err && v[N_LIMITS]) {
 		if (sn->kind == MOT_NODE_FREE)
 			return ld_fail(l, v[N_LIMITS], -EINVAL,
@@ -248,10 +293,14 @@ int ld_nodes(struct ld *l, yaml_node_t *seq)
 	l->mk->node = pool_array(l->pool, count, sizeof(*l->mk->node));
 	l->node_names = pool_array(l->pool, count + 1, sizeof(*l->node_names));
 	l->by_name = pool_array(l->pool, count, sizeof(*l->by_name));
+	l->mimic = pool_array(l->pool, count ? count : 1, sizeof(*l->mimic));
 	parent_node = pool_array(l->pool, count, sizeof(*parent_node));
 	v = pool_array(l->pool, count, sizeof(*v));
-	if (!l->nodes || !l->mk->node || !l->node_names || !l->by_name || !parent_node || !v)
+	if (!l->nodes || !l->mk->node || !l->node_names || !l->by_name || !parent_node || !v ||
+	    !l->mimic)
 		return ld_nomem(l);
+	for (i = 0; i < count; i++)
+		l->mimic[i].master = -1;
 	l->d->nodes = l->nodes;
 	/* first every name, so that parents and strands can refer to any node */
 	for (i = 0; i < count; i++) {
@@ -288,4 +337,56 @@ int ld_nodes(struct ld *l, yaml_node_t *seq)
 	for (i = 0; !err && i < count; i++)
 		err = node_body(l, (uint32_t)i, v[i]);
 	return err;
+}
+
+/*
+ * A mimic's curve is its master's with every value mapped, v' = m v + o, and
+ * every tangent, m t: each interpolation is linear in the values and the
+ * ease only warps time, so the mapped curve is exactly m x the master's
+ * curve + o at every frame. Without a master strand the mimic holds m x the
+ * master's rest + o.
+ */
+int ld_mimics(struct ld *l)
+{
+	uint32_t i, k;
+
+	for (i = 0; l->mimic && i < l->d->nnodes; i++) {
+		const struct ld_mimic *mm = &l->mimic[i];
+		struct sd_node *sn = &l->nodes[i];
+		const struct sd_node *ms;
+		struct sd_key *keys;
+
+		if (mm->master < 0)
+			continue;
+		ms = &l->nodes[mm->master];
+		if (ms->kind == MOT_NODE_FREE || l->mimic[mm->master].master >= 0)
+			return ld_fail(l, mm->at, -EINVAL,
+				       "'%s' mimics '%s', which is not a joint of its own (a free node or a mimic)",
+				       sn->name, ms->name);
+		if (l->strand[i].present)
+			return ld_fail_at(l, l->strand[i].at, -EINVAL,
+					  "'%s' mimics '%s': its motion is the master's, it takes no strand",
+					  sn->name, ms->name);
+		if (ms->spin.nkeys)
+			return ld_fail(l, mm->at, -EINVAL,
+				       "'%s' mimics '%s', whose strand keys rpm: a mimic follows an angle or a position",
+				       sn->name, ms->name);
+		sn->rest = mm->mult * ms->rest + mm->offset;
+		if (!ms->value.nkeys)
+			continue;
+		keys = pool_array(l->pool, ms->value.nkeys, sizeof(*keys));
+		if (!keys)
+			return ld_nomem(l);
+		for (k = 0; k < ms->value.nkeys; k++) {
+			keys[k] = ms->value.keys[k];
+			keys[k].value = mm->mult * keys[k].value + mm->offset;
+			keys[k].tan_in *= mm->mult;
+			keys[k].tan_out *= mm->mult;
+		}
+		sn->value = ms->value;
+		sn->value.keys = keys;
+		l->mk->node[i].value = l->mk->node[mm->master].value;
+		l->strand[i] = l->strand[mm->master];
+	}
+	return 0;
 }

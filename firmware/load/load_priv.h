@@ -37,6 +37,15 @@ struct sf_marks {
 	struct sf_curve_marks *attr;          /* nattrs */
 };
 
+/* A joint that mimics another (`mimic:` on a node): its value is
+ * multiplier x the master's + offset, the master's curve mapped at load
+ * time (ld_mimics). */
+struct ld_mimic {
+	int32_t master;       /* -1: not a mimic */
+	double mult, offset;  /* offset in the mimic's degrees or units */
+	const yaml_node_t *at;
+};
+
 /* The walk: one per parse. */
 struct ld {
 	struct yml y;              /* first: the readers' walk (document, pool, errors) */
@@ -48,6 +57,7 @@ struct ld {
 	struct sd_node *nodes;     /* d->nodes, writable */
 	struct sf_strand *strand;  /* sf->strand, writable */
 	const char **node_names;   /* nnodes + 1, NULL-terminated, for suggestions */
+	struct ld_mimic *mimic;    /* nnodes */
 	uint32_t *by_name;         /* node indices sorted by name */
 };
 
@@ -179,12 +189,16 @@ int ld_curve_check(struct ld *l, const struct sd_curve *c, const struct sf_curve
 int ld_timing(struct ld *l, yaml_node_t *n);     /* load_timing.c */
 int ld_nodes(struct ld *l, yaml_node_t *n);      /* load_node.c */
 int ld_strands(struct ld *l, yaml_node_t *n);    /* load_strand.c */
+/* Every mimic joint's curve from its master's, after the strands are read
+ * (load_node.c). */
+int ld_mimics(struct ld *l);
 
 /* Fields of a strand key of any kind; which ones a node accepts depends on
  * its kind (load_strand.c). */
 enum {
-	K_FRAME, K_EASE_IN, K_EASE_OUT, K_ANGLE, K_RPM, K_POSITION,
-	K_TRANSLATE, K_ROTATE, K_QUAT, K_SCALE, K_SHEAR, K_MATRIX, K_COUNT
+	K_FRAME, K_EASE_IN, K_EASE_OUT, K_ANGLE, K_RPM, K_POSITION, K_IN, K_OUT,
+	K_TRANSLATE, K_ROTATE, K_QUAT, K_SCALE, K_SHEAR, K_MATRIX,
+	K_TRANSLATE_IN, K_TRANSLATE_OUT, K_SCALE_IN, K_SCALE_OUT, K_QUAT_IN, K_QUAT_OUT, K_COUNT
 };
 extern const char *const ld_key_fields[];
 
@@ -195,8 +209,17 @@ int ld_strand_key(struct ld *l, uint32_t node, yaml_node_t *map, yaml_node_t **v
 		  const struct sd_key *prev, struct sd_key *out);
 
 /* The keys of a free node's strand (load_free.c). */
-int ld_free_strand(struct ld *l, uint32_t node, yaml_node_t *interp, yaml_node_t *ease,
-		   yaml_node_t *beta, yaml_node_t *rotation, yaml_node_t *keys);
+struct ld_free_opts {
+	yaml_node_t *interp, *ease, *beta, *rotation, *compact, *keys;
+};
+int ld_free_strand(struct ld *l, uint32_t node, const struct ld_free_opts *o);
+
+/* A key's explicit tangent (tan_set) on a curve that is not hermite, or one
+ * whose handle over its interval, h x tangent x scale (1/360 for degrees),
+ * reaches 2^31 units or turns, beyond the core's range (curve.h): the error
+ * at the key (load_curve.c). */
+int ld_tangent_check(struct ld *l, const struct sd_curve *c, const struct ld_mark *marks,
+		     const char *field, double scale);
 int ld_camera(struct ld *l, yaml_node_t *n);     /* load_camera.c */
 int ld_cycles(struct ld *l, yaml_node_t *n);     /* load_cycle.c */
 int ld_attributes(struct ld *l, yaml_node_t *n); /* load_attr.c */

@@ -9,9 +9,9 @@
 #include <errno.h>
 #include <string.h>
 
-enum { S_NODE, S_INTERP, S_EASE, S_BETA, S_ROTATION, S_KEYS, S_COUNT };
+enum { S_NODE, S_INTERP, S_EASE, S_BETA, S_ROTATION, S_COMPACT, S_KEYS, S_COUNT };
 static const char *const strand_keys[] = { "node", "interpolation", "ease", "beta",
-					   "rotation", "keys", NULL };
+					   "rotation", "compact", "keys", NULL };
 
 static const char *kind_name(enum mot_node_kind k)
 {
@@ -20,8 +20,9 @@ static const char *kind_name(enum mot_node_kind k)
 }
 
 const char *const ld_key_fields[] = { "frame", "ease_in", "ease_out", "angle", "rpm",
-				      "position", "translate", "rotate", "quat", "scale",
-				      "shear", "matrix", NULL };
+				      "position", "in", "out", "translate", "rotate", "quat",
+				      "scale", "shear", "matrix", "translate_in", "translate_out",
+				      "scale_in", "scale_out", "quat_in", "quat_out", NULL };
 
 static int key_kind(struct ld *l, uint32_t node, yaml_node_t **v)
 {
@@ -29,7 +30,7 @@ static int key_kind(struct ld *l, uint32_t node, yaml_node_t **v)
 	int i;
 
 	if (sn->kind == MOT_NODE_FREE) {
-		for (i = K_ANGLE; i <= K_POSITION; i++)
+		for (i = K_ANGLE; i <= K_OUT; i++)
 			if (v[i])
 				return ld_fail(l, v[i], -EINVAL,
 					       "'%s' keys a joint, but '%s' is a free node (key translate, rotate, quat, scale, shear or matrix)",
@@ -78,6 +79,16 @@ static int joint_key(struct ld *l, uint32_t node, yaml_node_t *map, uint32_t i,
 	int err;
 
 	err = ld_strand_key(l, node, map, v, i ? &keys[i - 1] : NULL, &keys[i]);
+	if (err)
+		return err;
+	/* tangents: value per frame, degrees or units like the value */
+	keys[i].tan_set = (v[K_IN] ? MOT_TANGENT_IN : 0) | (v[K_OUT] ? MOT_TANGENT_OUT : 0);
+	if (v[K_IN])
+		err = ld_q32(l, v[K_IN], sn->kind == MOT_NODE_REVOLUTE ? 1.0 / 360 : 1.0,
+			     "per frame", &keys[i].tan_in);
+	if (!err && v[K_OUT])
+		err = ld_q32(l, v[K_OUT], sn->kind == MOT_NODE_REVOLUTE ? 1.0 / 360 : 1.0,
+			     "per frame", &keys[i].tan_out);
 	if (err)
 		return err;
 	if (sn->kind == MOT_NODE_PRISMATIC) {
@@ -142,6 +153,8 @@ static int joint_strand(struct ld *l, uint32_t node, yaml_node_t **v)
 			       "'rotation' interpolates a free node's rotation keys, but '%s' is %s",
 			       sn->name, kind_name(sn->kind));
 	err = ld_curve_opts(l, &o, &c, &cm.ease);
+	if (!err && v[S_COMPACT])
+		err = ld_bool(l, v[S_COMPACT], &c.compact);
 	if (!err)
 		err = ld_seq(l, v[S_KEYS], "keys", &it, &count);
 	if (err)
@@ -165,8 +178,15 @@ static int joint_strand(struct ld *l, uint32_t node, yaml_node_t **v)
 	c.nkeys = (uint32_t)count;
 	c.keys = keys;
 	cm.key = marks;
+	/* a storage choice: only step and linear curves keep their keys alone */
+	c.compact = c.compact && c.interp <= MOT_INTERP_LINEAR && !c.ease_in && !c.ease_out && !rpm;
+	for (i = 0; c.compact && i < count; i++)
+		c.compact = !keys[i].ease_in && !keys[i].ease_out;
 	if (rpm)
 		err = rpm_rules(l, &c, v, marks);
+	if (!err)
+		err = ld_tangent_check(l, &c, marks, "in' or 'out",
+				       sn->kind == MOT_NODE_REVOLUTE && !rpm ? 1.0 / 360 : 1.0);
 	if (!err)
 		err = ld_curve_check(l, &c, &cm);
 	if (err)
@@ -222,8 +242,12 @@ static int strand(struct ld *l, yaml_node_t *map)
 	l->mk->node[node].value.at = l->mk->node[node].spin.at = ld_mark_of(map);
 	if (l->nodes[node].kind != MOT_NODE_FREE)
 		return joint_strand(l, (uint32_t)node, v);
-	return ld_free_strand(l, (uint32_t)node, v[S_INTERP], v[S_EASE], v[S_BETA],
-			      v[S_ROTATION], v[S_KEYS]);
+	{
+		struct ld_free_opts fo = { v[S_INTERP], v[S_EASE], v[S_BETA], v[S_ROTATION],
+					   v[S_COMPACT], v[S_KEYS] };
+
+		return ld_free_strand(l, (uint32_t)node, &fo);
+	}
 }
 
 int ld_strands(struct ld *l, yaml_node_t *seq)

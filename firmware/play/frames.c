@@ -155,3 +155,33 @@ bool STRAND_RT frames_next(const struct frame_list *fl, struct frame_iter *it, i
 	*frame = it->frame;
 	return true;
 }
+
+int64_t frames_min(const struct frame_list *fl)
+{
+	int64_t m = INT64_MAX;
+	uint32_t i;
+
+	for (i = 0; i < fl->n; i++) {
+		const struct frame_item *it = &fl->items[i];
+		int64_t lo = it->first < it->last ? it->first : it->last;
+
+		if (lo < m)
+			m = lo;
+	}
+	return fl->n ? m : 0;
+}
+
+int64_t frames_max(const struct frame_list *fl)
+{
+	int64_t m = INT64_MIN;
+	uint32_t i;
+
+	for (i = 0; i < fl->n; i++) {
+		const struct frame_item *it = &fl->items[i];
+		int64_t hi = it->first > it->last ? it->first : it->last;
+
+		if (hi > m)
+			m = hi;
+	}
+	return fl->n ? m : 0;
+}

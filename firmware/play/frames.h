@@ -38,6 +38,10 @@ int frames_parse(struct frame_list *fl, const char *spec, char *err, unsigned er
 int frames_range(struct frame_list *fl, int64_t first, int64_t last);
 void frames_free(struct frame_list *fl);
 
+/* The lowest and the highest frame the list shoots (0 when empty). */
+int64_t frames_min(const struct frame_list *fl);
+int64_t frames_max(const struct frame_list *fl);
+
 /* Shots in the whole list; INT64_MAX when there are more. */
 int64_t frames_count(const struct frame_list *fl);
 

@@ -95,6 +95,8 @@
 #include "rig/rig.h"
 #include "scene/source.h"
 
+struct chase;
+
 /*
  * Input edges the loop takes from one input device in one tick, at most:
  * what a tick spends on its inputs is bounded however many edges a line
@@ -136,6 +138,7 @@ enum loop_state {
 	LOOP_STEP_EXPOSE,
 	LOOP_STOPPING,
 	LOOP_ENDED,
+	LOOP_CUE,          /* --chase: at rest, waiting for the source (loop_chase.c) */
 	/* live mode (loop_live.h) */
 	LOOP_HOLD,
 	LOOP_JOG,
@@ -168,6 +171,7 @@ enum loop_cause {
 	LOOP_CAUSE_READY,       /* step mode: no camera-ready edge in time */
 	LOOP_CAUSE_JOURNAL,     /* the journal could not take the frame */
 	LOOP_CAUSE_SATURATION,  /* fixed-point arithmetic saturated */
+	LOOP_CAUSE_CHASE,       /* the chased source: detail is its enum chase_event */
 	LOOP_CAUSE_DISABLE,     /* live mode: the drives were disabled */
 };
 
@@ -246,7 +250,9 @@ struct loop;
 
 /* [init] Prepare a run in *out: everything the loop touches is allocated
  * here, in one block, and the rig (started) is read for where it stands.
- * 0, or a negative errno with a message (*out is NULL then). */
+ * 0, or a negative errno with a message (*out is NULL then): -EINVAL for
+ * options that contradict the scene, -EDOM for an output that stands
+ * outside its position limits, -ERANGE for a run it cannot plan. */
 int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	      struct play_source *src, struct hal_clock *clk, struct hal_ring *status,
 	      char *err, size_t errsize);
@@ -254,6 +260,12 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 /* [init] Record every frame fired in jr from now on (before loop_run; the
  * journal is sized from loop_result()->total_frames). */
 void loop_set_journal(struct loop *L, struct journal *jr);
+
+/* [init] Chase c's source (chase.h, loop_chase.c): the run waits in
+ * LOOP_CUE for a lock, cues the frame the source names, plays it on the
+ * source's time, and cues again after each stop the source causes.
+ * Continuous mode without --loop or --ping-pong; before loop_run. */
+void loop_set_chase(struct loop *L, struct chase *c);
 
 /* [init] NULL: nothing to free. */
 void loop_free(struct loop *L);

@@ -11,12 +11,9 @@
 
 #include <math.h>
 
-/* Ramps shorter than this (2^31 ticks) sum their steps in int64_t, exactly. */
-#define LOOP_RUNUP_EXACT (INT64_C(1) << 31)
-
 void STRAND_RT loop_eval_at(struct loop *L, int64_t scene_tick, mot_q32 *out)
 {
-	src_eval(L->src, mot_timing_tick_frame(L->tm, scene_tick), out, &L->sat);
+	timeline_eval(&L->seq.tl, scene_tick, out, &L->sat);
 }
 
 void STRAND_RT loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to)
@@ -34,23 +31,15 @@ void STRAND_RT loop_pass_setup(struct loop *L)
 {
 	const struct loop_cfg *c = &L->cfg;
 	struct loop_seq *s = &L->seq;
-	int64_t p = s->pass;
 	uint32_t i;
 
-	s->dir = 1;
-	s->pass_first = c->from;
-	s->pass_last = c->to;
-	if (c->ping_pong && c->to > c->from) {
-		if (p % 2) {
-			s->dir = -1;
-			s->pass_first = c->to - 1;
-			s->pass_last = c->from;
-		} else if (p > 0) {
-			s->pass_first = c->from + 1;
-		}
-	}
-	s->scene_begin = mot_timing_trigger_tick(L->tm, s->pass_first) - s->dir * s->lead;
-	s->scene_end = mot_timing_trigger_tick(L->tm, s->pass_last) + s->dir * s->tail;
+	pass_span(&s->span, L->tm, c->from, c->to, c->ping_pong, s->pass, s->lead, s->tail);
+	s->dir = s->span.dir;
+	s->pass_first = s->span.first;
+	s->pass_last = s->span.last;
+	s->scene_begin = s->span.begin;
+	s->scene_end = s->span.end;
+	timeline_init(&s->tl, L->src, L->n, s->extend, s->span.lo, s->span.hi, s->tl_mem, &L->sat);
 	for (i = 0; i < L->rig->ntrig; i++) {
 		struct loop_pulse *t = &L->trig.pulse[i];
 
@@ -62,13 +51,12 @@ void STRAND_RT loop_pass_setup(struct loop *L)
 }
 
 /*
- * The first pose and speed of the pass, each output's ramp, and in
- * seq.target where the ramps start (the pre-roll's or bridge's
+ * The first pose and speed of the pass, each output's ramp (runup.h), and
+ * in seq.target where the ramps start (the pre-roll's or bridge's
  * destination).
  */
 int STRAND_RT loop_entry_plan(struct loop *L, int32_t *bad)
 {
-	const double hz = L->tm->tick_hz, dt = 1.0 / hz;
 	struct loop_seq *s = &L->seq;
 	uint32_t i;
 
@@ -79,24 +67,13 @@ int STRAND_RT loop_entry_plan(struct loop *L, int32_t *bad)
 	for (i = 0; i < L->n; i++) {
 		const struct rig_out *o = &L->rig->out[i];
 		struct loop_out *lo = &L->out[i];
-		double v = (move_q2d(s->target[i]) - move_q2d(s->ru_end[i])) * hz;
-		double back, start, nd = ceil(fabs(v) * hz / o->amax * (1 + 1e-9));
-		int64_t n;
+		int rc = runup_plan(&lo->ru, s->ru_end[i], s->target[i], L->tm->tick_hz, o->amax,
+				    &s->target[i]);
+		double start = move_q2d(s->target[i]);
 
-		/* a ramp longer than NUM_TICKS_MAX (a crawl of an acceleration
-		 * limit) starts beyond the core's range: refused below */
-		if (!(nd < (double)NUM_TICKS_MAX))
-			nd = (double)NUM_TICKS_MAX;
-		n = (int64_t)nd;
-		lo->ru_v = v;
-		lo->ru_n = n;
-		if (n > s->ru_ticks)
-			s->ru_ticks = n;
-		/* speeds v k / n for k = 1..n cover v dt (n + 1) / 2 */
-		back = v * dt * (double)(n + 1) / 2;
-		s->target[i] = n ? s->ru_end[i] - move_d2q(back) : s->ru_end[i];
-		start = move_q2d(s->target[i]);
-		if (start < o->min - 1e-9 || start > o->max + 1e-9 || n >= NUM_TICKS_MAX) {
+		if (lo->ru.n > s->ru_ticks)
+			s->ru_ticks = lo->ru.n;
+		if (rc || start < o->min - 1e-9 || start > o->max + 1e-9) {
 			*bad = (int32_t)i;
 			return -1;
 		}
@@ -107,22 +84,7 @@ int STRAND_RT loop_entry_plan(struct loop *L, int32_t *bad)
 /* j = 0: at rest at the ramp's start; j = ru_ticks: the pass's first pose. */
 mot_q32 STRAND_RT loop_runup_at(const struct loop *L, uint32_t i, int64_t j)
 {
-	const struct loop_out *lo = &L->out[i];
-	int64_t n = lo->ru_n, m = j - (L->seq.ru_ticks - n); /* the ramps end together */
-	double left;
-
-	if (n == 0 || m >= n)
-		return L->seq.ru_end[i];
-	if (m < 0)
-		m = 0;
-	/* the distance still to go after step m: sum of v k / n dt, k = m+1..n;
-	 * n (n + 1) overflows int64_t from n = 3e9 on: such ramps in doubles */
-	if (n < LOOP_RUNUP_EXACT)
-		left = lo->ru_v / n / L->tm->tick_hz * (double)(n * (n + 1) - m * (m + 1)) / 2;
-	else
-		left = lo->ru_v / n / L->tm->tick_hz *
-		       ((double)n * (double)(n + 1) - (double)m * (double)(m + 1)) / 2;
-	return L->seq.ru_end[i] - move_d2q(left);
+	return runup_at(&L->out[i].ru, L->seq.ru_end[i], L->seq.ru_ticks, j, L->tm->tick_hz);
 }
 
 bool STRAND_RT loop_more_passes(const struct loop *L)
@@ -139,15 +101,15 @@ bool STRAND_RT loop_rest_step(struct loop *L)
 	bool rest = true;
 	uint32_t i;
 
+	L->seq.braked = true;
 	for (i = 0; i < L->n; i++) {
 		const struct rig_out *o = &L->rig->out[i];
-		double v = L->out[i].vel;
 
 		L->val[i] = L->prev[i];
 		if (L->safety.dev_off[o->dev])
 			continue;
-		rest &= move_stop_step(&L->val[i], &v, o->vel_mode, o->vmax, o->amax,
-				       L->tm->tick_hz);
+		rest &= move_stop_step(&L->val[i], &L->out[i].stop_v, o->vel_mode, o->vmax,
+				       o->amax, L->tm->tick_hz);
 	}
 	return rest;
 }

@@ -28,7 +28,11 @@
 #include <stdatomic.h>
 
 #include "loop.h"
-#include "move.h"
+#include "plan/limit.h"
+#include "plan/move.h"
+#include "plan/pass.h"
+#include "plan/runup.h"
+#include "plan/timeline.h"
 #include "hal/rt.h"
 
 /* Input edges taken per poll of a device; a device with more polls again,
@@ -40,10 +44,17 @@ _Static_assert(LOOP_EDGES_PER_TICK % LOOP_EDGES_MAX == 0, "whole polls per tick"
 struct loop_out {
 	double vel;             /* speed of the last two setpoints, units/s */
 	double vel_now;         /* this tick's, once its setpoint stands */
+	/* a stop's speed, carried exactly from tick to tick as move_stop_step
+	 * brakes it (re-deriving it from the rounded setpoints would feed
+	 * their rounding back into the braking, a bias of up to half a step
+	 * a tick: at 10 kHz beyond the acceleration limit's slack); the last
+	 * tick's speed until a stop begins */
+	double stop_v;
 	int64_t sent;           /* counts sent last tick */
 	struct hal_setpoint sp; /* this tick's, in counts */
-	double ru_v;            /* run-up: the scene's speed at the pass's first pose */
-	int64_t ru_n;           /* run-up: ticks of this output's ramp */
+	struct runup_ramp ru;   /* its ramp into the pass */
+	struct lim_bounds lim;  /* its limits, as the predicate takes them */
+	struct lim_meter meter; /* its last setpoints, for the limit check */
 };
 
 /* The segments of loop.h's "Sequence", the passes and the move under way. */
@@ -55,10 +66,15 @@ struct loop_seq {
 	int64_t scene_k;        /* PLAY: the scene tick being played */
 	int64_t scene_begin, scene_end; /* the scene ticks the pass covers */
 	int64_t pass_first, pass_last;  /* its frames, in firing order */
+	struct pass_span span;  /* the pass: the same, and its frames in order */
+	struct timeline tl;     /* the pass's range of the scene, and beyond */
+	mot_q32 *tl_mem;        /* TIMELINE_WORDS(n) */
+	bool *extend;           /* n: the output goes on at its speed beyond the range */
 	int64_t lead, tail;     /* scene ticks before the first edge, after the last */
 	struct move mv;         /* its channels are in the block */
 	int64_t mv_j;
 	int64_t ru_ticks, ru_j; /* the run-up: the longest ramp, the step it is at */
+	bool braked;            /* this tick was a stop's step (loop_rest_step) */
 	mot_q32 *target;        /* a pose: where a move goes (a ramp's start, a frame) */
 	mot_q32 *ru_end;        /* a pose: the pass's first, where the ramps end */
 	double *vmax, *amax;    /* per output, as the move planner takes them */
@@ -117,6 +133,7 @@ struct loop {
 	const struct mot_timing *tm;
 	uint32_t n;               /* outputs */
 	uint32_t sat;             /* the core's saturation flags, sticky */
+	struct lim_stencil stencil; /* the limit predicate's differences */
 	int64_t t0;               /* monotonic ns of tick 0 */
 	int64_t tick;             /* the tick being run */
 
@@ -128,6 +145,7 @@ struct loop {
 	int64_t *limited;         /* n: the result's, written here */
 	struct loop_result *res;
 	struct loop_live *live;   /* NULL but in live mode (loop_live.c) */
+	struct chase *chase;      /* NULL: the loop's own time */
 	struct loop_safety safety; /* last: the edge buffer is large and seldom used */
 };
 
@@ -213,6 +231,15 @@ void loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to);
 bool loop_more_passes(const struct loop *L);
 /* [rt] Every output one tick closer to rest; true when all are there. */
 bool loop_rest_step(struct loop *L);
+
+/* ---- loop_chase.c ---- */
+
+/* [rt] The source's marks, its events (a controlled stop), the cue. */
+void loop_chase_tick(struct loop *L, int64_t now);
+/* [rt] After a tick: a run the source stopped waits for it again. */
+void loop_chase_after(struct loop *L);
+/* [rt] The source's frame at time t, plus one, for the journal (0: none). */
+uint32_t loop_chase_frame(struct loop *L, int64_t t);
 
 /* ---- loop_trig.c ---- */
 

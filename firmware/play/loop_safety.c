@@ -11,10 +11,6 @@
 
 #include <math.h>
 
-/* Slack on a limit for the rounding of Q32.32 setpoints computed in double:
- * relative, and absolute a few units of 2^-32 per tick. */
-#define LIMIT_REL 1e-6
-
 static const struct loop_where nowhere = { .channel = -1, .out = -1 };
 
 void STRAND_RT loop_fail(struct loop *L, enum loop_end end, enum loop_cause cause,
@@ -244,50 +240,55 @@ void STRAND_RT loop_feedback(struct loop *L, double *worst, int32_t *worst_out)
 
 /* ---- limits ---- */
 
+/* The run's cause for a limit the predicate finds broken. */
+static enum loop_cause STRAND_RT limit_cause(enum lim_kind k)
+{
+	return k == LIM_VEL ? LOOP_CAUSE_LIMIT_VEL :
+	       k == LIM_ACC ? LOOP_CAUSE_LIMIT_ACC : LOOP_CAUSE_LIMIT_POS;
+}
+
+/*
+ * This tick's setpoints against the outputs' limits, with the predicate
+ * strand check verified the timeline with (plan/limit.h), over the
+ * setpoints the outputs were really sent: the pre-roll, bridges and stops
+ * included. A stopping point beyond a limit is not a fault here: the
+ * check before the first tick verified that of the scene, and a planned
+ * move that ends on a limit approaches it braking.
+ */
 void STRAND_RT loop_limits(struct loop *L)
 {
 	const double hz = L->tm->tick_hz;
-	uint32_t i;
+	uint32_t i, h, nh;
 
 	for (i = 0; i < L->n; i++) {
 		const struct rig_out *o = &L->rig->out[i];
-		double p = move_q2d(L->val[i]), p1 = move_q2d(L->prev[i]);
-		double v = loop_speed(L, i), a = (v - L->out[i].vel) * hz;
-		double eps_v = o->vmax * LIMIT_REL + 4 * hz / 4294967296.0;
-		double eps_a = o->amax * LIMIT_REL + 8 * hz * hz / 4294967296.0;
-		enum loop_cause why = LOOP_CAUSE_NONE;
-		double val = 0, bound = 0;
+		struct loop_out *lo = &L->out[i];
+		struct lim_hit hit[LIM_NKINDS];
+		struct lim_measure me;
 		struct loop_where w;
 
 		if (L->safety.dev_off[o->dev])
 			continue;
-		if (p < o->min - 1e-9 || p > o->max + 1e-9) {
-			why = LOOP_CAUSE_LIMIT_POS;
-			val = p;
-			bound = p < o->min ? o->min : o->max;
-		} else if (fabs(v) > o->vmax + eps_v) {
-			why = LOOP_CAUSE_LIMIT_VEL;
-			val = v;
-			bound = o->vmax;
-		} else if (fabs(a) > o->amax + eps_a) {
-			why = LOOP_CAUSE_LIMIT_ACC;
-			val = a;
-			bound = o->amax;
-		}
-		if (why == LOOP_CAUSE_NONE)
+		lim_measure(&lo->meter, &L->stencil, L->val[i], &me);
+		nh = lim_test(&L->stencil, &lo->lim, &me, hit);
+		for (h = 0; h < nh && hit[h].kind == LIM_STOP; h++)
+			;
+		if (h == nh || hit[h].kind == LIM_STOP)
 			continue;
 		if (L->cfg.force) {
 			/* clamp as LinuxCNC's limit3 does, without look-ahead */
-			double v1 = L->out[i].vel, dv = o->amax / hz;
+			double v1 = lo->vel, dv = o->amax / hz;
+			double p1 = move_q2d(L->prev[i]), v = loop_speed(L, i);
 
 			v = fmax(-o->vmax, fmin(o->vmax, fmax(v1 - dv, fmin(v1 + dv, v))));
-			p = fmax(o->min, fmin(o->max, p1 + v / hz));
-			L->val[i] = move_d2q(p);
+			L->val[i] = move_d2q(fmax(o->min, fmin(o->max, p1 + v / hz)));
 			L->limited[i]++;
 			continue;
 		}
-		w = loop_where_out(L, i, val, bound);
-		loop_stop(L, LOOP_END_FAULT, why, &w);
+		w = loop_where_out(L, i, hit[h].value,
+				   hit[h].kind == LIM_MIN || hit[h].kind == LIM_MAX ? hit[h].limit :
+										      fabs(hit[h].limit));
+		loop_stop(L, LOOP_END_FAULT, limit_cause(hit[h].kind), &w);
 		/* the offending setpoints are not sent: this tick is the stop's
 		 * first */
 		loop_rest_step(L);

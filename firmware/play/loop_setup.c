@@ -22,8 +22,9 @@ static const char *const state_names[] = {
 	[LOOP_POSTROLL] = "post-roll",	 [LOOP_STEP_NEXT] = "step",
 	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
 	[LOOP_STEP_EXPOSE] = "expose",	 [LOOP_STOPPING] = "stopping",
-	[LOOP_ENDED] = "ended",		 [LOOP_HOLD] = "hold",
-	[LOOP_JOG] = "jog",		 [LOOP_MOVE] = "move",
+	[LOOP_ENDED] = "ended",		 [LOOP_CUE] = "cue",
+	[LOOP_HOLD] = "hold",		 [LOOP_JOG] = "jog",
+	[LOOP_MOVE] = "move",
 };
 
 static const char *const cause_names[] = {
@@ -43,6 +44,7 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_READY] = "camera not ready",
 	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
+	[LOOP_CAUSE_CHASE] = "chase",
 	[LOOP_CAUSE_DISABLE] = "drives disabled",
 };
 
@@ -107,19 +109,24 @@ static void input_table(struct loop *L)
  * an arena without memory this only measures (and returns NULL); the same
  * code then carves, so the two cannot disagree.
  */
-static struct loop *carve(struct mot_arena *a, const struct rig *rig)
+static struct loop *carve(struct mot_arena *a, const struct rig *rig, uint32_t tick_hz)
 {
 	uint32_t d, n = rig->nout, nlines = 0;
+	struct lim_stencil st;
 	struct loop *L;
 
 	for (d = 0; d < rig->ndins; d++)
 		nlines += input_lines(rig, d);
+	lim_stencil_init(&st, tick_hz);
 	L = CARVE(a, struct loop, 1);
 	struct loop_out *out = CARVE(a, struct loop_out, n);
 	mot_q32 *val = CARVE(a, mot_q32, n);
 	mot_q32 *prev = CARVE(a, mot_q32, n);
 	mot_q32 *target = CARVE(a, mot_q32, n);
 	mot_q32 *ru_end = CARVE(a, mot_q32, n);
+	mot_q32 *tl_mem = CARVE(a, mot_q32, TIMELINE_WORDS(n));
+	mot_q32 *rings = CARVE(a, mot_q32, (size_t)n * LIM_METER_LEN(st.h));
+	bool *extend = CARVE(a, bool, n);
 	struct move_ch *mv_ch = CARVE(a, struct move_ch, n);
 	double *vmax = CARVE(a, double, n);
 	double *amax = CARVE(a, double, n);
@@ -134,6 +141,11 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig)
 	if (!L || a->failed)
 		return NULL;
 	L->n = n;
+	L->stencil = st;
+	L->seq.tl_mem = tl_mem;
+	L->seq.extend = extend;
+	for (d = 0; d < n; d++)
+		out[d].meter.ring = rings + (size_t)d * LIM_METER_LEN(st.h);
 	L->out = out;
 	L->val = val;
 	L->prev = prev;
@@ -155,7 +167,7 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig)
 
 /* The block: measured, allocated once (64-byte aligned, as the arena
  * wants its base), carved, sealed. NULL when out of memory. */
-static struct loop *block_new(const struct rig *rig)
+static struct loop *block_new(const struct rig *rig, uint32_t tick_hz)
 {
 	struct mot_arena a;
 	struct loop *L;
@@ -163,7 +175,7 @@ static struct loop *block_new(const struct rig *rig)
 	void *block;
 
 	mot_arena_init(&a, NULL, 0);
-	carve(&a, rig);
+	carve(&a, rig, tick_hz);
 	if (a.failed)
 		return NULL;
 	size = (a.used + 63) & ~(size_t)63;
@@ -171,7 +183,7 @@ static struct loop *block_new(const struct rig *rig)
 	if (!block)
 		return NULL;
 	mot_arena_init(&a, block, size);
-	L = carve(&a, rig);
+	L = carve(&a, rig, tick_hz);
 	mot_arena_seal(&a);
 	if (!L) { /* cannot happen: the same carving measured it */
 		free(block);
@@ -182,7 +194,15 @@ static struct loop *block_new(const struct rig *rig)
 
 /* ---- the plan ---- */
 
-/* Where the rig stands: feedback where there is some, else home. */
+/* Output o's limits as the predicate takes them. */
+static struct lim_bounds out_bounds(const struct rig_out *o)
+{
+	return (struct lim_bounds){ .min = o->min, .max = o->max, .vel = o->vmax,
+				    .acc = o->amax, .vel_ch = o->vel_mode };
+}
+
+/* Where the rig stands: feedback where there is some, else home; each
+ * output's limits and its meter, standing there. */
 static void read_rig(struct loop *L)
 {
 	const struct rig *rig = L->rig;
@@ -201,7 +221,35 @@ static void read_rig(struct loop *L)
 					      o->scale.per_unit_d);
 		L->val[i] = L->prev[i];
 		L->out[i].sent = o->vel_mode ? 0 : hal_scale_counts(&o->scale, L->prev[i], NULL);
+		L->out[i].lim = out_bounds(o);
+		/* the run starts from rest where the rig stands */
+		lim_meter_reset(&L->out[i].meter, &L->stencil, L->out[i].meter.ring, L->prev[i],
+				true);
+		L->seq.extend[i] = timeline_extends(o->unit);
 	}
+}
+
+/* Every output stands inside its position limits: a move from outside
+ * would break them at its first tick. -EDOM, naming it, otherwise. */
+static int standing(struct loop *L, char *err, size_t errsize)
+{
+	uint32_t i;
+
+	for (i = 0; i < L->n; i++) {
+		const struct rig_out *o = &L->rig->out[i];
+		double x = move_q2d(L->prev[i]);
+
+		if (o->vel_mode || (x >= o->min - 1e-9 && x <= o->max + 1e-9))
+			continue;
+		snprintf(err, errsize, "%s (device '%s' axis %u) stands at %.7g %s, outside its "
+			 "limits %.7g to %.7g %s: bring it inside them before playing",
+			 o->channel, L->rig->axes[o->dev]->name, o->ch,
+			 rig_file_units(o->unit, x), rig_unit_name(o->unit),
+			 rig_file_units(o->unit, o->min), rig_file_units(o->unit, o->max),
+			 rig_unit_name(o->unit));
+		return -EDOM;
+	}
+	return 0;
 }
 
 static int plan_step(struct loop *L, char *err, size_t errsize)
@@ -268,7 +316,7 @@ static int plan_continuous(struct loop *L, char *err, size_t errsize)
 			 "%s moves at %.6g %s/s at frame %lld: coming up to that speed within "
 			 "its acceleration limit needs a run-up from %.6g %s, outside its limits; "
 			 "start from a frame where it moves slower",
-			 o->channel, rig_file_units(o->unit, L->out[bad].ru_v),
+			 o->channel, rig_file_units(o->unit, L->out[bad].ru.v),
 			 rig_unit_name(o->unit), (long long)L->seq.pass_first,
 			 rig_file_units(o->unit, move_q2d(L->seq.target[bad])),
 			 rig_unit_name(o->unit));
@@ -297,7 +345,7 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 
 	STRAND_ASSERT_NOT_RT();
 	*out = NULL;
-	L = block_new(rig);
+	L = block_new(rig, src->timing.tick_hz);
 	if (!L) {
 		snprintf(err, errsize, "out of memory");
 		return -ENOMEM;
@@ -327,9 +375,12 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	L->seq.lead = -min_off;
 	L->seq.tail = max_off;
 	read_rig(L);
-	/* a live loop plans each segment when a command asks for it */
-	rc = cfg->live ? 0 : cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
-							   plan_continuous(L, err, errsize);
+	/* a live loop plans each segment when a command asks for it, and
+	 * may start outside the limits: a jog brings it back (loop_live.h) */
+	rc = cfg->live ? 0 : standing(L, err, errsize);
+	if (!rc && !cfg->live)
+		rc = cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
+						   plan_continuous(L, err, errsize);
 	if (rc) {
 		loop_free(L);
 		return rc;

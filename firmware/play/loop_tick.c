@@ -6,6 +6,7 @@
  * function here is [rt].
  */
 #include "loop_priv.h"
+#include "chase.h"
 #include "hal/rt.h"
 
 #include <time.h>
@@ -14,6 +15,8 @@ int64_t STRAND_RT loop_due(const struct loop *L, int64_t k)
 {
 	uint32_t hz = L->tm->tick_hz;
 
+	if (L->chase) /* the source's time (chase.h) */
+		return chase_due(L->chase, k);
 	/* whole seconds and the rest separately: exact, and no overflow for
 	 * any tick count the core accepts */
 	return L->t0 + (k / hz) * 1000000000 + (k % hz) * 1000000000 / hz;
@@ -124,6 +127,9 @@ static void STRAND_RT sequence(struct loop *L)
 		case LOOP_STEP_SETTLE:
 		case LOOP_STEP_EXPOSE:
 			hold(L, s->target);
+			return;
+		case LOOP_CUE:
+			hold(L, L->prev);
 			return;
 		case LOOP_ENDED:
 			hold(L, L->prev);
@@ -236,6 +242,7 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 		goto out;
 	if (L->live)
 		loop_live_commands(L);
+	loop_chase_tick(L, now_ns);
 	req = atomic_load_explicit(&L->safety.stop_req, memory_order_relaxed);
 	if ((req & 3) == 2) {
 		loop_halt(L, LOOP_END_STOPPED, (enum loop_cause)(req >> 2), NULL);
@@ -266,11 +273,16 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 	/* this tick's setpoints become the last ones */
 	for (i = 0; i < L->n; i++) {
 		L->out[i].vel = L->out[i].vel_now;
+		if (!L->seq.braked)
+			L->out[i].stop_v = L->out[i].vel_now;
 		L->prev[i] = L->val[i];
+		lim_meter_push(&L->out[i].meter, L->val[i]);
 	}
+	L->seq.braked = false;
 out:
 	if (L->live)
 		loop_live_tick_end(L);
+	loop_chase_after(L);
 	res->ticks_run = k + 1;
 	status(L);
 	return L->seq.state != LOOP_ENDED;

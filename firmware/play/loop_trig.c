@@ -61,6 +61,7 @@ static struct journal_rec STRAND_RT *journal_take(struct loop *L, uint32_t i, in
 	rec->wall_ns = 0;
 	rec->ferr = 0;
 	rec->ferr_out = -1;
+	rec->src_frame = loop_chase_frame(L, due);
 	for (k = 0; k < L->n; k++)
 		rec->sp[k] = L->val[k];
 	journal_arm(jr, rec);

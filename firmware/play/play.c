@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "hal/rt.h"
+#include "rig/rig_chase.h"
 #include "scene/timecode.h"
 
 /* Records the journal keeps mapped ahead of the loop: ten seconds of
@@ -49,7 +50,8 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.rate_num = src->timing.num;
 	ji.rate_den = src->timing.den;
 	ji.tick_hz = src->timing.tick_hz;
-	ji.mode = p->o.loop.mode == LOOP_MODE_STEP;
+	ji.mode = (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
+		  (p->extclk ? JOURNAL_MODE_CHASE : 0);
 	ji.start_wall_ns = hal_clock_wall(&p->clk);
 	ji.nout = n;
 	ji.out_name = names;
@@ -84,6 +86,54 @@ static int given_up(struct play *p, char *err, size_t errsize)
 	rig_stop(&p->rig);
 	p->rig_started = false;
 	return -ECANCELED;
+}
+
+/* --chase: the source opened and reading, the loop following it. The
+ * source's labels count frames at the scene's rate, or at half of it
+ * above 30 frames a second (LTC counts at most 30: 50 and 60000/1001
+ * scenes chase 25 and 30000/1001 timecode, two frames per label). */
+static int prepare_chase(struct play *p, const struct play_source *src, char *err,
+			 size_t errsize)
+{
+	const struct play_chase *o = &p->o.chase;
+	const struct mot_timing *tm = &src->timing;
+	struct chase_cfg cc = { .num = tm->num, .den = tm->den, .tick_hz = tm->tick_hz,
+				.mult = 1 };
+	struct rig_chase_cfg rc = { .spec = o->spec, .clk = &p->clk, .sched = p->plan.events,
+				    .gpio_sysfs = p->o.rig.gpio_sysfs, .sim = o->sim,
+				    .sim_din = o->sim_din };
+	struct timecode tc;
+	int rc_;
+
+	if (strncmp(o->spec, "gpio:", 5) && (double)tm->num / tm->den > 30.5) {
+		if (tm->num % 2) {
+			snprintf(err, errsize, "--chase %s: LTC counts at most 30 frames a second, "
+				 "and %u/%u is not twice a rate it counts", o->spec, tm->num, tm->den);
+			return -EINVAL;
+		}
+		cc.mult = 2;
+	}
+	rc.num = tm->num / cc.mult;
+	rc.den = tm->den;
+	timecode_init(&tc, rc.num, rc.den);
+	if (o->tc_offset && timecode_parse(&tc, o->tc_offset, &cc.offset)) {
+		snprintf(err, errsize, "--tc-offset %s: not a timecode at %u/%u frames a second "
+			 "(HH:MM:SS:FF%s)", o->tc_offset, rc.num, rc.den,
+			 tc.drop ? ", drop-frame: no label 00 or 01 in minutes not a tenth" : "");
+		return -EINVAL;
+	}
+	cc.freewheel_ns = (int64_t)(o->freewheel_ms * 1e6);
+	rc_ = rig_chase_open(&p->extclk, &rc, err, errsize);
+	if (rc_)
+		return rc_;
+	cc.src = p->extclk;
+	chase_init(&p->chase, &cc);
+	loop_set_chase(p->L, &p->chase);
+	rc_ = hal_extclk_start(p->extclk);
+	if (rc_)
+		snprintf(err, errsize, "--chase %s: cannot start reading: %s", o->spec,
+			 strerror(-rc_));
+	return rc_;
 }
 
 int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *src,
@@ -129,6 +179,14 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	rc = loop_init(&p->L, &p->o.loop, &p->rig, src, &p->clk, &p->status, err, errsize);
 	if (rc == -EINVAL)
 		p->failed_at = PLAY_STAGE_OPTIONS; /* --from after --to, and the like */
+	if (rc == -EDOM)
+		p->failed_at = PLAY_STAGE_START; /* an output stands outside its limits */
+	if (!rc && o->chase.spec) {
+		p->failed_at = PLAY_STAGE_START;
+		rc = prepare_chase(p, src, err, errsize);
+		if (rc == -EINVAL)
+			p->failed_at = PLAY_STAGE_OPTIONS;
+	}
 	if (!rc)
 		rc = given_up(p, err, errsize);
 	if (rc)
@@ -174,6 +232,8 @@ static void *rt_main(void *arg)
 		 * start-up takes some), on a whole millisecond */
 		t0 = (hal_clock_now(&p->clk) + 999999) / 1000000 * 1000000;
 	}
+	if (p->extclk)
+		chase_begin(&p->chase, t0);
 	strand_rt_enter();
 	loop_run(p->L, t0);
 	strand_rt_leave();
@@ -331,6 +391,10 @@ void play_free(struct play *p)
 		journal_close(&p->jr);
 	if (p->telemetry)
 		fclose(p->telemetry);
+	if (p->extclk) {
+		hal_extclk_stop(p->extclk);
+		hal_extclk_close(p->extclk);
+	}
 	loop_free(p->L);
 	if (p->rig_built)
 		rig_free(&p->rig);
@@ -419,6 +483,17 @@ void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
 	case LOOP_CAUSE_SATURATION:
 		snprintf(buf, size, "internal: fixed-point arithmetic saturated %s", when);
 		break;
+	case LOOP_CAUSE_CHASE:
+		if (r->end == LOOP_END_FAULT)
+			snprintf(buf, size, "chase: source '%s': %s (%s) %s; every axis brought to "
+				 "rest within its limits", r->device ? r->device : "?",
+				 r->what ? r->what : "fault", strerror(r->code < 0 ? -r->code : r->code),
+				 when);
+		else
+			snprintf(buf, size, "chase: source '%s': %s %s; every axis brought to rest "
+				 "within its limits", r->device ? r->device : "?",
+				 chase_event_name((enum chase_event)r->detail), when);
+		break;
 	case LOOP_CAUSE_DISABLE:
 		snprintf(buf, size, "drives disabled %s; every axis brought to rest first", when);
 		break;
@@ -431,6 +506,34 @@ void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
 void play_describe(const struct play *p, char *buf, size_t size)
 {
 	play_report_describe(&p->rig, p->tm, loop_result(p->L), buf, size);
+}
+
+/* What the chase did: lock, rate, stops and cues, the schedule's phase. */
+static void chase_summary(const struct play *p, FILE *f)
+{
+	const struct chase *c = &p->chase;
+	const struct chase_stats *s = &c->st;
+	uint32_t e;
+
+	fprintf(f, "  chase %s: %lld marks", c->cfg.src->name, (long long)s->marks);
+	if (s->lock_ns >= 0 && s->first_mark_ns >= 0)
+		fprintf(f, ", locked %.1f ms after the first", (s->lock_ns - s->first_mark_ns) / 1e6);
+	fprintf(f, ", rate %+.1f ppm, cued %lld time%s", (s->rate - 1) * 1e6,
+		(long long)c->recues + (s->locks ? 1 : 0), c->recues ? "s" : "");
+	if (s->phase_max_ns > 0)
+		fprintf(f, ", schedule within %.1f us of the source", s->phase_max_ns / 1e3);
+	if (s->freewheel_max_ns > 0)
+		fprintf(f, ", longest without a mark %.1f ms", s->freewheel_max_ns / 1e6);
+	fputc('\n', f);
+	for (e = CHASE_EV_JUMP; e <= CHASE_EV_FORMAT; e++)
+		if (s->events[e])
+			fprintf(f, "  chase: %s: %lld time%s\n", chase_event_name((enum chase_event)e),
+				(long long)s->events[e], s->events[e] == 1 ? "" : "s");
+	if (s->outliers)
+		fprintf(f, "  chase: %lld pulse%s between frames ignored\n", (long long)s->outliers,
+			s->outliers == 1 ? "" : "s");
+	if (c->past_end)
+		fprintf(f, "  chase: the source named a frame past the range; nothing played then\n");
 }
 
 void play_summary(const struct play *p, FILE *f, bool reason)
@@ -472,6 +575,8 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 		fprintf(f, "  input edges: %lld; on %lld ticks a device gave the most a tick takes "
 			"(%d), the rest waited for the next tick\n", (long long)res->edges,
 			(long long)res->edges_bound_ticks, LOOP_EDGES_PER_TICK);
+	if (p->extclk)
+		chase_summary(p, f);
 	rig_report(&p->rig, f);
 	if (res->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",

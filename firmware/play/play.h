@@ -26,12 +26,25 @@
 #include "hal/clock.h"
 #include "hal/ring.h"
 #include "journal/journal.h"
+#include "chase.h"
+#include "hal/extclk.h"
 #include "loop.h"
 #include "rig/rig.h"
 #include "rt.h"
 #include "scene/source.h"
 
 #define PLAY_STATUS_RING 1024
+
+struct sim_ltc_cfg;
+
+/* --chase: an external clock the run follows (chase.h, rig/rig_chase.h). */
+struct play_chase {
+	const char *spec;          /* NULL: the loop's own time */
+	const char *tc_offset;     /* the source's timecode of the scene's frame 0, or NULL */
+	double freewheel_ms;       /* without the source this long: a controlled stop */
+	const struct sim_ltc_cfg *sim; /* tests: the script of "ltc:sim" */
+	struct hal_din *sim_din;   /* tests: the input of "gpio:sim", taken over */
+};
 
 struct play_opts {
 	struct loop_cfg loop;
@@ -41,6 +54,7 @@ struct play_opts {
 	const char *telemetry_path; /* JSON lines, NULL: none */
 	FILE *status_tty;         /* a live status line there, or NULL */
 	struct rig_opts rig;
+	struct play_chase chase;
 };
 
 /* Where play_prepare failed, for the exit code. */
@@ -75,6 +89,8 @@ struct play {
 	int64_t status_shown_ns;
 	int service_err;
 	int64_t wall_ns;          /* the run's duration on the monotonic clock */
+	struct hal_extclk *extclk; /* --chase: the source, NULL: none */
+	struct chase chase;
 };
 
 /* [init] Build the rig for src (simulated where asked), start it, prepare

@@ -15,6 +15,7 @@
 
 #include "rig_driver.h"
 #include "hal/rt.h"
+#include "plan/limit.h"
 
 static int fail(char *err, size_t size, int code, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
@@ -31,7 +32,7 @@ static int fail(char *err, size_t size, int code, const char *fmt, ...)
 
 double rig_file_units(enum src_unit unit, double v)
 {
-	return unit == SRC_UNIT_TURNS ? v * 360.0 : v;
+	return lim_file_units(unit, v);
 }
 
 const char *rig_unit_name(enum src_unit unit)
@@ -111,10 +112,15 @@ static int make_output(struct rig_out *o, const struct rig_output_desc *od,
 		rc = rig_output_check_limits(od->channel, &lim, true, msg, sizeof(msg));
 	if (rc)
 		return fail(err, size, rc, "outputs[%u] (%s): %s", i, od->channel, msg);
-	o->min = lim.has_min ? to_core(o->unit, lim.min) : -INFINITY;
-	o->max = lim.has_max ? to_core(o->unit, lim.max) : INFINITY;
-	o->vmax = to_core(o->unit, lim.vel);
-	o->amax = to_core(o->unit, lim.acc);
+	/* the predicate's units, as strand check converts them (plan/limit.h) */
+	{
+		struct lim_bounds b = lim_bounds_of(&lim, o->unit);
+
+		o->min = b.min;
+		o->max = b.max;
+		o->vmax = b.vel;
+		o->amax = b.acc;
+	}
 	per_unit = od->counts_per_unit * (sc->unit == SRC_UNIT_TURNS ? 360.0 : 1.0);
 	o->scale.per_unit = (mot_q32)llround(per_unit * 4294967296.0);
 	o->scale.per_unit_d = (double)o->scale.per_unit / 4294967296.0;

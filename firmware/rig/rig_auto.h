@@ -7,9 +7,11 @@
  * simulated I/O device with a camera trigger. A joint's limits are the
  * scene's; where the scene gives no speed or acceleration limit, the rig is
  * made just capable enough for the motion: 1.25 times the largest speed and
- * acceleration the timeline asks of that channel (sampled at every tick, or
- * evenly over spans longer than RIG_AUTO_TICKS ticks), and at least enough
- * acceleration to reach that speed in half a second (for the run-up). Each axis stands at
+ * acceleration the span asks of that channel, measured at every tick as
+ * the limit predicate measures them (plan/limit.h, over the span as a run
+ * plays it: plan/timeline.h), so that the check before the run passes by
+ * construction; and at least enough acceleration to reach that speed in
+ * half a second (for the run-up). Each axis stands at
  * the scene's first pose when the run starts. The scene says
  * nothing about following error, so an automatic rig does not bound it (a
  * `step` curve jumps, and no servo follows a jump).
@@ -20,7 +22,6 @@
 #include "rig_desc.h"
 #include "scene/source.h"
 
-#define RIG_AUTO_TICKS 2000000
 #define RIG_AUTO_MARGIN 1.25
 
 struct rig_auto {
@@ -32,8 +33,10 @@ struct rig_auto {
 	struct rig_trigger_desc trig;
 };
 
-/* [init] 0 or a negative errno. */
-int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_source *src);
+/* [init] 0 or a negative errno. Each axis stands at the pose of frame
+ * `home` (the run's first: no pre-roll on a rig that stands ready). */
+int rig_auto_build(struct rig_auto *ra, const struct scene_desc *d, struct play_source *src,
+		   int64_t home);
 void rig_auto_free(struct rig_auto *ra);
 
 #endif /* STRAND_RIG_AUTO_H */

@@ -67,20 +67,25 @@ void chan_list_free(struct chan_list *l)
 	l->n = 0;
 }
 
+double chan_value_q32(const struct chan *c, mot_q32 v)
+{
+	/* angles: a joint's and the camera's pan, tilt and roll */
+	return c->unit[0] == 'd' ? chan_turns_deg(v) : chan_q32(v);
+}
+
 double chan_value(const struct chan *c, const struct mot_pose *p)
 {
 	switch (c->kind) {
 	case CHAN_POS:
 		return chan_q32(p->pos[c->index][c->comp]);
 	case CHAN_VALUE:
-		return c->unit[0] ? chan_turns_deg(p->value[c->index]) : chan_q32(p->value[c->index]);
+		return chan_value_q32(c, p->value[c->index]);
 	case CHAN_RPM:
 		return chan_q32(p->rpm[c->index]);
 	case CHAN_CAMERA:
-		if (c->comp < 3)
-			return chan_q32(p->cam.eye[c->comp]);
-		return chan_turns_deg(c->comp == 3 ? p->cam.pan :
-				      c->comp == 4 ? p->cam.tilt : p->cam.roll);
+		return chan_value_q32(c, c->comp < 3 ? p->cam.eye[c->comp] :
+					 c->comp == 3 ? p->cam.pan :
+					 c->comp == 4 ? p->cam.tilt : p->cam.roll);
 	case CHAN_CYCLE:
 		return (double)p->cycle[c->index];
 	case CHAN_ATTR:

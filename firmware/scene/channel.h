@@ -44,6 +44,10 @@ void chan_list_free(struct chan_list *l);
 /* A channel's value in a pose, in the file's units. Real-time safe. */
 double chan_value(const struct chan *c, const struct mot_pose *p);
 
+/* The same from the channel's value in the core's units (Q32.32: turns for
+ * an angle, a cycle's index as a whole number), as a play source gives it. */
+double chan_value_q32(const struct chan *c, mot_q32 v);
+
 /* Turns to degrees and Q32.32 to double, exactly as export prints them. */
 static inline double chan_q32(mot_q32 v)
 {

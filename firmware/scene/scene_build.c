@@ -54,6 +54,7 @@ static void count(const struct scene_desc *d, struct layout *l)
 			for (k = 0; k < MOT_FREE_NCHANNELS; k++)
 				l->ncurves += curve_used(&n->free.ch[k]);
 			l->nrot += n->free.nrot > 0;
+			l->ncurves += 4 * curve_used(&n->free.quat[0]);
 		} else {
 			l->ncurves += curve_used(&n->value) + curve_used(&n->spin);
 		}
@@ -68,15 +69,23 @@ static void count(const struct scene_desc *d, struct layout *l)
 static int build_curve(struct layout *l, struct mot_curve *c, const struct sd_curve *sc,
 		       double scale, bool integral, uint32_t *bad_key)
 {
-	uint32_t nseg = mot_curve_seg_count(sc->interp, sc->nkeys), i;
+	uint32_t nseg = sc->compact ? 0 : mot_curve_seg_count(sc->interp, sc->nkeys), i;
+	bool tangents = false;
 	struct mot_key *keys = ALLOC(l->a, struct mot_key, sc->nkeys);
-	struct mot_curve_seg *seg = ALLOC(l->a, struct mot_curve_seg, nseg ? nseg : 1);
+	struct mot_curve_seg *seg = nseg ? ALLOC(l->a, struct mot_curve_seg, nseg) : NULL;
+	struct mot_tangent *tan = NULL;
 	struct mot_curve_opts o;
 	uint32_t sat = 0;
+	int err;
 
+	for (i = 0; i < sc->nkeys; i++)
+		tangents = tangents || sc->keys[i].tan_set;
 	if (!l->a->base)
 		return 0;
-	if (!keys || !seg)
+	if (!keys || (nseg && !seg))
+		return MOT_E_CAPACITY;
+	/* the tangents are read at init only: a scratch array */
+	if (tangents && !(tan = calloc(sc->nkeys, sizeof(*tan))))
 		return MOT_E_CAPACITY;
 	for (i = 0; i < sc->nkeys; i++) {
 		const struct sd_key *k = &sc->keys[i];
@@ -85,8 +94,14 @@ static int build_curve(struct layout *l, struct mot_curve *c, const struct sd_cu
 		if (!sd_to_q32(k->frame, &keys[i].frame) ||
 		    !sd_to_q32(k->value * scale, &keys[i].value) ||
 		    !sd_to_q32(k->ease_in, &keys[i].ease_in) ||
-		    !sd_to_q32(k->ease_out, &keys[i].ease_out))
+		    !sd_to_q32(k->ease_out, &keys[i].ease_out) ||
+		    (tan && (!sd_to_q32(k->tan_in * scale, &tan[i].in) ||
+			     !sd_to_q32(k->tan_out * scale, &tan[i].out)))) {
+			free(tan);
 			return MOT_E_RANGE;
+		}
+		if (tan)
+			tan[i].set = k->tan_set;
 	}
 	*bad_key = UINT32_MAX;
 	memset(&o, 0, sizeof(o));
@@ -95,19 +110,24 @@ static int build_curve(struct layout *l, struct mot_curve *c, const struct sd_cu
 	    !sd_to_q32(sc->ease_out, &o.ease_out_frames))
 		return MOT_E_RANGE;
 	o.integral = integral;
-	return mot_curve_init(c, sc->interp, keys, sc->nkeys, &o, seg, nseg, &sat);
+	o.tangents = tan;
+	o.compact = sc->compact;
+	err = mot_curve_init(c, sc->interp, keys, sc->nkeys, &o, seg, nseg, &sat);
+	free(tan);
+	return err;
 }
 
 static int build_rot(struct layout *l, struct mot_rot_track *r, const struct sd_free *f,
 		     uint32_t *bad_key)
 {
 	struct mot_rot_key *keys = ALLOC(l->a, struct mot_rot_key, f->nrot);
-	struct mot_rot_seg *seg = ALLOC(l->a, struct mot_rot_seg, f->nrot > 1 ? f->nrot - 1 : 1);
+	struct mot_rot_seg *seg = f->rot_compact ? NULL :
+				  ALLOC(l->a, struct mot_rot_seg, f->nrot > 1 ? f->nrot - 1 : 1);
 	uint32_t i, sat = 0;
 
 	if (!l->a->base)
 		return 0;
-	if (!keys || !seg)
+	if (!keys || (!f->rot_compact && !seg))
 		return MOT_E_CAPACITY;
 	for (i = 0; i < f->nrot; i++) {
 		const struct sd_rot_key *k = &f->rot[i];
@@ -125,6 +145,8 @@ static int build_rot(struct layout *l, struct mot_rot_track *r, const struct sd_
 			return MOT_E_RANGE;
 	}
 	*bad_key = UINT32_MAX;
+	if (f->rot_compact)
+		return f->squad ? MOT_E_INVAL : mot_rot_track_init_compact(r, keys, f->nrot);
 	return mot_rot_track_init(r, keys, f->nrot, f->squad, seg, f->nrot > 1 ? f->nrot - 1 : 1,
 				  &sat);
 }
@@ -148,6 +170,14 @@ static void free_span(const struct sd_free *f, double *lo, double *hi)
 		*lo = fmin(*lo, f->rot[0].frame);
 		*hi = fmax(*hi, f->rot[f->nrot - 1].frame);
 	}
+	for (k = 0; k < 4; k++) {
+		const struct sd_curve *c = &f->quat[k];
+
+		if (c->nkeys) {
+			*lo = fmin(*lo, c->keys[0].frame);
+			*hi = fmax(*hi, c->keys[c->nkeys - 1].frame);
+		}
+	}
 	if (*lo > *hi)
 		*lo = *hi = 0;
 }
@@ -167,6 +197,8 @@ const char *const sd_free_names[MOT_FREE_NCHANNELS] = {
 	"translate.x", "translate.y", "translate.z", "scale.x",  "scale.y",
 	"scale.z",     "shear.hxy",   "shear.hxz",   "shear.hyz",
 };
+
+const char *const sd_quat_names[4] = { "rotation.w", "rotation.x", "rotation.y", "rotation.z" };
 
 const char *const sd_cam_names[MOT_CAM_NCHANNELS] = {
 	"camera.eye.x",     "camera.eye.y",     "camera.eye.z", "camera.look_at.x",
@@ -264,6 +296,22 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 					return set_err(e, err, (int)i, sd_free_names[k], bad);
 				if (fs)
 					fs->channel[k] = (int32_t)ci;
+				ci++;
+			}
+			for (k = 0; k < 4; k++) {
+				if (fs)
+					fs->quat[k] = -1;
+				if (!curve_used(&sf->quat[0]))
+					continue;
+				if (sf->nrot || !curve_used(&sf->quat[k]))
+					return set_err(e, MOT_E_INVAL, (int)i, sd_quat_names[k],
+						       UINT32_MAX);
+				err = build_curve(l, fill ? &l->curves[ci] : NULL, &sf->quat[k],
+						  1.0, false, &bad);
+				if (err)
+					return set_err(e, err, (int)i, sd_quat_names[k], bad);
+				if (fs)
+					fs->quat[k] = (int32_t)ci;
 				ci++;
 			}
 			if (fs)

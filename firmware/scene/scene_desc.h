@@ -24,6 +24,10 @@ struct sd_key {
 	double frame;
 	double value; /* scene units, degrees or rpm by the curve's role */
 	double ease_in, ease_out;
+	/* hermite: explicit tangents, value per frame (units or degrees), on
+	 * the sides tan_set says (MOT_TANGENT_IN | MOT_TANGENT_OUT) */
+	double tan_in, tan_out;
+	uint32_t tan_set;
 };
 
 struct sd_curve {
@@ -32,6 +36,7 @@ struct sd_curve {
 	const struct sd_key *keys;
 	double beta1, beta2;             /* beta: bias and tension */
 	double ease_in, ease_out;        /* strand-wide, frames */
+	bool compact;                    /* step, linear: keys only (curve.h) */
 };
 
 struct sd_rot_key {
@@ -45,7 +50,11 @@ struct sd_free {
 	uint32_t nrot;
 	const struct sd_rot_key *rot;
 	bool squad;
+	bool rot_compact; /* the slerp track kept as its keys (strand.h) */
 	double ease_in, ease_out; /* strand-wide, frames, over the strand's whole span */
+	/* or the rotation as four curves of w, x, y, z, normalised when
+	 * evaluated (cubic, step); nkeys 0 = none. Not with nrot. */
+	struct sd_curve quat[4];
 };
 
 struct sd_limits {
@@ -112,6 +121,7 @@ struct scene_built {
 /* The names scene_build_err.what gives the channels of a free strand and of
  * the camera. */
 extern const char *const sd_free_names[MOT_FREE_NCHANNELS];
+extern const char *const sd_quat_names[4];
 extern const char *const sd_cam_names[MOT_CAM_NCHANNELS];
 
 /* Where a build failed, for the message at the edge. */
@@ -124,7 +134,8 @@ struct scene_build_err {
 
 /*
  * Convert and validate: 0, or a negative MOT_E_* code with *err saying where.
- * Allocates exactly one block (measured first); nothing else. Not real-time.
+ * Allocates exactly one block (measured first), and for a curve with explicit
+ * tangents a scratch array freed before it returns. Not real-time.
  */
 int scene_build(struct scene_built *out, const struct scene_desc *d, struct scene_build_err *err);
 void scene_built_free(struct scene_built *b);

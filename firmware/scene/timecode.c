@@ -2,7 +2,10 @@
 /* timecode.c - SMPTE timecode (see timecode.h). */
 #include "timecode.h"
 
+#include <errno.h>
 #include <stdio.h>
+
+#include "hal/rt.h"
 
 void timecode_init(struct timecode *tc, uint32_t num, uint32_t den)
 {
@@ -40,4 +43,35 @@ void timecode_format(const struct timecode *tc, int64_t f, char *buf, unsigned s
 	snprintf(buf, size, "%s%02u:%02u:%02u%c%02u", sign, (unsigned)(n / (fps * 3600)),
 		 (unsigned)(n / (fps * 60) % 60), (unsigned)(n / fps % 60), tc->drop ? ';' : ':',
 		 (unsigned)(n % fps));
+}
+
+int64_t STRAND_RT timecode_frame(const struct timecode *tc, uint32_t hh, uint32_t mm, uint32_t ss,
+		       uint32_t ff)
+{
+	int64_t fps = tc->nominal, d = tc->drop, mins = (int64_t)hh * 60 + mm;
+
+	if (hh > 23 || mm > 59 || ss > 59 || ff >= fps)
+		return -1;
+	if (d && ss == 0 && ff < d && mm % 10)
+		return -1; /* skipped */
+	/* every label, less those skipped in the minutes before this one
+	 * (d in each minute that is not a tenth) */
+	return ((mins * 60 + ss) * fps + ff) - d * (mins - mins / 10);
+}
+
+int64_t timecode_day(const struct timecode *tc)
+{
+	return (int64_t)tc->nominal * 86400 - (int64_t)tc->drop * (1440 - 144);
+}
+
+int timecode_parse(const struct timecode *tc, const char *s, int64_t *frame)
+{
+	unsigned hh, mm, ss, ff;
+	char sep, end;
+
+	if (sscanf(s, "%2u:%2u:%2u%c%2u%c", &hh, &mm, &ss, &sep, &ff, &end) != 5 ||
+	    (sep != ':' && sep != ';' && sep != '.'))
+		return -EINVAL;
+	*frame = timecode_frame(tc, hh, mm, ss, ff);
+	return *frame < 0 ? -EINVAL : 0;
 }

@@ -27,4 +27,17 @@ void timecode_init(struct timecode *tc, uint32_t num, uint32_t den);
  * bytes). Negative frames are written as "-" and the timecode of -f. */
 void timecode_format(const struct timecode *tc, int64_t f, char *buf, unsigned size);
 
+/* The frame number of the label hh:mm:ss:ff (the inverse of
+ * timecode_format within a day), or -1 when it is no label of these rules:
+ * a field out of range, or a label drop-frame skips (00:01:00;00). */
+int64_t timecode_frame(const struct timecode *tc, uint32_t hh, uint32_t mm, uint32_t ss,
+		       uint32_t ff);
+
+/* Frames in a day of these rules (the labels a day counts). */
+int64_t timecode_day(const struct timecode *tc);
+
+/* "HH:MM:SS:FF" (or with ';' or '.' before the frames) into its frame
+ * number: 0, or -EINVAL when it is not a label of these rules. */
+int timecode_parse(const struct timecode *tc, const char *s, int64_t *frame);
+
 #endif /* STRAND_TIMECODE_H */

@@ -120,7 +120,8 @@ static bool ticket_ok(struct server *s, struct lws *wsi)
 	return false;
 }
 
-static int ticket_new(struct server *s, char *out)
+/* A new ticket into out (32 hex digits and a NUL). */
+static int ticket_new(struct server *s, char out[33])
 {
 	unsigned char r[16];
 	int i, slot = 0;
@@ -132,7 +133,7 @@ static int ticket_new(struct server *s, char *out)
 	for (i = 1; i < TICKETS; i++)
 		if (s->tickets[i].until < s->tickets[slot].until)
 			slot = i;
-	snprintf(s->tickets[slot].t, sizeof(s->tickets[slot].t), "%s", out);
+	memcpy(s->tickets[slot].t, out, sizeof(s->tickets[slot].t));
 	s->tickets[slot].until = hal_mono_ns() + TICKET_NS;
 	return 0;
 }

@@ -570,6 +570,60 @@ static void wl_curve(struct dg *d)
 	}
 }
 
+/* What the importers added: hermite curves with explicit tangents, compact
+ * step and linear curves, compact slerp tracks. */
+static void wl_curve_keys(struct dg *d)
+{
+	long i;
+
+	for (i = 0; i < N_CURVE / 2; i++) {
+		struct mot_key keys[CURVE_KEYS];
+		struct mot_tangent tan[CURVE_KEYS];
+		struct mot_rot_key rk[CURVE_KEYS];
+		struct mot_curve_seg seg[CURVE_SEGS];
+		struct mot_curve_opts opts;
+		struct mot_cursor cur = { 0, 0 }, rcur = { 0, 0 };
+		struct mot_curve c;
+		struct mot_rot_track rt;
+		enum mot_interp kind = (i % 3 == 0) ? MOT_INTERP_HERMITE :
+				       (i % 3 == 1) ? MOT_INTERP_LINEAR : MOT_INTERP_STEP;
+		mot_q32 f = -MOT_Q32_INT(5), tick;
+		uint32_t n = 2 + (uint32_t)(dg_u64(d) % (CURVE_KEYS - 1)), k, sat = 0;
+		int rc;
+
+		for (k = 0; k < n; k++) {
+			f += dg_range(d, MOT_Q32_ONE / 4, MOT_Q32_INT(50));
+			keys[k].frame = rk[k].frame = f;
+			keys[k].value = dg_range(d, -MOT_Q32_INT(1000), MOT_Q32_INT(1000));
+			keys[k].ease_in = keys[k].ease_out = rk[k].ease_in = rk[k].ease_out = 0;
+			tan[k].in = dg_range(d, -MOT_Q32_INT(100), MOT_Q32_INT(100));
+			tan[k].out = dg_range(d, -MOT_Q32_INT(100), MOT_Q32_INT(100));
+			tan[k].set = (uint32_t)(dg_u64(d) % 4);
+			dg_quat(d, &rk[k].q, &sat);
+		}
+		memset(&opts, 0, sizeof(opts));
+		opts.tangents = kind == MOT_INTERP_HERMITE ? tan : NULL;
+		opts.compact = kind != MOT_INTERP_HERMITE;
+		rc = mot_curve_init(&c, kind, keys, n, &opts, opts.compact ? NULL : seg,
+				    opts.compact ? 0 : CURVE_SEGS, &sat);
+		dg_put(d, (uint64_t)rc);
+		rc = mot_rot_track_init_compact(&rt, rk, n);
+		dg_put(d, (uint64_t)rc);
+		tick = dg_range(d, MOT_Q32_ONE / 2, MOT_Q32_INT(4));
+		for (f = keys[0].frame - MOT_Q32_INT(3); f < keys[n - 1].frame + MOT_Q32_INT(3);
+		     f += tick) {
+			struct mot_quat q;
+			mot_q32 at = dg_range(d, keys[0].frame, keys[n - 1].frame);
+
+			dg_put(d, (uint64_t)mot_curve_eval(&c, &cur, f, &sat));
+			dg_put(d, (uint64_t)mot_curve_eval(&c, NULL, at, &sat));
+			mot_rot_track_eval(&q, &rt, &rcur, f, &sat);
+			dg_put_quat(d, &q);
+		}
+		dg_put(d, sat);
+	}
+}
+
 /* ---- whole scenes ----------------------------------------------------------- */
 
 static void put_pose(struct dg *d, const struct mot_scene *sc, const struct mot_pose *p)
@@ -668,6 +722,7 @@ static const struct workload workloads[] = {
 	{ "quat", wl_quat },
 	{ "decomp", wl_decomp },
 	{ "curve", wl_curve },
+	{ "curve_keys", wl_curve_keys },
 	{ "scene_arm", wl_scene_arm },
 	{ "scene_random", wl_scene_random },
 };

@@ -842,6 +842,82 @@ static const struct err_case cases[] = {
 	  "devices: [{name: bus, driver: canopen, canopen: {interface: can0, bitrate: 1000000}}]\n"
 	  "outputs: [{channel: a.angle, device: bus, node: 3, counts_per_unit: 100000, home: 30000}]\n",
 	  "t.yaml:5:83: home 30000 is 3e+09 counts, beyond a CiA 402 drive's 32-bit position" },
+	{ "tangent on a linear strand",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - {node: a, interpolation: linear, keys: [{frame: 0, angle: 1, out: 2}, {frame: 5, angle: 0}]}\n",
+	  "t.yaml:4:45: 'in' or 'out' is a tangent, which only a hermite curve takes (this one is 'linear')" },
+	{ "tangent without its value",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    keys: [{frame: 0, scale: [1, 1, 1], translate_in: [0, 0, 0]}]\n",
+	  "t.yaml:5:55: 'translate_in' is the tangent of 'translate', which this key does not set" },
+	{ "cubic rotation with ease",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    rotation: cubic\n"
+	  "    keys: [{frame: 0, quat: [1, 0, 0, 0], ease_out: 0.5}, {frame: 5, quat: [0, 1, 0, 0]}]\n",
+	  "t.yaml:6:12: a cubic or step rotation takes no ease_in or ease_out (shape it with quat_in and quat_out)" },
+	{ "quat tangent on slerp",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    keys: [{frame: 0, quat: [1, 0, 0, 0], quat_out: [0, 0, 0, 0]}, {frame: 5, quat: [0, 1, 0, 0]}]\n",
+	  "t.yaml:5:12: 'quat_in' and 'quat_out' are tangents of a cubic rotation; this strand's rotation is slerp or squad" },
+	{ "unknown group interpolation",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    interpolation: {translate: linear, rotate: step}\n"
+	  "    keys: [{frame: 0, translate: [0, 0, 0]}]\n",
+	  "t.yaml:5:40: unknown key 'rotate' in interpolation (valid keys: translate, scale, shear)" },
+	{ "tangent on a step group",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a}]\n"
+	  "strands:\n"
+	  "  - node: a\n"
+	  "    interpolation: {translate: step}\n"
+	  "    keys: [{frame: 0, translate: [0, 0, 0], translate_out: [1, 0, 0]}, {frame: 4, translate: [1, 0, 0]}]\n",
+	  "t.yaml:6:12: 'translate_in' or 'translate_out' is a tangent, which only a hermite curve takes (this one is 'step')" },
+	{ "tangent beyond the range",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
+	  "strands:\n"
+	  "  - {node: a, keys: [{frame: 0, angle: 1, out: 3e11}, {frame: 5, angle: 0}]}\n",
+	  "t.yaml:4:22: a tangent of this key times its interval reaches beyond the core's range (below 2^31 turns)" },
+	{ "mimic of an unknown joint",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, joint: {type: revolute, axis: z}}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, mimic: {joint: c}}\n",
+	  "t.yaml:4:64: mimic of unknown joint 'c'" },
+	{ "mimic with a strand",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, joint: {type: revolute, axis: z}}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, mimic: {joint: a, multiplier: -1}}\n"
+	  "strands:\n"
+	  "  - {node: b, keys: [{frame: 0, angle: 1}]}\n",
+	  "t.yaml:6:5: 'b' mimics 'a': its motion is the master's, it takes no strand" },
+	{ "mimic of a free node",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, mimic: {joint: a}}\n",
+	  "t.yaml:4:56: 'b' mimics 'a', which is not a joint of its own (a free node or a mimic)" },
+	{ "mimic with a rest",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes:\n"
+	  "  - {name: a, joint: {type: revolute, axis: z}}\n"
+	  "  - {name: b, joint: {type: revolute, axis: z}, rest: 3, mimic: {joint: a}}\n",
+	  "t.yaml:4:55: 'b' mimics a joint: its rest is the master's, mapped (give 'offset' instead)" },
 };
 
 #define NCASES (sizeof(cases) / sizeof(cases[0]))

@@ -316,7 +316,8 @@ static void test_newton_adversarial(void **state)
 			f += log_uniform(&rng, 1e-6, 1e6);
 		}
 		ks.o = (struct mot_curve_opts){ d2q(b1s[tu_u64(&rng) % 6]),
-						d2q(b2s[tu_u64(&rng) % 5]), 0, 0, false };
+						d2q(b2s[tu_u64(&rng) % 5]), 0, 0, false,
+						NULL, false };
 		init_ok(&ks, kind);
 		for (i = 0; i < 100; i++) {
 			mot_q32 x = i % 3 ? sample(&rng, &ks)
@@ -797,7 +798,7 @@ static void test_errors(void **state)
 	struct mot_key k[MOT_BEZIER_MAX_KEYS + 1];
 	struct mot_curve_seg seg[MOT_BEZIER_MAX_KEYS + 2];
 	struct mot_curve c;
-	struct mot_curve_opts o = { MOT_Q32_ONE, 0, 0, 0, false };
+	struct mot_curve_opts o = { MOT_Q32_ONE, 0, 0, 0, false, NULL, false };
 	mot_acc a;
 	uint32_t sat = 0, i;
 
@@ -923,7 +924,7 @@ static void test_extremes(void **state)
 	struct mot_key k[5];
 	struct mot_curve_seg seg[6];
 	struct mot_curve c;
-	struct mot_curve_opts o = { MOT_BETA1_MAX, MOT_BETA2_MAX, 0, 0, false };
+	struct mot_curve_opts o = { MOT_BETA1_MAX, MOT_BETA2_MAX, 0, 0, false, NULL, false };
 	struct tu_rng rng;
 	int kind, i;
 

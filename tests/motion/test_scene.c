@@ -198,7 +198,7 @@ static void test_random_access(void **state)
  * to the last bit; nothing accumulates. */
 static void test_spin_day(void **state)
 {
-	static const struct sd_key rpm[] = { { 0, 0, 0, 0 }, { 48, 1200, 0, 0 } };
+	static const struct sd_key rpm[] = { { 0, 0, 0, 0, 0, 0, 0 }, { 48, 1200, 0, 0, 0, 0, 0 } };
 	struct sd_node n;
 	struct scene_desc d;
 	struct scene_built b;
@@ -332,8 +332,9 @@ static void test_camera_pan(void **state)
 /* Bad input to the API gets an error code, never a trap. */
 static void test_bad_input(void **state)
 {
-	static const struct sd_key rev[] = { { 0, 0, 0, 0 }, { 10, 5, 0, 0 }, { 10, 6, 0, 0 } };
-	static const struct sd_key ok[] = { { 0, 0, 0, 0 }, { 10, 5, 0, 0 } };
+	static const struct sd_key rev[] = { { 0, 0, 0, 0, 0, 0, 0 }, { 10, 5, 0, 0, 0, 0, 0 },
+					     { 10, 6, 0, 0, 0, 0, 0 } };
+	static const struct sd_key ok[] = { { 0, 0, 0, 0, 0, 0, 0 }, { 10, 5, 0, 0, 0, 0, 0 } };
 	struct synth sy;
 	struct sd_node *n;
 	struct scene_built b;
@@ -386,7 +387,8 @@ static void test_bad_input(void **state)
 
 	/* a value outside the core's range */
 	{
-		static const struct sd_key huge[] = { { 0, 0, 0, 0 }, { 10, 1e12, 0, 0 } }; /* deg */
+		static const struct sd_key huge[] = { { 0, 0, 0, 0, 0, 0, 0 },
+						      { 10, 1e12, 0, 0, 0, 0, 0 } }; /* deg */
 
 		n[0].value.keys = huge;
 		n[0].value.nkeys = 2;
@@ -454,8 +456,8 @@ static void patch_revolute(struct mot_node *nodes)
  */
 static void test_wide_sums(void **state)
 {
-	static const struct sd_key half[] = { { 0, 0.5, 0, 0 } };
-	static const struct sd_key far[] = { { 0, 536870912, 0, 0 } }; /* 2^29 units */
+	static const struct sd_key half[] = { { 0, 0.5, 0, 0, 0, 0, 0 } };
+	static const struct sd_key far[] = { { 0, 536870912, 0, 0, 0, 0, 0 } }; /* 2^29 units */
 	struct sd_node n[2];
 	struct scene_built b;
 	struct mot_eval ev;
@@ -469,13 +471,14 @@ static void test_wide_sums(void **state)
 	n[0].kind = MOT_NODE_FREE;
 	n[0].has_free = true;
 	for (k = MOT_FREE_SX; k <= MOT_FREE_SZ; k++)
-		n[0].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 1, half, 1, 0, 0, 0 };
+		n[0].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 1, half, 1, 0, 0, 0,
+						     false };
 	n[1].name = "slide";
 	n[1].parent = 0;
 	n[1].kind = MOT_NODE_PRISMATIC;
 	n[1].axis_id = MOT_AXIS_X;
 	n[1].axis[0] = 1;
-	n[1].value = (struct sd_curve){ MOT_INTERP_LINEAR, 1, far, 1, 0, 0, 0 };
+	n[1].value = (struct sd_curve){ MOT_INTERP_LINEAR, 1, far, 1, 0, 0, 0, false };
 	eval_once(&b, &ev, &p, n, 2, patch_prismatic);
 	/* pos = (p + t) / 2, rounded half up; W_t = t / 2 */
 	want = ((__int128)b.sc.nodes[1].pivot[0] + ((int64_t)1 << 61) + 1) >> 1;

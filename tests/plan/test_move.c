@@ -10,7 +10,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "play/move.h"
+#include "plan/move.h"
 #include "testutil.h"
 
 #define NCH 4

@@ -76,6 +76,13 @@ mot_q32 move_at(const struct move *m, uint32_t i, int64_t k);
 bool move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double amax,
 		    uint32_t tick_hz);
 
+/* How far a stop from speed v (units/s, a position channel) goes before it
+ * rests, exactly as move_stop_step brakes it: its speed shrinks by
+ * amax / tick_hz a tick, each tick's advance its new speed over the tick,
+ * dt (n |v| - dv n (n + 1) / 2), n = floor(|v| / dv) (the rounding of each
+ * tick's advance to the core's step aside). Not signed. */
+double move_stop_distance(double v, double amax, uint32_t tick_hz);
+
 /* Q32.32 <-> double in core units. */
 static inline double STRAND_RT move_q2d(mot_q32 x)
 {

@@ -84,6 +84,15 @@ mot_q32 STRAND_RT move_at(const struct move *m, uint32_t i, int64_t k)
 	return c->from + move_d2q(c->d < 0 ? -s : s);
 }
 
+double STRAND_RT move_stop_distance(double v, double amax, uint32_t tick_hz)
+{
+	double dv = amax / tick_hz, n = floor(fabs(v) / dv);
+
+	if (!(n > 0))
+		return 0;
+	return (n * fabs(v) - dv * n * (n + 1) / 2) / tick_hz;
+}
+
 bool STRAND_RT move_stop_step(mot_q32 *value, double *v, bool vel_ch, double vmax, double amax,
 		    uint32_t tick_hz)
 {

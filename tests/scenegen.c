@@ -1,0 +1,349 @@
+/* SPDX-License-Identifier: MIT */
+/* scenegen.c - random valid scenes (see scenegen.h). */
+#include "scenegen.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testutil.h"
+
+static void say(struct scenegen *g, const char *fmt, ...)
+{
+	va_list ap;
+	int n;
+
+	for (;;) {
+		va_start(ap, fmt);
+		n = vsnprintf(g->yaml + g->len, g->cap - g->len, fmt, ap);
+		va_end(ap);
+		if (n >= 0 && (size_t)n < g->cap - g->len)
+			break;
+		g->cap = g->cap * 2 + (size_t)n + 256;
+		g->yaml = realloc(g->yaml, g->cap);
+		if (!g->yaml)
+			abort();
+	}
+	g->len += (size_t)n;
+}
+
+static bool chance(struct tu_rng *r, double p)
+{
+	return tu_uniform(r, 0, 1) < p;
+}
+
+static uint32_t pick(struct tu_rng *r, uint32_t n)
+{
+	return (uint32_t)(tu_u64(r) % n);
+}
+
+/* log-uniform in [lo, hi] */
+static double logu(struct tu_rng *r, double lo, double hi)
+{
+	return exp(tu_uniform(r, log(lo), log(hi)));
+}
+
+/* n strictly increasing key frames over [a, b], a tenth of a frame apart
+ * at least, at tenths of a frame. */
+static void key_frames(struct tu_rng *r, double a, double b, uint32_t n, double *f)
+{
+	uint32_t i, j;
+
+	for (i = 0; i < n; i++)
+		f[i] = floor(tu_uniform(r, a, b) * 10) / 10;
+	for (i = 1; i < n; i++)
+		for (j = i; j > 0 && f[j] < f[j - 1]; j--) {
+			double t = f[j];
+
+			f[j] = f[j - 1];
+			f[j - 1] = t;
+		}
+	for (i = 1; i < n; i++)
+		if (f[i] < f[i - 1] + 0.1)
+			f[i] = f[i - 1] + 0.1;
+}
+
+static const char *const interps[] = { "step", "linear", "hermite", "bspline", "beta", "bezier" };
+
+/* interpolation, ease and beta of a strand; true when keys may carry
+ * ease_in / ease_out */
+static void strand_head(struct scenegen *g, struct tu_rng *r, const char *in, const char *interp,
+			double span)
+{
+	say(g, "%sinterpolation: %s\n", in, interp);
+	if (!strcmp(interp, "beta") && chance(r, 0.7))
+		say(g, "%sbeta: {bias: %.3f, tension: %.3f}\n", in, tu_uniform(r, 0.3, 3),
+		    tu_uniform(r, 0, 8));
+	if (chance(r, 0.3))
+		say(g, "%sease: {in: %.1f, out: %.1f}\n", in,
+		    floor(tu_uniform(r, 0, span / 3) * 10) / 10,
+		    floor(tu_uniform(r, 0, span / 3) * 10) / 10);
+}
+
+/* the ease_in / ease_out of a key (fractions summing to at most 1 per interval) */
+static void key_ease(struct scenegen *g, struct tu_rng *r)
+{
+	if (chance(r, 0.2))
+		say(g, ", ease_in: %.2f", tu_uniform(r, 0, 0.5));
+	if (chance(r, 0.2))
+		say(g, ", ease_out: %.2f", tu_uniform(r, 0, 0.5));
+}
+
+static void limits(struct scenegen *g, struct tu_rng *r, bool rev, double lo, double hi)
+{
+	double unit = rev ? 1 : 0.01, range = hi - lo + unit;
+	bool any = false;
+
+	if (!chance(r, 0.5))
+		return;
+	say(g, "    limits: {");
+	if (chance(r, 0.5)) {
+		/* around the keys' range: now and then inside it (a violation) */
+		say(g, "min: %.4f, max: %.4f", lo - range * tu_uniform(r, -0.1, 0.6),
+		    hi + range * tu_uniform(r, -0.1, 0.6));
+		any = true;
+	}
+	if (chance(r, 0.7)) {
+		say(g, "%svelocity: %.5g", any ? ", " : "", logu(r, 5, 3000) * unit);
+		any = true;
+	}
+	if (chance(r, 0.7)) {
+		say(g, "%sacceleration: %.5g", any ? ", " : "", logu(r, 20, 3e5) * unit);
+		any = true;
+	}
+	if (!any)
+		say(g, "velocity: %.5g", logu(r, 5, 3000) * unit);
+	say(g, "}\n");
+}
+
+struct node {
+	bool joint, rev, spin;
+	double lo, hi;      /* the keys' values */
+	uint32_t nkeys;
+	double f[6], v[6];
+	const char *interp;
+};
+
+static void timing(struct scenegen *g, struct tu_rng *r)
+{
+	static const uint32_t hz[] = { 100, 250, 500, 1000, 2000, 5000, 10000 };
+	static const uint32_t fps[][2] = { { 24, 1 }, { 25, 1 }, { 30000, 1001 } };
+	const uint32_t *f = fps[pick(r, 3)];
+	double secs = logu(r, 1, 86400), frames;
+
+	g->tick_hz = hz[pick(r, 7)];
+	if (secs * g->tick_hz > (double)g->max_ticks)
+		secs = (double)g->max_ticks / g->tick_hz;
+	g->num = f[0];
+	g->den = f[1];
+	frames = floor(secs * f[0] / f[1]);
+	if (frames < 1)
+		frames = 1;
+	g->first = (int64_t)pick(r, 100);
+	g->last = g->first + (int64_t)frames;
+	g->ticks = (int64_t)((double)(g->last - g->first) * g->tick_hz * f[1] / f[0]) + 1;
+	if (f[1] == 1)
+		say(g, "timing: {tick_hz: %u, frame_rate: %u, frames: [%lld, %lld]}\n", g->tick_hz,
+		    f[0], (long long)g->first, (long long)g->last);
+	else
+		say(g, "timing: {tick_hz: %u, frame_rate: \"%u/%u\", frames: [%lld, %lld]}\n",
+		    g->tick_hz, f[0], f[1], (long long)g->first, (long long)g->last);
+}
+
+static void nodes(struct scenegen *g, struct tu_rng *r, struct node *nd, uint32_t n)
+{
+	static const char *const axes[] = { "x", "y", "z" };
+	double span = (double)(g->last - g->first);
+	uint32_t i, k;
+
+	say(g, "nodes:\n");
+	for (i = 0; i < n; i++) {
+		struct node *d = &nd[i];
+
+		d->joint = !chance(r, 0.25);
+		d->rev = d->joint && chance(r, 0.6);
+		d->spin = d->rev && chance(r, 0.2);
+		d->nkeys = 2 + pick(r, 5);
+		key_frames(r, fmax(0, (double)g->first - span / 5), (double)g->last + span / 5,
+			   d->nkeys, d->f);
+		d->interp = d->spin ? interps[pick(r, 3)] : interps[pick(r, 6)];
+		d->lo = 1e300;
+		d->hi = -1e300;
+		for (k = 0; k < d->nkeys; k++) {
+			d->v[k] = d->spin ? floor(tu_uniform(r, -600, 600)) :
+				  d->rev  ? tu_uniform(r, -360, 360) :
+					    tu_uniform(r, -1, 1);
+			d->lo = fmin(d->lo, d->v[k]);
+			d->hi = fmax(d->hi, d->v[k]);
+		}
+		say(g, "  - name: n%u\n", i);
+		if (i && chance(r, 0.5))
+			say(g, "    parent: n%u\n", pick(r, i));
+		if (chance(r, 0.5))
+			say(g, "    pivot: [%.3f, %.3f, %.3f]\n", tu_uniform(r, -1, 1),
+			    tu_uniform(r, -1, 1), tu_uniform(r, -1, 1));
+		if (!d->joint)
+			continue;
+		if (chance(r, 0.7))
+			say(g, "    joint: {type: %s, axis: %s}\n", d->rev ? "revolute" : "prismatic",
+			    axes[pick(r, 3)]);
+		else
+			say(g, "    joint: {type: %s, axis: [%.3f, %.3f, %.3f]}\n",
+			    d->rev ? "revolute" : "prismatic", tu_uniform(r, 0.1, 1),
+			    tu_uniform(r, -1, 1), tu_uniform(r, -1, 1));
+		if (chance(r, 0.2))
+			say(g, "    rest: %.3f\n", d->rev ? tu_uniform(r, -90, 90) : tu_uniform(r, -1, 1));
+		if (!d->spin)
+			limits(g, r, d->rev, d->lo, d->hi);
+	}
+}
+
+static void strands(struct scenegen *g, struct tu_rng *r, struct node *nd, uint32_t n)
+{
+	uint32_t i, k;
+	bool any = false;
+
+	for (i = 0; i < n; i++) {
+		struct node *d = &nd[i];
+
+		if (chance(r, 0.1))
+			continue; /* a node no strand moves */
+		if (!any)
+			say(g, "strands:\n");
+		any = true;
+		say(g, "  - node: n%u\n", i);
+		if (d->spin) {
+			say(g, "    interpolation: %s\n    keys:\n", d->interp);
+			for (k = 0; k < d->nkeys; k++)
+				say(g, "      - {frame: %.1f, rpm: %.0f}\n", d->f[k], d->v[k]);
+			continue;
+		}
+		strand_head(g, r, "    ", d->interp, d->f[d->nkeys - 1] - d->f[0]);
+		if (!d->joint && chance(r, 0.5))
+			say(g, "    rotation: %s\n", chance(r, 0.5) ? "slerp" : "squad");
+		say(g, "    keys:\n");
+		for (k = 0; k < d->nkeys; k++) {
+			say(g, "      - {frame: %.1f", d->f[k]);
+			if (d->joint) {
+				say(g, d->rev ? ", angle: %.4f" : ", position: %.5f", d->v[k]);
+			} else {
+				bool t = !k || chance(r, 0.7), rot = !k || !t || chance(r, 0.7);
+
+				if (t)
+					say(g, ", translate: [%.3f, %.3f, %.3f]", tu_uniform(r, -1, 1),
+					    tu_uniform(r, -1, 1), tu_uniform(r, -1, 1));
+				if (rot)
+					say(g, ", rotate: [%.2f, %.2f, %.2f]", tu_uniform(r, -180, 180),
+					    tu_uniform(r, -90, 90), tu_uniform(r, -180, 180));
+				if (chance(r, 0.3))
+					say(g, ", scale: [%.3f, %.3f, %.3f]", tu_uniform(r, 0.5, 2),
+					    tu_uniform(r, 0.5, 2), tu_uniform(r, 0.5, 2));
+			}
+			key_ease(g, r);
+			say(g, "}\n");
+		}
+	}
+}
+
+static void camera(struct scenegen *g, struct tu_rng *r)
+{
+	double span = (double)(g->last - g->first), f[6];
+	uint32_t n = 2 + pick(r, 4), k;
+
+	double a = tu_uniform(r, -M_PI, M_PI);
+
+	/* keys a few frames apart at least, the eye going round the subject by
+	 * at most 30 degrees from one to the next: a camera the core's pan
+	 * grid can follow (motion/camera.h) */
+	key_frames(r, (double)g->first, (double)g->last + span / 10, n, f);
+	for (k = 1; k < n; k++)
+		if (f[k] < f[k - 1] + 4)
+			f[k] = f[k - 1] + 4;
+	say(g, "camera:\n");
+	strand_head(g, r, "  ", interps[1 + pick(r, 5)], f[n - 1] - f[0]);
+	say(g, "  keys:\n");
+	for (k = 0; k < n; k++) {
+		double d = tu_uniform(r, 3, 6);
+
+		a += tu_uniform(r, -M_PI / 6, M_PI / 6);
+		say(g, "    - {frame: %.1f, eye: [%.3f, %.3f, %.3f], look_at: [%.3f, %.3f, %.3f], "
+		       "twist: %.2f}\n", f[k], d * cos(a), tu_uniform(r, 0.5, 2), d * sin(a),
+		    tu_uniform(r, -0.2, 0.2), tu_uniform(r, 0, 1), tu_uniform(r, -0.2, 0.2),
+		    tu_uniform(r, -10, 10));
+	}
+}
+
+static void extras(struct scenegen *g, struct tu_rng *r)
+{
+	static const char *const modes[] = { "loop", "bounce", "growth" };
+	double span = (double)(g->last - g->first), f[4];
+	uint32_t first, k;
+
+	if (chance(r, 0.3)) {
+		first = pick(r, 5);
+		say(g, "cycles:\n  - {name: c0, first: %u, last: %u, skip: %u, mode: %s, "
+		       "frames_per_step: %u, start_frame: %u}\n", first, first + 1 + pick(r, 20),
+		    1 + pick(r, 3), modes[pick(r, 3)], 1 + pick(r, 5), pick(r, 10));
+	}
+	if (chance(r, 0.3)) {
+		key_frames(r, (double)g->first, (double)g->last + span / 10, 3, f);
+		say(g, "attributes:\n  - name: a0\n    interpolation: %s\n    keys:\n",
+		    interps[pick(r, 3)]);
+		for (k = 0; k < 3; k++)
+			say(g, "      - {frame: %.1f, value: %.4f}\n", f[k], tu_uniform(r, 0, 1));
+	}
+}
+
+static void run_options(struct scenegen *g, struct tu_rng *r)
+{
+	int64_t span = g->last - g->first, a, b;
+	uint32_t what = pick(r, 10);
+
+	g->run[0] = '\0';
+	if (what == 0 && span >= 2) {
+		a = g->first + (int64_t)pick(r, (uint32_t)(span / 2 < 1000000 ? span / 2 : 1000000));
+		b = a + 1 + (int64_t)pick(r, (uint32_t)(g->last - a < 1000000 ? g->last - a : 1000000));
+		snprintf(g->run, sizeof(g->run), " --from %lld --to %lld", (long long)a,
+			 (long long)(b > g->last ? g->last : b));
+	} else if (what == 1 && span >= 1) {
+		snprintf(g->run, sizeof(g->run), " --ping-pong --passes 3");
+	} else if (what == 2) {
+		snprintf(g->run, sizeof(g->run), " --loop --passes 2");
+	}
+}
+
+void scenegen_make(struct scenegen *g, uint64_t seed)
+{
+	struct tu_rng r;
+	struct node nd[6];
+	uint32_t n;
+
+	tu_seed(&r, seed * 0x9e3779b97f4a7c15ull + 1);
+	g->len = 0;
+	if (!g->yaml) {
+		g->cap = 4096;
+		g->yaml = malloc(g->cap);
+		if (!g->yaml)
+			abort();
+	}
+	g->yaml[0] = '\0';
+	say(g, "scene: gen-%llu\n", (unsigned long long)seed);
+	timing(g, &r);
+	n = 1 + pick(&r, 5);
+	nodes(g, &r, nd, n);
+	strands(g, &r, nd, n);
+	if (chance(&r, 0.3))
+		camera(g, &r);
+	extras(g, &r);
+	run_options(g, &r);
+}
+
+void scenegen_free(struct scenegen *g)
+{
+	free(g->yaml);
+	g->yaml = NULL;
+	g->len = g->cap = 0;
+}
