@@ -76,7 +76,8 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	case OPT_CLOCK:
 		if (strcmp(arg, "real") && strcmp(arg, "virtual"))
 			return cli_usage(c->cmd, c->err, "--clock %s: real or virtual", arg);
-		c->o.virtual_clock = !strcmp(arg, "virtual");
+		/* a person or a browser watches: every tick at the wall's pace */
+		c->o.virtual_clock = c->o.pace_all = !strcmp(arg, "virtual");
 		return -1;
 	case OPT_PRIORITY:
 		if (!opt_long(arg, 0, 99, &v))

@@ -50,7 +50,8 @@ enum live_state {
 
 struct live_opts {
 	bool sim;             /* every device by its simulated twin */
-	bool virtual_clock;   /* virtual time (at the wall's pace at rest) */
+	bool virtual_clock;   /* virtual time, at the wall's pace at rest and in a jog */
+	bool pace_all;        /* virtual time: at the wall's pace in every state */
 	bool force;           /* play and teach what strand check rejects */
 	struct rt_opts rt;
 	const char *journal;  /* NULL: none */

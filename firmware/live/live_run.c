@@ -102,7 +102,8 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 		lc.acks = &lv->acks;
 		lc.deadman_ticks = (int64_t)(lv->o.deadman_ms * 1e-3 *
 					     lv->sc->src.s.timing.tick_hz + 0.5);
-		lc.idle_nap = lv->clk.is_virtual;
+		lc.pace = lv->clk.is_virtual;
+		lc.pace_all = lv->o.pace_all;
 		lc.estop = &lv->estop_req;
 		lc.signal = &lv->signal_req;
 		rc = loop_live_init(lv->L, &lc, msg, size);

@@ -36,6 +36,8 @@ struct loop_live {
 	struct loop_report last;
 	int64_t at_frame;       /* the frame the rig is at, -1 off any */
 	int64_t move_frame;     /* a MOVE's, -1 for a pose */
+	int64_t pace_wall, pace_t; /* pacing: hal_mono_ns() at virtual time pace_t */
+	bool paced;             /* the last tick was paced */
 	uint8_t st_state;       /* the state of the last sample pushed */
 	bool st_pending;        /* a sample the ring had no room for */
 	bool quit;
@@ -447,22 +449,38 @@ void STRAND_RT loop_live_sequence(struct loop *L)
 
 /* ---- the end of a tick ---- */
 
+/* Virtual time at the wall clock's pace (loop_live_cfg.pace): the next
+ * tick waits for the wall to catch up with it, counted from the first
+ * paced tick after an unpaced stretch. */
+static void STRAND_RT pace(struct loop *L)
+{
+	struct loop_live *lv = L->live;
+	bool on = lv->cfg.pace && (lv->cfg.pace_all || L->seq.state == LOOP_HOLD ||
+				   L->seq.state == LOOP_JOG);
+	int64_t due = loop_due(L, L->tick + 1), t;
+	struct timespec ts;
+
+	if (!on || L->seq.state == LOOP_ENDED) {
+		lv->paced = false;
+		return;
+	}
+	if (!lv->paced) {
+		lv->pace_wall = hal_mono_ns();
+		lv->pace_t = loop_due(L, L->tick);
+		lv->paced = true;
+	}
+	t = lv->pace_wall + (due - lv->pace_t);
+	ts.tv_sec = t / 1000000000;
+	ts.tv_nsec = t % 1000000000;
+	clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
+}
+
 void STRAND_RT loop_live_tick_end(struct loop *L)
 {
 	struct loop_live *lv = L->live;
 	struct loop_report *r = &L->res->rep;
 
-	if ((L->seq.state == LOOP_HOLD || L->seq.state == LOOP_JOG) && lv->cfg.idle_nap) {
-		/* virtual time at rest and in a jog: the wall clock's pace, not
-		 * a busy core, and a dead-man that a client's refreshes can
-		 * keep up with */
-		struct timespec ts;
-		int64_t t = hal_mono_ns() + 1000000;
-
-		ts.tv_sec = t / 1000000000;
-		ts.tv_nsec = t % 1000000000;
-		clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
-	}
+	pace(L);
 	if (L->seq.state != LOOP_ENDED || lv->quit ||
 	    (r->end != LOOP_END_NONE && r->end != LOOP_END_DONE))
 		return;

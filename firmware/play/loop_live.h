@@ -127,7 +127,10 @@ struct loop_live_cfg {
 	struct hal_ring *cmds;   /* struct loop_cmd, the owner's to push */
 	struct hal_ring *acks;   /* struct loop_ack, the owner's to pop */
 	int64_t deadman_ticks;   /* a jog lapses after this many ticks without a refresh */
-	bool idle_nap;           /* virtual clock: pace the ticks at rest at wall speed */
+	/* virtual clock: ticks paced at the wall's speed (a console's user
+	 * watches, a client's jog refreshes keep up with the dead-man) at rest
+	 * and in a jog, or in every state (pace_all) */
+	bool pace, pace_all;
 	/* the owner's requests, read at the start of every tick: an e-stop
 	 * (the run halts: drives off at once) and a signal's stop level (1
 	 * controlled, 2 immediate); never waiting behind a command */
