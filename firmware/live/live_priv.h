@@ -6,6 +6,7 @@
  *     live_run.c    [init] a run of the loop: enable, its end, disable
  *     live_cmd.c    the commands that reach the loop
  *     live_teach.c  teach: keys from the rig's pose into the scene file
+ *     live_space.c  jog the camera or a free node in its space or the world's
  */
 #ifndef STRAND_LIVE_PRIV_H
 #define STRAND_LIVE_PRIV_H
@@ -15,6 +16,7 @@
 #include <stdatomic.h>
 
 #include "live.h"
+#include "hal/cancel.h"
 #include "hal/clock.h"
 #include "hal/ring.h"
 #include "hal/thread.h"
@@ -54,6 +56,7 @@ struct live {
 	struct rig rig;
 	bool rig_built, rig_started;
 	struct hal_clock clk;
+	struct hal_cancel cancel; /* an e-stop or a signal gives a start up */
 	struct rt_plan plan;
 	struct rt_result rt;
 	char data_dir[PATH_MAX];
@@ -61,7 +64,7 @@ struct live {
 	/* the run of the loop while the drives are enabled */
 	struct loop *L;
 	struct hal_thread thread;
-	bool running;
+	_Atomic bool running;     /* mu to change; any thread reads it */
 	_Atomic bool done;        /* the loop's thread has returned */
 	_Atomic bool estop_req;   /* live_estop: the loop halts, the state latches */
 	_Atomic int signal_req;   /* live_signal's level */
@@ -82,6 +85,8 @@ struct live {
 	int64_t goto_frame;      /* a move to this frame under way, -1 */
 	uint64_t jog_client;
 	uint64_t jog_seq[LOOP_LIVE_OUT_MAX];
+	uint64_t space_seq;      /* the jog client's last jog of the camera or a node */
+	_Atomic int64_t last_frame; /* the last frame the rig was at, -1: none yet */
 	uint64_t generation;
 	struct live_snap snap;   /* snap_mu */
 	uint64_t serial;
@@ -117,6 +122,13 @@ void live_run_end(struct live *lv);
 int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg, size_t size);
 /* Where the e-stop inputs stand: true when one is asserted (named in msg). */
 bool live_estop_input(struct live *lv, char *msg, size_t size);
+
+/* The snapshot's facts of the scene (its frame rate), after a scene
+ * changed. */
+void live_publish_scene(struct live *lv);
+
+/* "no scene loaded: ..." into msg; -ENOENT. */
+int live_no_scene(char *msg, size_t size);
 
 /* file units of output i */
 double live_file_units(const struct live *lv, uint32_t i, double v);
