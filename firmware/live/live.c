@@ -297,8 +297,11 @@ int live_open(struct live **out, const char *scene, const struct live_opts *o, c
 	lv->o = *o;
 	if (!(lv->o.deadman_ms > 0))
 		lv->o.deadman_ms = 250;
+	/* samples at 250 Hz: the clients get at most 50 a second, but a jog
+	 * of the camera or a node turns its direction from where the rig is,
+	 * and a sample is as old as its period */
 	if (!lv->o.status_hz)
-		lv->o.status_hz = 50;
+		lv->o.status_hz = 250;
 	if (lv->o.virtual_clock) {
 		lv->o.rt.priority = 0;
 		lv->o.rt.pm_qos = false;
@@ -407,6 +410,7 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 	}
 	/* a run's loop counts from the commands it took itself */
 	s->cmd_seen = st->cmd_seq > lv->seq_run ? st->cmd_seq : lv->seq_run;
+	s->taken_ns = hal_mono_ns();
 	s->serial = ++lv->serial;
 }
 
@@ -427,6 +431,8 @@ int live_service(struct live *lv)
 	 * round comes in milliseconds */
 	if (pthread_mutex_trylock(&lv->mu))
 		return 2;
+	if (lv->running && !atomic_load(&lv->done))
+		live_space_follow(lv);
 	if (lv->running && atomic_load(&lv->done)) {
 		/* the last samples first */
 		while (hal_ring_pop(&lv->status, lv->st)) {

@@ -60,7 +60,7 @@ struct live_opts {
 	const char *journal;  /* NULL: none */
 	const char *data_dir; /* where load and save find scene files */
 	double deadman_ms;    /* a jog lapses without a refresh (250) */
-	uint32_t status_hz;   /* status samples a second (50) */
+	uint32_t status_hz;   /* status samples a second (250) */
 };
 
 /* A step-mode or continuous segment, as strand play's options say it. */
@@ -114,6 +114,7 @@ struct live_snap {
 	uint64_t cmd_seen;      /* ... and the last the sample's tick had taken */
 	uint64_t generation;    /* counts scene loads and teaches */
 	uint32_t fps_num, fps_den; /* the scene's frame rate (0: no scene) */
+	int64_t taken_ns;       /* hal_mono_ns() when the sample came in */
 };
 
 /* [init] Open SCENE (a path) for live control: load, check, build the rig,

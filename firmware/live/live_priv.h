@@ -22,6 +22,7 @@
 #include "hal/thread.h"
 #include "check/limit_check.h"
 #include "load/load.h"
+#include "motion/mat.h"
 #include "play/loop.h"
 #include "rig/rig.h"
 #include "rig/rig_auto.h"
@@ -86,6 +87,28 @@ struct live {
 	uint64_t jog_client;
 	uint64_t jog_seq[LOOP_LIVE_OUT_MAX];
 	uint64_t space_seq;      /* the jog client's last jog of the camera or a node */
+	/* a free node's world matrix as its jogs left it (no output says how
+	 * it is turned: live_space.c), while nothing else moved the rig */
+	struct live_space {
+		bool valid;
+		int32_t node;
+		struct mot_mat w;
+		int k;               /* the last jog's increment: axis, space */
+		bool local;
+		double rate[LOOP_LIVE_OUT_MAX]; /* its outputs' rates, core units */
+		double at[LOOP_LIVE_OUT_MAX];   /* the outputs then, core units */
+	} space;
+	/* the jog of the camera or a node under way: its direction made again
+	 * every few milliseconds (live_space_follow) until the dead-man's time
+	 * after the client's last refresh */
+	struct live_space_jog {
+		bool active;
+		int32_t node;
+		int k;
+		bool local;
+		double sign, speed;
+		int64_t last_ns, until_ns;
+	} space_jog;
 	_Atomic int64_t last_frame; /* the last frame the rig was at, -1: none yet */
 	uint64_t generation;
 	struct live_snap snap;   /* snap_mu */
@@ -126,6 +149,10 @@ bool live_estop_input(struct live *lv, char *msg, size_t size);
 /* The snapshot's facts of the scene (its frame rate), after a scene
  * changed. */
 void live_publish_scene(struct live *lv);
+
+/* live_space.c (mu held): a jog of the camera or a node under way turns
+ * its direction as the rig turns. */
+void live_space_follow(struct live *lv);
 
 /* "no scene loaded: ..." into msg; -ENOENT. */
 int live_no_scene(char *msg, size_t size);

@@ -25,8 +25,11 @@
  * the jog, so a rotation keeps to its axis as the orientation changes.
  *
  * Where the rig is: the camera's channels that outputs drive are the
- * outputs' setpoints; the rest, and a free node's orientation (no output
- * carries it), are the scene's at the frame the rig was last at.
+ * outputs' setpoints; the rest are the scene's at the frame the rig was
+ * last at. No output says how a free node is turned: its world matrix is
+ * the scene's at that frame, then as its jogs left it, each refresh
+ * editing it by as much of the last increment as the outputs went (they
+ * move in proportion) - until something else moves the rig.
  */
 #define _GNU_SOURCE
 #include "live_priv.h"
@@ -146,22 +149,37 @@ static bool below(const struct mot_scene *sc, uint32_t k, uint32_t n)
 	return i == (int32_t)n;
 }
 
+/* m edited by the increment, about node n's pivot p (local) or where m
+ * puts it (world). */
+static void node_edit(struct mot_mat *m, const struct mot_scene *sc, uint32_t n, int k,
+		      double amount, bool local, uint32_t *sat)
+{
+	struct mot_mat d;
+	mot_q32 w[3];
+
+	increment(&d, k, amount);
+	if (local) {
+		mot_mat_edit_local(m, &d, sc->nodes[n].pivot, sat);
+	} else {
+		mot_mat_apply(w, sc->nodes[n].pivot, m, sat);
+		mot_mat_edit_world(m, &d, w, sat);
+	}
+}
+
 /* The pivots of n and of every node below it (pos[k], units) with n's
- * world matrix edited; the others' untouched. world: the pose's, at frame. */
-static void node_moved(struct source_scene *ss, uint32_t n, int k, double amount, bool local,
-		       mot_q32 frame, struct mot_mat *w, double (*pos)[3], uint32_t *sat)
+ * world matrix wn edited; the others' untouched. The pose: at frame. */
+static void node_moved(struct source_scene *ss, uint32_t n, const struct mot_mat *wn, int k,
+		       double amount, bool local, mot_q32 frame, struct mot_mat *w,
+		       double (*pos)[3], uint32_t *sat)
 {
 	const struct mot_scene *sc = ss->sc;
-	struct mot_mat d, l;
+	struct mot_mat l;
 	mot_q32 v, rpm, p[3];
 	uint32_t i, c;
 
 	memcpy(w, ss->pose.world, sc->nnodes * sizeof(*w));
-	increment(&d, k, amount);
-	if (local)
-		mot_mat_edit_local(&w[n], &d, sc->nodes[n].pivot, sat);
-	else
-		mot_mat_edit_world(&w[n], &d, ss->pose.pos[n], sat);
+	w[n] = *wn;
+	node_edit(&w[n], sc, n, k, amount, local, sat);
 	for (i = n; i < sc->nnodes; i++) {
 		if (!below(sc, i, n))
 			continue;
@@ -193,6 +211,50 @@ static const struct chan *out_chan(struct live *lv, uint32_t i)
 	return &lv->sc->twin.all.c[lv->rig.out[i].src];
 }
 
+/* Where the rig holds its outputs, core units: the newest sample, moved
+ * on at its speed for as long as it has been in (a few milliseconds). */
+static void outputs_now(struct live *lv, double *at)
+{
+	struct live_snap snap;
+	double age;
+	uint32_t i;
+
+	live_snapshot(lv, &snap);
+	age = lv->running ? (hal_mono_ns() - snap.taken_ns) * 1e-9 : 0;
+	for (i = 0; i < lv->rig.nout && i < snap.nout; i++) {
+		double v = snap.out[i].sp + snap.out[i].vel * age;
+
+		at[i] = lv->rig.out[i].unit == SRC_UNIT_TURNS ? v / 360.0 : v;
+	}
+}
+
+/*
+ * Free node n's world matrix, as the jogs since the rig was last at a frame
+ * left it: the scene's there at first; then, at each refresh, edited by as
+ * much of the last increment as the outputs went (their change projected
+ * on its rates: they move in proportion, a vector jog).
+ */
+static void node_now(struct live *lv, uint32_t n, struct mot_mat *w, uint32_t *sat)
+{
+	struct live_space *t = &lv->space;
+	struct source_scene *ss = &lv->sc->twin;
+	double at[LOOP_LIVE_OUT_MAX], num = 0, den = 0;
+	uint32_t i;
+
+	if (!t->valid || t->node != (int32_t)n) {
+		*w = ss->pose.world[n];
+		return;
+	}
+	outputs_now(lv, at);
+	for (i = 0; i < lv->rig.nout; i++) {
+		num += (at[i] - t->at[i]) * t->rate[i];
+		den += t->rate[i] * t->rate[i];
+	}
+	if (den > 0)
+		node_edit(&t->w, ss->sc, n, t->k, num / den, t->local, sat);
+	*w = t->w;
+}
+
 /*
  * rate[i]: output i's change, core units, per unit of the increment along
  * or about axis k of the camera (node < 0) or node n. 0, or a negative
@@ -211,8 +273,7 @@ static int rates(struct live *lv, int32_t node, int k, bool local, double *rate,
 	/* the scene at the frame: the pose (world matrices, the camera) */
 	src_eval(&ss->s, frame, tmp, &sat);
 	if (node < 0) {
-		double q[6], a[6], b[6];
-		struct live_snap snap;
+		double q[6], a[6], b[6], at[LOOP_LIVE_OUT_MAX];
 
 		q[0] = dbl(ss->pose.cam.eye[0]);
 		q[1] = dbl(ss->pose.cam.eye[1]);
@@ -220,13 +281,13 @@ static int rates(struct live *lv, int32_t node, int k, bool local, double *rate,
 		q[3] = dbl(ss->pose.cam.pan);
 		q[4] = dbl(ss->pose.cam.tilt);
 		q[5] = dbl(ss->pose.cam.roll);
-		live_snapshot(lv, &snap);
-		for (i = 0; i < lv->rig.nout && i < snap.nout; i++) {
+		outputs_now(lv, at);
+		for (i = 0; i < lv->rig.nout; i++) {
 			const struct chan *c = out_chan(lv, i);
 
-			/* where the rig holds it, file units to core */
+			/* where the rig holds it */
 			if (c->kind == CHAN_CAMERA)
-				q[c->comp] = c->comp < 3 ? snap.out[i].sp : snap.out[i].sp / 360.0;
+				q[c->comp] = at[i];
 		}
 		camera_moved(a, q, k, h, local, &sat);
 		camera_moved(b, q, k, -h, local, &sat);
@@ -238,6 +299,7 @@ static int rates(struct live *lv, int32_t node, int k, bool local, double *rate,
 	} else {
 		struct mot_mat *w = calloc(nn, sizeof(*w));
 		double (*pa)[3] = calloc(nn, sizeof(*pa)), (*pb)[3] = calloc(nn, sizeof(*pb));
+		struct mot_mat wn;
 
 		if (!w || !pa || !pb) {
 			free(w);
@@ -246,8 +308,9 @@ static int rates(struct live *lv, int32_t node, int k, bool local, double *rate,
 			snprintf(msg, size, "out of memory");
 			return -ENOMEM;
 		}
-		node_moved(ss, (uint32_t)node, k, h, local, frame, w, pa, &sat);
-		node_moved(ss, (uint32_t)node, k, -h, local, frame, w, pb, &sat);
+		node_now(lv, (uint32_t)node, &wn, &sat);
+		node_moved(ss, (uint32_t)node, &wn, k, h, local, frame, w, pa, &sat);
+		node_moved(ss, (uint32_t)node, &wn, k, -h, local, frame, w, pb, &sat);
 		for (i = 0; i < lv->rig.nout; i++) {
 			const struct chan *c = out_chan(lv, i);
 
@@ -255,6 +318,11 @@ static int rates(struct live *lv, int32_t node, int k, bool local, double *rate,
 					  (pa[c->index][c->comp] - pb[c->index][c->comp]) / (2 * h) :
 					  0;
 		}
+		/* what the next refresh measures the motion by */
+		lv->space = (struct live_space){ .valid = true, .node = node, .w = wn, .k = k,
+						 .local = local };
+		memcpy(lv->space.rate, rate, sizeof(lv->space.rate));
+		outputs_now(lv, lv->space.at);
 		free(w);
 		free(pa);
 		free(pb);
@@ -266,13 +334,42 @@ static int rates(struct live *lv, int32_t node, int k, bool local, double *rate,
 	return 0;
 }
 
+/* The loop's fractions for a jog of the camera (node < 0) or a node along
+ * or about axis k (sign: its direction) at speed: 0, or a negative errno. */
+static int space_vector(struct live *lv, int32_t node, int k, bool local, double sign,
+			double speed, double *vec, char *msg, size_t size)
+{
+	double rate[LOOP_LIVE_OUT_MAX], top = 0;
+	uint32_t i;
+	int rc = rates(lv, node, k, local, rate, msg, size);
+
+	if (rc)
+		return rc;
+	for (i = 0; i < lv->rig.nout; i++) {
+		const struct rig_out *o = &lv->rig.out[i];
+
+		rate[i] *= sign;
+		if (o->vel_mode)
+			rate[i] = 0;
+		top = fmax(top, fabs(rate[i]) / o->vmax);
+	}
+	if (!(top > 1e-12)) {
+		snprintf(msg, size, "no output of the rig follows that motion");
+		return -ENOENT;
+	}
+	/* the fastest output at the commanded fraction of its limit */
+	for (i = 0; i < lv->rig.nout; i++)
+		vec[i] = speed * rate[i] / lv->rig.out[i].vmax / top;
+	return 0;
+}
+
 static int jog_space(struct live *lv, uint64_t client, const char *name, const char *space,
 		     const char *axis, double speed, uint64_t seq, char *msg, size_t size)
 {
 	const struct scene_desc *d = &lv->sc->sf.desc;
 	struct loop_cmd c = { .kind = LOOP_CMD_JOG_VEC };
 	const struct space_axis *ax = NULL;
-	double rate[LOOP_LIVE_OUT_MAX], top = 0;
+	struct live_space_jog *j = &lv->space_jog;
 	struct loop_ack a;
 	int32_t node = -1;
 	uint32_t i;
@@ -313,26 +410,54 @@ static int jog_space(struct live *lv, uint64_t client, const char *name, const c
 	lv->space_seq = seq;
 	if (!lv->running)
 		return live_send(lv, &c, &a, msg, size); /* says why not */
-	rc = rates(lv, node, ax->k, !strcmp(space, "local"), rate, msg, size);
-	if (rc)
-		return rc;
-	for (i = 0; i < lv->rig.nout; i++) {
-		const struct rig_out *o = &lv->rig.out[i];
+	if (speed != 0) {
+		rc = space_vector(lv, node, ax->k, !strcmp(space, "local"), ax->sign, speed, c.vec,
+				  msg, size);
+		if (rc == -ENOENT)
+			snprintf(msg, size, "no output of the rig follows %s's %s in %s space", name,
+				 axis, space);
+		if (rc)
+			return rc;
+	}
+	rc = live_send(lv, &c, &a, msg, size);
+	/* between this refresh and the dead-man's time, live_service turns
+	 * the direction as the node turns */
+	*j = (struct live_space_jog){ .active = !rc && speed != 0, .node = node, .k = ax->k,
+				      .local = !strcmp(space, "local"), .sign = ax->sign,
+				      .speed = speed, .last_ns = hal_mono_ns() };
+	j->until_ns = j->last_ns + (int64_t)(lv->o.deadman_ms * 1e6);
+	return rc;
+}
 
-		rate[i] *= ax->sign;
-		if (o->vel_mode)
-			rate[i] = 0;
-		top = fmax(top, fabs(rate[i]) / o->vmax);
+/* Every LIVE_SPACE_NS: the direction again, from where the rig is now. */
+#define LIVE_SPACE_NS 10000000LL
+
+void live_space_follow(struct live *lv)
+{
+	struct live_space_jog *j = &lv->space_jog;
+	struct loop_cmd c = { .kind = LOOP_CMD_JOG_VEC, .keep = true };
+	struct loop_ack a;
+	int64_t now = hal_mono_ns();
+	char msg[LIVE_MSG];
+
+	if (!j->active || !lv->running || now - j->last_ns < LIVE_SPACE_NS)
+		return;
+	if (now > j->until_ns) {
+		j->active = false; /* the loop's dead-man ends it */
+		return;
 	}
-	if (!(top > 1e-12)) {
-		snprintf(msg, size, "no output of the rig follows %s's %s in %s space", name, axis,
-			 space);
-		return -ENOENT;
-	}
-	/* the fastest output at the commanded fraction of its limit */
-	for (i = 0; i < lv->rig.nout; i++)
-		c.vec[i] = speed * rate[i] / lv->rig.out[i].vmax / top;
-	return live_send(lv, &c, &a, msg, size);
+	j->last_ns = now;
+	if (space_vector(lv, j->node, j->k, j->local, j->sign, j->speed, c.vec, msg,
+			 sizeof(msg)))
+		return;
+	/* not waited for: its answer is dropped by the next command's wait,
+	 * or here */
+	c.seq = ++lv->seq;
+	c.arrival_ns = now;
+	atomic_store(&lv->cmd_sent, c.seq);
+	hal_ring_push(&lv->cmds, &c);
+	while (hal_ring_pop(&lv->acks, &a))
+		;
 }
 
 int live_jog_space(struct live *lv, uint64_t client, const char *node, const char *space,

@@ -332,6 +332,7 @@ int live_load(struct live *lv, const char *name, char *msg, size_t size)
 	loop_free(lv->L);
 	lv->L = NULL;
 	live_rig_down(lv);
+	lv->space.valid = false;
 	old = lv->sc;
 	lv->sc = ns;
 	rc = live_rig_up(lv, msg, size);

@@ -265,6 +265,17 @@ static int STRAND_RT take_jog_vec(struct loop *L, const struct loop_cmd *c)
 		return LOOP_CMD_STOPPING;
 	for (i = 0; i < L->n; i++)
 		any |= c->vec[i] != 0;
+	if (c->keep) {
+		bool live = false;
+
+		for (i = 0; i < L->n; i++)
+			live |= lv->jog[i].f != 0;
+		if (L->seq.state != LOOP_JOG || !live)
+			return LOOP_CMD_OK; /* lapsed or stopped meanwhile */
+		for (i = 0; i < L->n; i++)
+			lv->jog[i].f = c->vec[i];
+		return LOOP_CMD_OK;
+	}
 	if (L->seq.state != LOOP_HOLD && L->seq.state != LOOP_JOG)
 		return any ? LOOP_CMD_BUSY : LOOP_CMD_OK;
 	for (i = 0; i < L->n; i++) {

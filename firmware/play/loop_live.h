@@ -77,6 +77,8 @@ struct loop_cmd {
 	uint32_t out;        /* JOG */
 	double speed;        /* JOG: fraction of vmax, -1..1 */
 	double vec[LOOP_LIVE_OUT_MAX]; /* JOG_VEC: each output's fraction, -1..1 */
+	bool keep;           /* JOG_VEC: a new direction for a jog under way, not a
+			      * refresh (its dead-man runs on); none under way: ignored */
 	mot_q32 pose[LOOP_LIVE_OUT_MAX]; /* MOVE */
 	int64_t frame;       /* MOVE: the frame whose pose it is, -1 */
 	struct loop_cfg cfg; /* PLAY: mode, from, to, loop, ping_pong, passes, times */
