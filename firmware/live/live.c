@@ -429,6 +429,19 @@ int live_service(struct live *lv)
 	/* what needs the session's lock waits for no command: a command
 	 * under way (an enable starting the drives) has it, and the next
 	 * round comes in milliseconds */
+	if (!lv->running && atomic_load(&lv->estop_req)) {
+		/* latched at once, whatever command holds the lock (an enable
+		 * that the e-stop gives up) */
+		pthread_mutex_lock(&lv->snap_mu);
+		if (lv->snap.state != LIVE_ESTOPPED) {
+			lv->snap.state = LIVE_ESTOPPED;
+			lv->snap.loop_state = live_state_name(LIVE_ESTOPPED);
+			snprintf(lv->snap.reason, sizeof(lv->snap.reason), "e-stop (commanded) while "
+				 "the drives were disabled; latched");
+			lv->snap.serial = ++lv->serial;
+		}
+		pthread_mutex_unlock(&lv->snap_mu);
+	}
 	if (pthread_mutex_trylock(&lv->mu))
 		return 2;
 	if (lv->running && !atomic_load(&lv->done))
@@ -445,7 +458,7 @@ int live_service(struct live *lv)
 	if (!lv->running) {
 		if (atomic_load(&lv->estop_req) && lv->state != LIVE_ESTOPPED) {
 			lv->state = LIVE_ESTOPPED;
-			snprintf(lv->reason, sizeof(lv->reason), "e-stop (command) while the drives "
+			snprintf(lv->reason, sizeof(lv->reason), "e-stop (commanded) while the drives "
 				 "were disabled; latched");
 		}
 		if (atomic_load(&lv->signal_req))
