@@ -35,3 +35,14 @@ fuzz-rpc-short: $(BUILD)/fuzz/fuzz_rpc
 	$(call run_fuzz_rpc,$(FUZZ_RPC_SECONDS))
 
 fuzz: fuzz-rpc
+
+# ---- the benchmark -----------------------------------------------------------------
+# bench/serve_bench.py: a command's arrival to the tick that acts on it,
+# status updates a second to 1 and 10 clients, and the loop's wake-up
+# latency with the server up and ten clients streaming beside strand play's
+# and cyclictest's (BENCH_SERVE_SECONDS each, default 30).
+.PHONY: bench-serve
+bench: bench-serve
+bench-serve: $(BUILD)/strand | $(BUILD)/.deps-serve $(BUILD)/.deps-bench-play
+	$(Q)/usr/bin/python3 bench/serve_bench.py $(BUILD)/strand examples/robot_arm.yaml \
+		$(BUILD)/bench-serve

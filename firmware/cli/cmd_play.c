@@ -314,22 +314,6 @@ static void default_journal(char *buf, size_t size, const char *scene)
 }
 
 /* The histogram as cyclictest -h writes its own: "us count" lines. */
-static int write_hist(const char *path, const struct lat_stats *s)
-{
-	FILE *f = fopen(path, "w");
-	uint32_t i;
-
-	if (!f)
-		return -errno;
-	fprintf(f, "# strand wake-up latency, 1 us buckets\n");
-	for (i = 0; i < LAT_HIST_US; i++)
-		if (s->hist[i])
-			fprintf(f, "%06u %06u\n", i, s->hist[i]);
-	fprintf(f, "# Total: %lld\n# Overflow: %lld\n# Max Latencies: %.3f\n", (long long)s->n,
-		(long long)s->overflow, s->n ? s->max_ns / 1000.0 : 0.0);
-	return fclose(f) ? -errno : 0;
-}
-
 /*
  * strand check's walk over what this run will play, with the limits its
  * rig holds each channel to (an automatic rig's derived ones included),
@@ -549,7 +533,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		play_describe(&p, msg, sizeof(msg));
 		fprintf(err, "strand play: %s\n", msg);
 	}
-	if (c.lat_hist && write_hist(c.lat_hist, &loop_result(p.L)->lat))
+	if (c.lat_hist && lat_write_hist(c.lat_hist, &loop_result(p.L)->lat))
 		fprintf(err, "strand play: %s: %s\n", c.lat_hist, strerror(errno));
 	/* the reason is on err already when the run did not finish */
 	if (!c.quiet)

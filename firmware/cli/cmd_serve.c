@@ -18,7 +18,7 @@
 
 enum {
 	OPT_SIM = 256, OPT_LISTEN, OPT_TOKEN_FILE, OPT_DATA, OPT_CLOCK, OPT_PRIORITY, OPT_CPU,
-	OPT_NO_MLOCK, OPT_FORCE, OPT_DEADMAN,
+	OPT_NO_MLOCK, OPT_FORCE, OPT_DEADMAN, OPT_LAT_HIST,
 };
 
 static const struct option serve_options[] = {
@@ -32,6 +32,7 @@ static const struct option serve_options[] = {
 	{ "no-mlock", no_argument, NULL, OPT_NO_MLOCK },
 	{ "force", no_argument, NULL, OPT_FORCE },
 	{ "deadman", required_argument, NULL, OPT_DEADMAN },
+	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -99,6 +100,9 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		if (!opt_double(arg, 10, 10000, &d))
 			return cli_usage(c->cmd, c->err, "--deadman %s: 10 to 10000 ms", arg);
 		c->o.deadman_ms = d;
+		return -1;
+	case OPT_LAT_HIST:
+		c->o.lat_hist = arg;
 		return -1;
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
@@ -230,6 +234,7 @@ const struct cli_cmd cmd_serve = {
 		"                        or the working directory without one)\n"
 		"  --clock real|virtual  the wall clock (default) or virtual time (tests)\n"
 		"  --deadman MS          a jog stops without a refresh for MS (250)\n"
+		"  --latency-hist FILE   each run's wake-up latency histogram (as cyclictest's)\n"
 		"  --priority N, --cpu N, --no-mlock, --force   as for strand play\n"
 		"\n"
 		"SIGINT or SIGTERM: the motion comes to rest, the drives are disabled, exit 0.\n"

@@ -58,6 +58,7 @@ struct live_opts {
 	bool force;           /* play and teach what strand check rejects */
 	struct rt_opts rt;
 	const char *journal;  /* NULL: none */
+	const char *lat_hist; /* each run's wake-up latency histogram, or NULL */
 	const char *data_dir; /* where load and save find scene files */
 	double deadman_ms;    /* a jog lapses without a refresh (250) */
 	uint32_t status_hz;   /* status samples a second (250) */
@@ -185,8 +186,10 @@ int live_teach_move(struct live *lv, const char *node, double from, double to, c
 int live_save(struct live *lv, const char *name, char *msg, size_t size);
 
 /* A probe of the command path: a command that does nothing, answered by
- * the tick that takes it; *latency_ns from its arrival to that tick. */
-int live_ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size);
+ * the tick that takes it; *latency_ns from its arrival (hal_mono_ns() when
+ * the front end received it; 0: now) to that tick's wake-up. */
+int live_ping(struct live *lv, int64_t arrival_ns, int64_t *latency_ns, char *msg,
+	      size_t size);
 
 /* Ask the loop to stop as a signal does (async-signal-safe): controlled,
  * or immediate for level 2. */

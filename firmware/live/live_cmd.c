@@ -370,9 +370,10 @@ int live_reset(struct live *lv, char *msg, size_t size)
 	return LOCKED(lv, reset(lv, msg, size));
 }
 
-static int ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
+static int ping(struct live *lv, int64_t arrival_ns, int64_t *latency_ns, char *msg,
+		size_t size)
 {
-	struct loop_cmd c = { .kind = LOOP_CMD_NOP };
+	struct loop_cmd c = { .kind = LOOP_CMD_NOP, .arrival_ns = arrival_ns };
 	struct loop_ack a;
 	int rc = live_send(lv, &c, &a, msg, size);
 
@@ -380,7 +381,8 @@ static int ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
 	return rc;
 }
 
-int live_ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
+int live_ping(struct live *lv, int64_t arrival_ns, int64_t *latency_ns, char *msg,
+	      size_t size)
 {
-	return SCENE_LOCKED(lv, ping(lv, latency_ns, msg, size));
+	return SCENE_LOCKED(lv, ping(lv, arrival_ns, latency_ns, msg, size));
 }

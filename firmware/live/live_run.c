@@ -16,6 +16,7 @@
 #include <time.h>
 
 #include "hal/rt.h"
+#include "play/latency.h"
 #include "play/play.h"
 
 static void *rt_main(void *arg)
@@ -143,6 +144,8 @@ void live_run_end(struct live *lv)
 	for (i = 0; i < lv->rig.naxes; i++)
 		hal_axis_stop(lv->rig.axes[i]);
 	r = &loop_result(lv->L)->rep;
+	if (lv->o.lat_hist && lat_write_hist(lv->o.lat_hist, &loop_result(lv->L)->lat))
+		fprintf(stderr, "strand serve: %s: %s\n", lv->o.lat_hist, strerror(errno));
 	play_report_describe(&lv->rig, &lv->sc->src.s.timing, loop_result(lv->L), lv->reason,
 			     sizeof(lv->reason));
 	if (r->cause == LOOP_CAUSE_ESTOP || atomic_load(&lv->estop_req))
@@ -179,7 +182,8 @@ int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg
 	}
 	c->seq = ++lv->seq;
 	atomic_store(&lv->cmd_sent, c->seq);
-	c->arrival_ns = hal_mono_ns();
+	if (!c->arrival_ns)
+		c->arrival_ns = hal_mono_ns();
 	if (!hal_ring_push(&lv->cmds, c)) {
 		snprintf(msg, size, "the loop's command queue is full");
 		return -EBUSY;

@@ -221,6 +221,7 @@ static int admit(struct dispatch *d, uint64_t client, bool ws, struct rpc_req *r
 	int rc;
 
 	*res = NULL;
+	r->arrival_ns = hal_mono_ns();
 	r->client = d->holder ? d->holder : client;
 	if (rpc_controls(r->method)) {
 		if (d->holder && !holds(d, client, r)) {
@@ -336,7 +337,7 @@ static int run(struct dispatch *d, const struct rpc_req *r, json_t **res, char *
 		*res = info_obj(d);
 		return 0;
 	case RPC_PING:
-		rc = live_ping(lv, &lat, msg, size);
+		rc = live_ping(lv, r->arrival_ns, &lat, msg, size);
 		if (!rc)
 			*res = json_pack("{s:f}", "latency_us", lat / 1e3);
 		break;

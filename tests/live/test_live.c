@@ -196,7 +196,7 @@ static void test_states_jog_goto_play(void **state)
 	assert_non_null(strstr(msg, "enable"));
 	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
 	expect_state(&f, LIVE_ENABLED, &s);
-	ok(live_ping(f.lv, &lat, msg, sizeof(msg)), msg);
+	ok(live_ping(f.lv, 0, &lat, msg, sizeof(msg)), msg);
 
 	/* one jog command and no refresh: the dead-man ends it; the axis
 	 * comes to rest having ramped for at most 250 ms (+ a tick) and
