@@ -134,7 +134,7 @@ async def serve_round(hist):
 def hist_read(path, acc):
     for line in open(path):
         f = line.split()
-        if len(f) == 2 and f[0].isdigit():
+        if len(f) == 2 and f[0].isdigit() and int(f[1]):
             acc[int(f[0])] = acc.get(int(f[0]), 0) + int(f[1])
 
 

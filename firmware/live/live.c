@@ -561,6 +561,19 @@ void live_keys(struct live *lv, void (*fn)(void *ctx, const char *channel, doubl
 	}
 }
 
+uint32_t live_jog_targets(struct live *lv, const char **names, uint32_t max)
+{
+	const struct scene_desc *d = lv->sc ? &lv->sc->sf.desc : NULL;
+	uint32_t i, n = 0;
+
+	if (d && d->has_camera && n < max)
+		names[n++] = "camera";
+	for (i = 0; d && i < d->nnodes && n < max; i++)
+		if (d->nodes[i].kind == MOT_NODE_FREE)
+			names[n++] = d->nodes[i].name;
+	return n;
+}
+
 const char *live_state_name(enum live_state s)
 {
 	static const char *const names[] = {

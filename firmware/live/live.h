@@ -143,6 +143,10 @@ void live_span(struct live *lv, int64_t *first, int64_t *last, uint32_t *num, ui
 void live_keys(struct live *lv, void (*fn)(void *ctx, const char *channel, double frame),
 	       void *ctx);
 
+/* What live_jog_space takes: "camera" when the scene has one, then each
+ * free node, into names (at most max): their number. */
+uint32_t live_jog_targets(struct live *lv, const char **names, uint32_t max);
+
 const char *live_state_name(enum live_state s);
 
 /* ---- commands: 0 or a negative errno, the message in msg ---- */

@@ -123,9 +123,12 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 		goto stop;
 	}
 	lv->seq_run = lv->seq;
-	lv->running = true;
 	lv->state = LIVE_ENABLED;
 	lv->reason[0] = 0;
+	pthread_mutex_lock(&lv->snap_mu);
+	lv->snap.reason[0] = 0; /* the last run's end is the past */
+	pthread_mutex_unlock(&lv->snap_mu);
+	lv->running = true;
 	return 0;
 stop:
 	for (i = 0; i < lv->rig.naxes; i++)
@@ -156,7 +159,7 @@ void live_run_end(struct live *lv)
 		lv->state = LIVE_DISABLED;
 	if (r->cause == LOOP_CAUSE_ESTOP && !atomic_load(&lv->estop_req))
 		atomic_store(&lv->estop_req, true); /* the input's: latched as the command's */
-	if (r->cause == LOOP_CAUSE_DISABLE)
+	if (r->cause == LOOP_CAUSE_DISABLE || r->end == LOOP_END_NONE)
 		lv->reason[0] = 0;
 	if (atomic_load(&lv->signal_req))
 		atomic_store(&lv->finished, true);

@@ -352,12 +352,12 @@ static void STRAND_RT take(struct loop *L, const struct loop_cmd *c)
 		break;
 	case LOOP_CMD_DISABLE:
 		lv->quit = true;
-		if (L->seq.state == LOOP_HOLD) {
-			loop_fail(L, LOOP_END_STOPPED, LOOP_CAUSE_DISABLE, NULL);
+		/* the run's end, whatever it was doing (a stop under way too) */
+		loop_fail(L, LOOP_END_STOPPED, LOOP_CAUSE_DISABLE, NULL);
+		if (L->seq.state == LOOP_HOLD)
 			L->seq.state = LOOP_ENDED;
-		} else {
+		else
 			live_stop(L);
-		}
 		break;
 	case LOOP_CMD_SOURCE:
 		if (!at_rest(L) || !c->src) {

@@ -122,7 +122,8 @@ static json_t *info_obj(struct dispatch *d)
 	int64_t first, last;
 	const char *name, *path;
 	struct keys_ctx k = { json_object() };
-	json_t *outs = json_array();
+	json_t *outs = json_array(), *spaces = json_array();
+	const char *targets[LOOP_LIVE_OUT_MAX];
 
 	for (i = 0; i < n; i++)
 		json_array_append_new(outs, json_pack("{s:s, s:s, s:o, s:o, s:o, s:o, s:b, s:b}",
@@ -131,10 +132,14 @@ static json_t *info_obj(struct dispatch *d)
 			"amax", jnum(info[i].amax), "jog", info[i].jog, "teach", info[i].teach));
 	live_keys(d->lv, add_key, &k);
 	live_span(d->lv, &first, &last, &num, &den, &hz, &name, &path);
-	return json_pack("{s:s, s:s, s:I, s:I, s:I, s:I, s:I, s:o, s:o}", "scene", name,
+	n = live_jog_targets(d->lv, targets, LOOP_LIVE_OUT_MAX);
+	for (i = 0; i < n; i++)
+		json_array_append_new(spaces, json_string(targets[i]));
+	return json_pack("{s:s, s:s, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o}", "scene", name,
 			 "file", path, "first", (json_int_t)first, "last", (json_int_t)last,
 			 "fps_num", (json_int_t)num, "fps_den", (json_int_t)den,
-			 "tick_hz", (json_int_t)hz, "outputs", outs, "keys", k.keys);
+			 "tick_hz", (json_int_t)hz, "outputs", outs, "keys", k.keys,
+			 "jog_targets", spaces);
 }
 
 /* ---- the lease ---- */
