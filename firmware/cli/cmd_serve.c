@@ -18,7 +18,7 @@
 
 enum {
 	OPT_SIM = 256, OPT_LISTEN, OPT_TOKEN_FILE, OPT_DATA, OPT_CLOCK, OPT_PRIORITY, OPT_CPU,
-	OPT_NO_MLOCK, OPT_FORCE, OPT_DEADMAN, OPT_LAT_HIST,
+	OPT_NO_MLOCK, OPT_FORCE, OPT_DEADMAN, OPT_LAT_HIST, OPT_JOURNAL,
 };
 
 static const struct option serve_options[] = {
@@ -33,6 +33,7 @@ static const struct option serve_options[] = {
 	{ "force", no_argument, NULL, OPT_FORCE },
 	{ "deadman", required_argument, NULL, OPT_DEADMAN },
 	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
+	{ "journal", required_argument, NULL, OPT_JOURNAL },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -103,6 +104,9 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		return -1;
 	case OPT_LAT_HIST:
 		c->o.lat_hist = arg;
+		return -1;
+	case OPT_JOURNAL:
+		c->o.journal = arg;
 		return -1;
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
@@ -234,6 +238,7 @@ const struct cli_cmd cmd_serve = {
 		"                        or the working directory without one)\n"
 		"  --clock real|virtual  the wall clock (default) or virtual time (tests)\n"
 		"  --deadman MS          a jog stops without a refresh for MS (250)\n"
+		"  --journal DIR         each play segment's journal: DIR/SCENE-DATE-TIME-N.journal\n"
 		"  --latency-hist FILE   each run's wake-up latency histogram (as cyclictest's)\n"
 		"  --priority N, --cpu N, --no-mlock, --force   as for strand play\n"
 		"\n"

@@ -411,6 +411,8 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 	/* a run's loop counts from the commands it took itself */
 	s->cmd_seen = st->cmd_seq > lv->seq_run ? st->cmd_seq : lv->seq_run;
 	s->taken_ns = hal_mono_ns();
+	lv->seg_active = st->seg_first >= 0;
+	lv->seen_seq = st->cmd_seq;
 	s->serial = ++lv->serial;
 }
 
@@ -446,6 +448,19 @@ int live_service(struct live *lv)
 		return 2;
 	if (lv->running && !atomic_load(&lv->done))
 		live_space_follow(lv);
+	if (lv->has_jr) {
+		bool over;
+
+		journal_service(&lv->jr, hal_mono_ns());
+		pthread_mutex_lock(&lv->snap_mu);
+		lv->snap.journal_frames = atomic_load(&lv->jr.written);
+		/* a sample of a tick that had taken the play and left its
+		 * segment: the loop has let the journal go */
+		over = lv->seen_seq >= lv->jr_seq && !lv->seg_active;
+		pthread_mutex_unlock(&lv->snap_mu);
+		if (over)
+			live_journal_close(lv);
+	}
 	if (lv->running && atomic_load(&lv->done)) {
 		/* the last samples first */
 		while (hal_ring_pop(&lv->status, lv->st)) {

@@ -57,7 +57,7 @@ struct live_opts {
 	bool pace_all;        /* virtual time: at the wall's pace in every state */
 	bool force;           /* play and teach what strand check rejects */
 	struct rt_opts rt;
-	const char *journal;  /* NULL: none */
+	const char *journal;  /* a folder for each play segment's journal, or NULL */
 	const char *lat_hist; /* each run's wake-up latency histogram, or NULL */
 	const char *data_dir; /* where load and save find scene files */
 	double deadman_ms;    /* a jog lapses without a refresh (250) */
@@ -107,7 +107,7 @@ struct live_snap {
 	const char *loop_state; /* the loop's: hold, jog, move, pre-roll, play, ... */
 	int64_t lat_max_ns, lat_min_ns, lat_avg_ns, overruns;
 	uint64_t lat_n;
-	int64_t journal_frames; /* recorded so far, -1 without a journal */
+	int64_t journal_frames; /* the last segment's journal's records, -1: none */
 	uint32_t nout;
 	struct loop_live_out out[LOOP_LIVE_OUT_MAX]; /* file units */
 	uint64_t serial;        /* counts the samples taken in */

@@ -315,11 +315,17 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 	run = (struct lim_run){ .from = from, .to = to, .loop = p->loop, .ping_pong = p->ping_pong,
 				.passes = p->passes, .step = p->step };
 	rc = live_scene_check(lv, lv->sc, &run, msg, size);
+	if (!rc)
+		rc = live_journal_open(lv, &c, msg, size);
 	if (rc)
 		return rc;
 	rc = live_send(lv, &c, &a, msg, size);
-	if (!rc)
+	if (!rc) {
 		lv->goto_frame = -1;
+		lv->jr_seq = c.seq;
+	} else {
+		live_journal_close(lv); /* not taken: the loop never had it */
+	}
 	return rc;
 }
 

@@ -10,6 +10,7 @@
 #include "live_priv.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -146,6 +147,7 @@ void live_run_end(struct live *lv)
 	lv->running = false;
 	for (i = 0; i < lv->rig.naxes; i++)
 		hal_axis_stop(lv->rig.axes[i]);
+	live_journal_close(lv);
 	r = &loop_result(lv->L)->rep;
 	if (lv->o.lat_hist && lat_write_hist(lv->o.lat_hist, &loop_result(lv->L)->lat))
 		fprintf(stderr, "strand serve: %s: %s\n", lv->o.lat_hist, strerror(errno));
@@ -231,4 +233,53 @@ answered:
 		snprintf(msg, size, "invalid command");
 		return -EINVAL;
 	}
+}
+
+int live_journal_open(struct live *lv, struct loop_cmd *c, char *msg, size_t size)
+{
+	const struct play_source *src = &lv->sc->src.s;
+	char path[PATH_MAX], when[32];
+	struct tm tm;
+	time_t now;
+	int rc;
+
+	if (lv->has_jr) {
+		bool over;
+
+		pthread_mutex_lock(&lv->snap_mu);
+		over = lv->seen_seq >= lv->jr_seq && !lv->seg_active;
+		pthread_mutex_unlock(&lv->snap_mu);
+		if (!over) { /* the loop still writes the last segment's */
+			snprintf(msg, size, "the rig is not at rest (a play segment): stop first");
+			return -EBUSY;
+		}
+		live_journal_close(lv);
+	}
+	if (!lv->o.journal)
+		return 0;
+	/* named by the wall's date, whatever clock the loop runs on */
+	now = time(NULL);
+	strftime(when, sizeof(when), "%Y%m%d-%H%M%S", gmtime_r(&now, &tm));
+	if ((size_t)snprintf(path, sizeof(path), "%s/%s-%s-%u.journal", lv->o.journal, src->name,
+			     when, ++lv->jr_n) >= sizeof(path)) {
+		snprintf(msg, size, "--journal %s: the path is too long", lv->o.journal);
+		return -ENAMETOOLONG;
+	}
+	rc = play_journal_open(&lv->jr, path, &lv->rig, src,
+			       c->cfg.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0, -1,
+			       hal_clock_wall(&lv->clk), msg, size);
+	if (rc)
+		return rc;
+	lv->has_jr = true;
+	c->jr = &lv->jr;
+	return 0;
+}
+
+void live_journal_close(struct live *lv)
+{
+	if (!lv->has_jr)
+		return;
+	if (journal_close(&lv->jr))
+		fprintf(stderr, "strand serve: a journal could not be closed: %s\n", strerror(errno));
+	lv->has_jr = false;
 }

@@ -248,6 +248,7 @@ static int STRAND_RT take_play(struct loop *L, const struct loop_cmd *c, int32_t
 	}
 	L->res->total_frames = total;
 	L->res->frames_fired = 0;
+	L->trig.jr = c->jr;
 	return LOOP_CMD_OK;
 }
 
@@ -569,6 +570,7 @@ void STRAND_RT loop_live_tick_end(struct loop *L)
 	L->seq.state = LOOP_HOLD;
 	L->cfg.max_ticks = 0;
 	L->trig.cur_rec = NULL;
+	L->trig.jr = NULL; /* the owner closes it once it sees the segment over */
 	lv->seg_first = -1;
 	jog_clear(L);
 }

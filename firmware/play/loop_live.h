@@ -40,6 +40,7 @@
 #include <stdint.h>
 
 #include "frames.h"
+#include "journal/journal.h"
 #include "loop.h"
 
 /* Outputs a live rig may have: a move's pose travels inside a command. */
@@ -85,6 +86,8 @@ struct loop_cmd {
 	uint32_t nframes;    /* PLAY step: frames[0..nframes) */
 	struct frame_item frames[LOOP_LIVE_FRAME_ITEMS];
 	struct play_source *src; /* SOURCE */
+	struct journal *jr;  /* PLAY: the segment's journal, or NULL (the owner's,
+			      * open and serviced until the segment is over) */
 };
 
 struct loop_ack {

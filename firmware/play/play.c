@@ -24,13 +24,14 @@ static uint32_t journal_unit(enum src_unit u)
 	return u == SRC_UNIT_TURNS ? JOURNAL_UNIT_TURNS : JOURNAL_UNIT_PLAIN;
 }
 
-static int open_journal(struct play *p, struct play_source *src, char *err, size_t errsize)
+int play_journal_open(struct journal *jr, const char *path, const struct rig *rig,
+		      const struct play_source *src, uint32_t mode, int64_t total,
+		      int64_t wall_ns, char *err, size_t errsize)
 {
 	struct journal_info ji;
 	const char **names;
-	uint32_t *units, i, n = p->rig.nout;
+	uint32_t *units, i, n = rig->nout;
 	double fps = (double)src->timing.num / src->timing.den;
-	int64_t total = loop_result(p->L)->total_frames;
 	int rc;
 
 	names = calloc(n ? n : 1, sizeof(*names));
@@ -42,17 +43,16 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 		return -ENOMEM;
 	}
 	for (i = 0; i < n; i++) {
-		names[i] = p->rig.out[i].channel;
-		units[i] = journal_unit(p->rig.out[i].unit);
+		names[i] = rig->out[i].channel;
+		units[i] = journal_unit(rig->out[i].unit);
 	}
 	memset(&ji, 0, sizeof(ji));
 	ji.scene = src->name;
 	ji.rate_num = src->timing.num;
 	ji.rate_den = src->timing.den;
 	ji.tick_hz = src->timing.tick_hz;
-	ji.mode = (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
-		  (p->extclk ? JOURNAL_MODE_CHASE : 0);
-	ji.start_wall_ns = hal_clock_wall(&p->clk);
+	ji.mode = mode;
+	ji.start_wall_ns = wall_ns;
 	ji.nout = n;
 	ji.out_name = names;
 	ji.out_unit = units;
@@ -61,16 +61,27 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.capacity = total >= 0 ? total : JOURNAL_UNBOUNDED;
 	if (total == 0)
 		ji.capacity = 1;
-	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (p->rig.ntrig ? p->rig.ntrig : 1));
+	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (rig->ntrig ? rig->ntrig : 1));
 	/* a tick's edges are FIRED after every one of them was armed */
-	ji.behind = p->rig.ntrig ? p->rig.ntrig : 1;
-	rc = journal_open(&p->jr, p->o.journal_path, &ji);
+	ji.behind = rig->ntrig ? rig->ntrig : 1;
+	rc = journal_open(jr, path, &ji);
 	free(names);
 	free(units);
-	if (rc) {
-		snprintf(err, errsize, "journal %s: %s", p->o.journal_path, strerror(-rc));
+	if (rc)
+		snprintf(err, errsize, "journal %s: %s", path, strerror(-rc));
+	return rc;
+}
+
+static int open_journal(struct play *p, struct play_source *src, char *err, size_t errsize)
+{
+	int rc = play_journal_open(&p->jr, p->o.journal_path, &p->rig, src,
+				   (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
+				   (p->extclk ? JOURNAL_MODE_CHASE : 0),
+				   loop_result(p->L)->total_frames, hal_clock_wall(&p->clk), err,
+				   errsize);
+
+	if (rc)
 		return rc;
-	}
 	p->has_journal = true;
 	return 0;
 }

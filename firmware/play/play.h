@@ -116,6 +116,13 @@ void play_signal(struct play *p, int sig, int count);
  * (line 0) at tick 5000, frame 119"), into buf. */
 void play_describe(const struct play *p, char *buf, size_t size);
 
+/* [init] A journal at path for a run on rig of src (mode JOURNAL_MODE_*,
+ * total: the frames it fires, -1 without an end), as strand play opens
+ * its own. 0, or a negative errno with err. */
+int play_journal_open(struct journal *jr, const char *path, const struct rig *rig,
+		      const struct play_source *src, uint32_t mode, int64_t total,
+		      int64_t wall_ns, char *err, size_t errsize);
+
 /* The same for any run of the loop on rig, whose scene has timing tm. */
 void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
 			  const struct loop_result *res, char *buf, size_t size);

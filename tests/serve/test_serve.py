@@ -308,7 +308,9 @@ async def no_scene(tmp):
     os.makedirs(data)
     shutil.copy("examples/robot_arm.yaml", os.path.join(data, "arm.yaml"))
     open(os.path.join(data, "bad.yaml"), "w").write("scene: bad\ntiming: {tick_hz: 0}\n")
-    p, port = start(None, "--data", data)
+    journals = os.path.join(tmp, "journals")
+    os.makedirs(journals)
+    p, port = start(None, "--data", data, "--journal", journals)
     try:
         code, text = curl(port, rpc("enable"))
         check("no scene" in json.loads(text).get("error", {}).get("message", ""),
@@ -322,6 +324,21 @@ async def no_scene(tmp):
         check(json.loads(text)["result"]["scene"] == "robot-arm", "then a scene is loaded")
         code, text = curl(port, rpc("enable"))
         check("result" in json.loads(text), "and the drives enable")
+        # a play segment's journal: every frame fired, read by strand journal
+        code, text = curl(port, rpc("play", {"from": 0, "to": 10}))
+        t0 = time.time()
+        while time.time() - t0 < 10:
+            st = json.loads(curl(port, rpc("status"))[1])["result"]
+            if st["loop"] == "hold" and st["fired"] == 11:
+                break
+            time.sleep(0.1)
+        time.sleep(0.1)
+        files = os.listdir(journals)
+        rows = subprocess.run([STRAND, "journal", os.path.join(journals, files[0])],
+                              capture_output=True, text=True).stdout.splitlines() if files else []
+        check(len(files) == 1 and len(rows) == 12 and st["journal"] == 11,
+              "the segment's journal (--journal): %s, %d frames read back, status says %d"
+              % (files, len(rows) - 1, st["journal"]))
     finally:
         stop(p)
         check(p.returncode == 0, "strand serve without a scene stops on SIGINT, exit 0")
