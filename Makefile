@@ -177,8 +177,10 @@ $(foreach t,$(TEST_SRC),$(eval $(call test_link,$(t))))
 
 unit: $(TEST_BIN)
 	$(Q)fail=0; for t in $(TEST_BIN); do \
+		t0=$$(date +%s%N); \
 		if ! $$t > $$t.log 2>&1; then echo "FAIL $$t (log: $$t.log)"; tail -n 30 $$t.log; fail=1; \
-		else echo "PASS $$(basename $$t)  $$(grep -h '^BOUND' $$t.log | wc -l) bounds checked"; fi; \
+		else echo "PASS $$(basename $$t)  $$(grep -h '^BOUND' $$t.log | wc -l) bounds checked," \
+			"$$(( ($$(date +%s%N) - t0) / 1000000 )) ms"; fi; \
 	done; exit $$fail
 
 # test: unit and the checks of mk/*.mk, with a summary (mk/test.mk)

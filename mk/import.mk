@@ -78,6 +78,8 @@ FUZZ_IMPORT_DEPS := $(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf \
                     $(FUZZ_IMPORT_DIR)/fuzz_csv $(FUZZ_IMPORT_DIR)/seed-gltf \
                     $(FUZZ_IMPORT_DIR)/seed-urdf $(FUZZ_IMPORT_DIR)/seed-csv
 
+TEST_PREBUILD += $(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf $(FUZZ_IMPORT_DIR)/fuzz_csv
+
 fuzz-import: $(FUZZ_IMPORT_DEPS)
 	$(call run_fuzz_import,gltf,$(FUZZ_SECONDS))
 	$(call run_fuzz_import,urdf,$(FUZZ_SECONDS))

@@ -29,7 +29,7 @@ $(BUILD)/san/tests/cli/test_render.o: | $(BUILD)/.deps-render
 
 # ---- libFuzzer ------------------------------------------------------------------
 FUZZ_SECONDS       ?= 300
-FUZZ_SHORT_SECONDS ?= 45
+FUZZ_SHORT_SECONDS ?= 30
 FUZZ_DIR    := $(BUILD)/fuzz
 # One clang build of every library folder and the loader's fuzz target; it
 # sees the project from its roots, as the tests do (the layers are the main
@@ -38,11 +38,17 @@ FUZZ_CFLAGS := -std=gnu11 -g -O1 -ffp-contract=off \
                -fsanitize=fuzzer,address,undefined,float-cast-overflow -fno-sanitize-recover=all \
                -iquote . -iquote firmware
 FUZZ_SRC    := tests/fuzz/fuzz_load.c $(LIB_SRC) $(CLI_LIB_SRC) $(MOTION_SRC)
+# one object a source, so that `make -j` builds them side by side
+FUZZ_OBJ    := $(FUZZ_SRC:%.c=$(FUZZ_DIR)/load/%.o)
 
-$(FUZZ_DIR)/fuzz_load: $(FUZZ_SRC) $(ALL_HDR) | $(BUILD)/.deps-fuzz
+$(FUZZ_DIR)/load/%.o: %.c $(ALL_HDR) | $(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
-	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags $(FW_PKGS)) $(FUZZ_SRC) \
-		$(FW_LIBS) -o $@
+	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags $(FW_PKGS)) -c $< -o $@
+
+$(FUZZ_DIR)/fuzz_load: $(FUZZ_OBJ) | $(BUILD)/.deps-fuzz
+	$(Q)clang $(FUZZ_CFLAGS) $(FUZZ_OBJ) $(FW_LIBS) -o $@
+
+TEST_PREBUILD += $(FUZZ_DIR)/fuzz_load
 
 # The seed corpus: the examples, the test scenes and the golden error cases
 # of the loader tests.

@@ -8,11 +8,12 @@
 TEST_STEPS = unit check-layers check-freestanding check-cross check-cortexm $(EXTRA_TEST_STEPS)
 
 # The packages first, one apt-get at a time; then everything the steps
-# share built on every CPU (the steps themselves run one after the other:
-# several of them time what they run).
+# share built on every CPU: the programs and tests, and what other mk/*.mk
+# add to TEST_PREBUILD (the fuzzers, the property test); the steps
+# themselves run one after the other: several of them time what they run.
 NPROC := $(shell nproc 2>/dev/null || echo 2)
 
 test:
 	$(Q)$(MAKE) --no-print-directory deps
-	$(Q)$(MAKE) --no-print-directory -j$(NPROC) all $(BUILD)/strand-simdrive
+	$(Q)$(MAKE) --no-print-directory -j$(NPROC) all $(BUILD)/strand-simdrive $(TEST_PREBUILD)
 	$(Q)sh mk/run-steps.sh '$(MAKE)' $(BUILD)/test-logs $(TEST_STEPS)

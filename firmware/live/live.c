@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check/pools.h"
 #include "check/run_check.h"
 #include "hal/rt.h"
 #include "play/play.h"
@@ -141,6 +142,7 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 {
 	struct run_check c = { .out = NULL };
 	char line[LIVE_MSG];
+	uint32_t pools;
 	int rc = run_check_options(run, msg, size);
 
 	if (rc)
@@ -156,6 +158,13 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 		snprintf(msg, size, "%s: the core's arithmetic saturated at frame %.10g: values too "
 			 "large for its Q32.32 format", s->path, c.res.sat_frame);
 		rc = -ERANGE;
+	} else if (!c.res.violations && !lv->o.force &&
+		   (pools = lim_pools(NULL, NULL, &s->sf.desc, &s->b.sc, run->to, line,
+				      sizeof(line)))) {
+		/* a particle pool that runs out, as strand play refuses it */
+		snprintf(msg, size, "%s: strand check finds %u violation%s, the first: %s", s->path,
+			 pools, pools == 1 ? "" : "s", line);
+		rc = -EDOM;
 	} else if (c.res.violations && !lv->o.force) {
 		run_check_line(line, sizeof(line), &c, &c.first);
 		snprintf(msg, size, "%s: strand check finds %u limit violation%s, the first: %s "
@@ -399,7 +408,7 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 	s->frame = st->at_frame;
 	if (st->rep.end != LOOP_END_NONE)
 		play_report_describe(&lv->rig, &lv->sc->src.s.timing, &(struct loop_result){
-			.rep = st->rep, .frames_fired = st->s.fired }, s->reason, sizeof(s->reason));
+			.frames_fired = st->s.fired }, &st->rep, NULL, s->reason, sizeof(s->reason));
 	s->nout = st->n;
 	for (i = 0; i < st->n && i < LOOP_LIVE_OUT_MAX; i++) {
 		s->out[i] = st->out[i];

@@ -151,8 +151,8 @@ void live_run_end(struct live *lv)
 	r = &loop_result(lv->L)->rep;
 	if (lv->o.lat_hist && lat_write_hist(lv->o.lat_hist, &loop_result(lv->L)->lat))
 		fprintf(stderr, "strand serve: %s: %s\n", lv->o.lat_hist, strerror(errno));
-	play_report_describe(&lv->rig, &lv->sc->src.s.timing, loop_result(lv->L), lv->reason,
-			     sizeof(lv->reason));
+	play_report_describe(&lv->rig, &lv->sc->src.s.timing, loop_result(lv->L), r, NULL,
+			     lv->reason, sizeof(lv->reason));
 	if (r->cause == LOOP_CAUSE_ESTOP || atomic_load(&lv->estop_req))
 		lv->state = LIVE_ESTOPPED;
 	else if (r->end == LOOP_END_FAULT || r->end == LOOP_END_INTERNAL)

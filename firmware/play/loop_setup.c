@@ -45,6 +45,7 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
 	[LOOP_CAUSE_CHASE] = "chase",
+	[LOOP_CAUSE_BOARD] = "another board",
 	[LOOP_CAUSE_DISABLE] = "drives disabled",
 };
 
@@ -401,4 +402,9 @@ void loop_free(struct loop *L)
 
 	loop_live_free(L);
 	free(L); /* the block */
+}
+
+int64_t loop_play_tick(const struct loop *L)
+{
+	return L->seq.mv.ticks + L->seq.ru_ticks;
 }
