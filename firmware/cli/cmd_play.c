@@ -196,18 +196,10 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		c->o.virtual_clock = !strcmp(arg, "virtual");
 		return -1;
 	case OPT_PRIORITY:
-		if (!opt_long(arg, 0, 99, &v))
-			return cli_usage(c->cmd, c->err, "--priority %s: 0 to 99", arg);
-		c->o.rt.priority = (int)v;
-		return -1;
 	case OPT_CPU:
-		if (!opt_long(arg, 0, 1023, &v))
-			return cli_usage(c->cmd, c->err, "--cpu %s: a CPU number", arg);
-		c->o.rt.cpu = (int)v;
-		return -1;
 	case OPT_NO_MLOCK:
-		c->o.rt.lock_memory = false;
-		return -1;
+		return cli_rt_option(c->cmd, c->err, opt == OPT_PRIORITY ? "priority" :
+					      opt == OPT_CPU ? "cpu" : "no-mlock", arg, &c->o.rt);
 	case OPT_FORCE:
 		c->o.loop.force = true;
 		return -1;

@@ -82,18 +82,10 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		c->o.virtual_clock = c->o.pace_all = !strcmp(arg, "virtual");
 		return -1;
 	case OPT_PRIORITY:
-		if (!opt_long(arg, 0, 99, &v))
-			return cli_usage(c->cmd, c->err, "--priority %s: 0 to 99", arg);
-		c->o.rt.priority = (int)v;
-		return -1;
 	case OPT_CPU:
-		if (!opt_long(arg, 0, 1023, &v))
-			return cli_usage(c->cmd, c->err, "--cpu %s: a CPU number", arg);
-		c->o.rt.cpu = (int)v;
-		return -1;
 	case OPT_NO_MLOCK:
-		c->o.rt.lock_memory = false;
-		return -1;
+		return cli_rt_option(c->cmd, c->err, opt == OPT_PRIORITY ? "priority" :
+					      opt == OPT_CPU ? "cpu" : "no-mlock", arg, &c->o.rt);
 	case OPT_FORCE:
 		c->o.force = true;
 		return -1;
@@ -234,11 +226,12 @@ const struct cli_cmd cmd_serve = {
 		"                        loopback needs --token-file\n"
 		"  --token-file FILE     every request must present this token (Authorization:\n"
 		"                        Bearer TOKEN, or Basic with any user name)\n"
-		"  --data DIR            where load and save find scene files (the scene's folder,\n"
-		"                        or the working directory without one)\n"
+		"  --data DIR            where load and save find scene files (the scene's\n"
+		"                        folder, or the working directory without one)\n"
 		"  --clock real|virtual  the wall clock (default) or virtual time (tests)\n"
 		"  --deadman MS          a jog stops without a refresh for MS (250)\n"
-		"  --journal DIR         each play segment's journal: DIR/SCENE-DATE-TIME-N.journal\n"
+		"  --journal DIR         each play segment's journal,\n"
+		"                        DIR/SCENE-DATE-TIME-N.journal\n"
 		"  --latency-hist FILE   each run's wake-up latency histogram (as cyclictest's)\n"
 		"  --priority N, --cpu N, --no-mlock, --force   as for strand play\n"
 		"\n"

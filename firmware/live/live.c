@@ -155,8 +155,8 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 	if (rc) {
 		snprintf(msg, size, "%s: the limit check: %s", s->path, strerror(-rc));
 	} else if (c.res.sat) {
-		snprintf(msg, size, "%s: the core's arithmetic saturated at frame %.10g: values too "
-			 "large for its Q32.32 format", s->path, c.res.sat_frame);
+		snprintf(msg, size, "%s: the core's arithmetic saturated at frame %.10g: values "
+			 "too large for its Q32.32 format", s->path, c.res.sat_frame);
 		rc = -ERANGE;
 	} else if (!c.res.violations && !lv->o.force &&
 		   (pools = lim_pools(NULL, NULL, &s->sf.desc, &s->b.sc, run->to, line,
@@ -224,8 +224,9 @@ int live_rig_up(struct live *lv, char *err, size_t errsize)
 	lv->rd = &lv->sc->sf.rig;
 	if (!lv->rd->noutputs && !lv->rd->ntriggers) {
 		if (!lv->o.sim) {
-			snprintf(err, errsize, "%s: the scene describes no rig (devices:, outputs:, "
-				 "triggers:); serve it on a simulated one with --sim", lv->sc->path);
+			snprintf(err, errsize, "%s: the scene describes no rig (devices:, "
+				 "outputs:, triggers:); serve it on a simulated one with --sim",
+				 lv->sc->path);
 			return -EINVAL;
 		}
 		if (rig_auto_build(&lv->ra, &lv->sc->sf.desc, &lv->sc->src.s,
@@ -407,8 +408,9 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 		atomic_store(&lv->last_frame, st->at_frame);
 	s->frame = st->at_frame;
 	if (st->rep.end != LOOP_END_NONE)
-		play_report_describe(&lv->rig, &lv->sc->src.s.timing, &(struct loop_result){
-			.frames_fired = st->s.fired }, &st->rep, NULL, s->reason, sizeof(s->reason));
+		play_report_describe(&lv->rig, &lv->sc->src.s.timing,
+				     &(struct loop_result){ .frames_fired = st->s.fired }, &st->rep,
+				     NULL, s->reason, sizeof(s->reason));
 	s->nout = st->n;
 	for (i = 0; i < st->n && i < LOOP_LIVE_OUT_MAX; i++) {
 		s->out[i] = st->out[i];
@@ -447,8 +449,8 @@ int live_service(struct live *lv)
 		if (lv->snap.state != LIVE_ESTOPPED) {
 			lv->snap.state = LIVE_ESTOPPED;
 			lv->snap.loop_state = live_state_name(LIVE_ESTOPPED);
-			snprintf(lv->snap.reason, sizeof(lv->snap.reason), "e-stop (commanded) while "
-				 "the drives were disabled; latched");
+			snprintf(lv->snap.reason, sizeof(lv->snap.reason),
+				 "e-stop (commanded) while the drives were disabled; latched");
 			lv->snap.serial = ++lv->serial;
 		}
 		pthread_mutex_unlock(&lv->snap_mu);
@@ -482,8 +484,8 @@ int live_service(struct live *lv)
 	if (!lv->running) {
 		if (atomic_load(&lv->estop_req) && lv->state != LIVE_ESTOPPED) {
 			lv->state = LIVE_ESTOPPED;
-			snprintf(lv->reason, sizeof(lv->reason), "e-stop (commanded) while the drives "
-				 "were disabled; latched");
+			snprintf(lv->reason, sizeof(lv->reason),
+				 "e-stop (commanded) while the drives were disabled; latched");
 		}
 		if (atomic_load(&lv->signal_req))
 			atomic_store(&lv->finished, true);

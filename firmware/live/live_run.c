@@ -280,6 +280,7 @@ void live_journal_close(struct live *lv)
 	if (!lv->has_jr)
 		return;
 	if (journal_close(&lv->jr))
-		fprintf(stderr, "strand serve: a journal could not be closed: %s\n", strerror(errno));
+		fprintf(stderr, "strand serve: a journal could not be closed: %s\n",
+			strerror(errno));
 	lv->has_jr = false;
 }

@@ -63,7 +63,8 @@ static int data_path(struct live *lv, const char *name, char *path, size_t size,
 		      name[i] == '.'))
 			break;
 	if (!n || n > 128 || i < n || name[0] == '.' ||
-	    !((n > 5 && !strcmp(name + n - 5, ".yaml")) || (n > 4 && !strcmp(name + n - 4, ".yml")))) {
+	    !((n > 5 && !strcmp(name + n - 5, ".yaml")) ||
+	      (n > 4 && !strcmp(name + n - 4, ".yml")))) {
 		snprintf(msg, msgsize, "'%.140s': a file name of the data folder (letters, digits, "
 			 "'_', '-', '.', ending in .yaml), no path", name ? name : "");
 		return -EINVAL;
@@ -260,19 +261,33 @@ int live_teach(struct live *lv, double frame, const char *const *nodes, uint32_t
 	return rc;
 }
 
-int live_teach_delete(struct live *lv, const char *node, double frame, char *msg, size_t size)
+/* A key deleted (del) or moved from `from` to `to`, then applied. */
+static int key_edit(struct live *lv, const char *node, bool del, double from, double to,
+		    char *msg, size_t size)
 {
 	char *text;
 	size_t len;
 	int rc;
 
+	if (!lv->sc)
+		return live_no_scene(msg, size);
+	rc = del ? yedit_key_delete(lv->sc->text, lv->sc->len, node, from, &text, &len, msg,
+				     size) :
+		   yedit_key_move(lv->sc->text, lv->sc->len, node, from, to, &text, &len, msg,
+				  size);
+	if (rc)
+		return rc;
+	rc = apply(lv, text, len, NULL, msg, size);
+	free(text);
+	return rc;
+}
+
+int live_teach_delete(struct live *lv, const char *node, double frame, char *msg, size_t size)
+{
+	int rc;
+
 	pthread_mutex_lock(&lv->mu);
-	rc = lv->sc ? yedit_key_delete(lv->sc->text, lv->sc->len, node, frame, &text, &len, msg,
-				       size) : live_no_scene(msg, size);
-	if (!rc) {
-		rc = apply(lv, text, len, NULL, msg, size);
-		free(text);
-	}
+	rc = key_edit(lv, node, true, frame, 0, msg, size);
 	pthread_mutex_unlock(&lv->mu);
 	return rc;
 }
@@ -280,17 +295,10 @@ int live_teach_delete(struct live *lv, const char *node, double frame, char *msg
 int live_teach_move(struct live *lv, const char *node, double from, double to, char *msg,
 		    size_t size)
 {
-	char *text;
-	size_t len;
 	int rc;
 
 	pthread_mutex_lock(&lv->mu);
-	rc = lv->sc ? yedit_key_move(lv->sc->text, lv->sc->len, node, from, to, &text, &len, msg,
-				     size) : live_no_scene(msg, size);
-	if (!rc) {
-		rc = apply(lv, text, len, NULL, msg, size);
-		free(text);
-	}
+	rc = key_edit(lv, node, false, from, to, msg, size);
 	pthread_mutex_unlock(&lv->mu);
 	return rc;
 }

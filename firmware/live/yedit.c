@@ -181,8 +181,9 @@ static yaml_node_t *key_item(struct ydoc *y, int i)
 
 static int nkeys(struct ydoc *y)
 {
-	return y->keys ? (int)(y->keys->data.sequence.items.top - y->keys->data.sequence.items.start)
-		       : 0;
+	const yaml_node_t *k = y->keys;
+
+	return k ? (int)(k->data.sequence.items.top - k->data.sequence.items.start) : 0;
 }
 
 /* A new strand at the end of strands: (block style). */
@@ -261,7 +262,8 @@ int yedit_key_set(const char *text, size_t len, const char *node, const char *fi
 			size_t ls = line_start(text, f->start_mark.index);
 			int ind = (int)(f->start_mark.index - ls) - 7; /* "frame: " */
 
-			snprintf(rep, sizeof(rep), "\n%*s%s: %s", ind > 0 ? ind : 0, "", field, num);
+			snprintf(rep, sizeof(rep), "\n%*s%s: %s", ind > 0 ? ind : 0, "", field,
+				 num);
 			rc = splice(text, len, at, at, rep, out, outlen, err, errsize);
 		}
 		goto out;

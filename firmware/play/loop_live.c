@@ -387,7 +387,8 @@ void STRAND_RT loop_live_commands(struct loop *L)
 		loop_request_stop(L, 2, LOOP_CAUSE_ESTOP);
 	i = atomic_load_explicit(lv->cfg.signal, memory_order_relaxed);
 	if (i)
-		loop_request_stop(L, i >= 2 ? 2 : 1, i >= 2 ? LOOP_CAUSE_IMMEDIATE : LOOP_CAUSE_SIGNAL);
+		loop_request_stop(L, i >= 2 ? 2 : 1,
+				  i >= 2 ? LOOP_CAUSE_IMMEDIATE : LOOP_CAUSE_SIGNAL);
 	for (i = 0; i < LOOP_LIVE_CMDS_PER_TICK && hal_ring_pop(lv->cfg.cmds, &lv->cmd); i++)
 		take(L, &lv->cmd);
 }

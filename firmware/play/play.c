@@ -569,7 +569,8 @@ void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
 		break;
 	case LOOP_CAUSE_ESTOP:
 		if (!r->device) /* no input's: a live session's e-stop command */
-			snprintf(buf, size, "e-stop (commanded) %s; drives disabled, latched", when);
+			snprintf(buf, size, "e-stop (commanded) %s; drives disabled, latched",
+				 when);
 		else if (r->has_edge)
 			snprintf(buf, size, "e-stop: input '%s' (line %d) %s, acted on %.1f us after "
 				 "the edge; drives disabled, latched", r->device ? r->device : "?",
@@ -594,15 +595,17 @@ void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
 	case LOOP_CAUSE_IN_POSITION:
 		snprintf(buf, size, "%s: device '%s' channel %d (%s): %.6g %s beyond the bound %.6g %s %s",
 			 loop_cause_name(r->cause), r->device ? r->device : "?", r->channel,
-			 rig_out_name(rig, o), rig_out_file_units(rig, o, fabs(r->value)), rig_out_unit(rig, o),
-			 rig_out_file_units(rig, o, r->bound), rig_out_unit(rig, o), when);
+			 rig_out_name(rig, o), rig_out_file_units(rig, o, fabs(r->value)),
+			 rig_out_unit(rig, o), rig_out_file_units(rig, o, r->bound),
+			 rig_out_unit(rig, o), when);
 		break;
 	case LOOP_CAUSE_LIMIT_POS:
 	case LOOP_CAUSE_LIMIT_VEL:
 	case LOOP_CAUSE_LIMIT_ACC:
 		snprintf(buf, size, "%s: %s (device '%s' channel %d): %.6g beyond %.6g %s%s %s",
-			 loop_cause_name(r->cause), rig_out_name(rig, o), r->device ? r->device : "?",
-			 r->channel, rig_out_file_units(rig, o, r->value), rig_out_file_units(rig, o, r->bound),
+			 loop_cause_name(r->cause), rig_out_name(rig, o),
+			 r->device ? r->device : "?", r->channel,
+			 rig_out_file_units(rig, o, r->value), rig_out_file_units(rig, o, r->bound),
 			 rig_out_unit(rig, o),
 			 r->cause == LOOP_CAUSE_LIMIT_VEL ? "/s" :
 			 r->cause == LOOP_CAUSE_LIMIT_ACC ? "/s^2" : "", when);

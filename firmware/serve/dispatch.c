@@ -51,7 +51,8 @@ static json_t *status_obj(struct dispatch *d, const struct live_snap *s)
 	}
 	o = json_pack("{s:s, s:s, s:s, s:I, s:o, s:I, s:s, s:I, s:I, s:{s:o, s:o, s:o, s:I, s:I},"
 		      " s:I, s:I, s:I, s:b, s:o}",
-		      "state", live_state_name(s->state), "loop", s->loop_state ? s->loop_state : "",
+		      "state", live_state_name(s->state),
+		      "loop", s->loop_state ? s->loop_state : "",
 		      "reason", s->reason, "tick", (json_int_t)s->tick,
 		      "t", jnum(s->t_ns / 1e9), "frame", (json_int_t)s->frame, "timecode", tc,
 		      "fired", (json_int_t)s->fired, "total", (json_int_t)s->total,
