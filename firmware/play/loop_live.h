@@ -29,7 +29,8 @@
  * direction while it ramps), and never exceeds the speed from which it can
  * stop on its position limit within amax (the braking curve, in whole
  * ticks: see jog_vmax in loop_live.c), so it arrives on the limit and
- * stays there. A jog lapses (f = 0) when no refresh came for
+ * stays there. A rig found outside a position limit holds there and may be
+ * jogged or moved back, never further out (loop_safety.c: outside_ok). A jog lapses (f = 0) when no refresh came for
  * deadman_ticks.
  */
 #ifndef STRAND_LOOP_LIVE_H

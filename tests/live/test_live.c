@@ -470,6 +470,45 @@ static void test_restart_sim(void **state)
 	close_fixture(&f);
 }
 
+/* A rig found outside a position limit (a's 10..170, the twin at 0): it
+ * holds, a jog further out does not move it, a jog back in does, and
+ * nothing faults. */
+static void test_outside_limits(void **state)
+{
+	struct fixture f;
+	struct live_snap s;
+	char path[160], msg[512];
+	int i;
+
+	snprintf(path, sizeof(path), "/tmp/strand-live-out-%d.yaml", (int)getpid());
+	two_joint_scene(path, "  - {name: drives, driver: sim}\n",
+			"  - {channel: a.angle, device: drives, axis: 0, counts_per_unit: 1000,\n"
+			"     limits: {min: 10, max: 170, velocity: 90, acceleration: 360}}\n"
+			"  - {channel: b.angle, device: drives, axis: 1, counts_per_unit: 1000}\n");
+	open_scene(&f, path, false, 250);
+	unlink(path);
+	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_ENABLED, &s);
+	for (i = 0; i < 6; i++) { /* outwards, 300 ms */
+		ok(live_jog(f.lv, 3, 0, -0.5, i + 1, msg, sizeof(msg)), msg);
+		nanosleep(&(struct timespec){ .tv_nsec = 50000000 }, NULL);
+	}
+	rest(&f, &s);
+	printf("BOUND outside the limit: a jogged outwards stays at %.9f deg (0)\n", s.out[0].sp);
+	assert_int_equal(s.state, LIVE_ENABLED);
+	assert_true(s.out[0].sp == 0);
+	for (i = 0; i < 6; i++) { /* back in */
+		ok(live_jog(f.lv, 3, 0, 0.5, i + 7, msg, sizeof(msg)), msg);
+		nanosleep(&(struct timespec){ .tv_nsec = 50000000 }, NULL);
+	}
+	rest(&f, &s);
+	printf("BOUND outside the limit: a jogged back in to %.3f deg, no fault\n", s.out[0].sp);
+	assert_int_equal(s.state, LIVE_ENABLED);
+	assert_true(s.out[0].sp > 1);
+	ok(live_disable(f.lv, msg, sizeof(msg)), msg);
+	close_fixture(&f);
+}
+
 /* CiA 402 drives on the simulated bus (interface sim: the master, the
  * protocol and the drives in-process): the drives' NMT and 402 states
  * through a stop and a start. */
@@ -720,6 +759,7 @@ int main(void)
 		cmocka_unit_test(test_jog_limit),
 		cmocka_unit_test(test_teach),
 		cmocka_unit_test(test_space_jog),
+		cmocka_unit_test(test_outside_limits),
 		cmocka_unit_test(test_restart_sim),
 		cmocka_unit_test(test_restart_canopen),
 		cmocka_unit_test_teardown(test_restart_modbus, stop_peer),
