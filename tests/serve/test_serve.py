@@ -360,7 +360,8 @@ def png_pixels(path):
         pos += 12 + n
     raw, rows, prev = zlib.decompress(idat), [], bytearray(w * bpp)
     for y in range(h):
-        f, line = raw[y * (w * bpp + 1)], bytearray(raw[y * (w * bpp + 1) + 1:(y + 1) * (w * bpp + 1)])
+        row = y * (w * bpp + 1)
+        f, line = raw[row], bytearray(raw[row + 1:row + 1 + w * bpp])
         for i in range(len(line)):
             a = line[i - bpp] if i >= bpp else 0
             b, c = prev[i], prev[i - bpp] if i >= bpp else 0
@@ -369,7 +370,8 @@ def png_pixels(path):
             elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
             elif f == 4:
                 pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+                pred = a if pa <= pb and pa <= pc else b if pb <= pc else c
+                line[i] = (line[i] + pred) & 255
         rows.append([tuple(line[x * bpp:x * bpp + 3]) for x in range(w)])
         prev = line
     return w, h, rows
@@ -437,7 +439,8 @@ def browser(port, scene):
         until(lambda: "hold" in state() and d.find_element(By.ID, "v0").text != v0,
               "a jog from the keyboard moves output 1")
         check(d.find_element(By.ID, "v0").text != v0,
-              "browser: keyboard jog moved output 1 (%s -> %s)" % (v0, d.find_element(By.ID, "v0").text))
+              "browser: keyboard jog moved output 1 (%s -> %s)"
+              % (v0, d.find_element(By.ID, "v0").text))
         # at frame 48's pose (base at 60 degrees until frame 96), base keyed
         # there at frame 72
         d.find_element(By.ID, "frame").clear()
