@@ -145,8 +145,16 @@ static void rest(struct fixture *f, struct live_snap *s)
 	wait_for(f, at_rest, NULL, s, "the rig at rest");
 }
 
-/* A channel of a scene at a frame, as the session's source evaluates it. */
+/* A channel of a scene at a frame, as the session's source evaluates it,
+ * in the file's units. */
+static double channel_at(const char *path, const char *channel, int64_t frame);
+
 static double scene_at(const char *path, const char *channel, int64_t frame)
+{
+	return channel_at(path, channel, frame);
+}
+
+static double channel_at(const char *path, const char *channel, int64_t frame)
 {
 	struct scene_file sf;
 	struct scene_built b;
@@ -168,7 +176,7 @@ static double scene_at(const char *path, const char *channel, int64_t frame)
 	source_scene_free(&ss);
 	scene_built_free(&b);
 	scene_file_free(&sf);
-	return (double)v * (360.0 / 4294967296.0);
+	return (double)v * ((info.unit == SRC_UNIT_TURNS ? 360.0 : 1.0) / 4294967296.0);
 }
 
 static void ok(int rc, const char *msg)
@@ -744,6 +752,29 @@ static void test_space_jog(void **state)
 	       moved(&a, &b, 8), moved(&a, &b, 6), moved(&a, &b, 7));
 	assert_true(moved(&a, &b, 8) < -0.05);
 	assert_true(fabs(moved(&a, &b, 6)) <= 1e-6 && fabs(moved(&a, &b, 7)) <= 1e-6);
+
+	/* the camera keyed where the rig holds it: at frame 24 the scene's
+	 * camera is there (the eye exactly, its angles through look_at within
+	 * 1e-5 deg), the file's comments and other keys as they were */
+	{
+		static const char *const cam[6] = { "camera.x", "camera.y", "camera.z",
+						     "camera.pan", "camera.tilt", "camera.roll" };
+		const char *camera = "camera";
+		char *text;
+
+		ok(live_teach(f.lv, 24, &camera, 1, msg, sizeof(msg)), msg);
+		text = slurp(f.path, NULL);
+		assert_non_null(strstr(text, "{frame: 24, eye: ["));
+		assert_non_null(strstr(text, "{frame: 48, eye: [1, 1.5, 3]"));
+		free(text);
+		for (i = 0; i < 6; i++) {
+			double v = channel_at(f.path, cam[i], 24);
+
+			printf("BOUND taught %s at 24: %.9f, the rig's %.9f (1e-5)\n", cam[i], v,
+			       b.out[i].sp);
+			assert_true(fabs(v - b.out[i].sp) <= 1e-5);
+		}
+	}
 
 	/* what is not the camera or a free node is refused, by name */
 	assert_int_equal(live_jog_space(f.lv, 9, "nothing", "local", "x", 0.5, ++seq, msg,
