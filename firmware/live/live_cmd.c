@@ -115,7 +115,13 @@ void live_client_gone(struct live *lv, uint64_t client)
 			c.out = i;
 			live_send(lv, &c, &a, msg, sizeof(msg));
 		}
+		if (lv->space_seq) { /* a jog of the camera or a node: every output at 0 */
+			struct loop_cmd v = { .kind = LOOP_CMD_JOG_VEC };
+
+			live_send(lv, &v, &a, msg, sizeof(msg));
+		}
 		lv->jog_client = 0;
+		lv->space_seq = 0;
 		memset(lv->jog_seq, 0, sizeof(lv->jog_seq));
 	}
 	pthread_mutex_unlock(&lv->mu);

@@ -776,6 +776,26 @@ static void test_space_jog(void **state)
 		}
 	}
 
+	/* a jog of the camera whose client goes ends at once, not at the
+	 * dead-man's time */
+	{
+		int64_t lat, t0;
+
+		ok(live_jog_space(f.lv, 9, "camera", "world", "x", 0.3, ++seq, msg, sizeof(msg)),
+		   msg);
+		nanosleep(&(struct timespec){ .tv_nsec = 100000000 }, NULL);
+		live_client_gone(f.lv, 9);
+		ok(live_ping(f.lv, 0, &lat, msg, sizeof(msg)), msg);
+		live_snapshot(f.lv, &b);
+		t0 = b.tick;
+		rest(&f, &b);
+		/* 0.15 units/s braked at 2 units/s^2: 75 ticks; the dead-man
+		 * alone would take 250 more */
+		printf("BOUND a client gone: at rest %lld ticks later (< 200)\n",
+		       (long long)(b.tick - t0));
+		assert_true(b.tick - t0 < 200);
+	}
+
 	/* what is not the camera or a free node is refused, by name */
 	assert_int_equal(live_jog_space(f.lv, 9, "nothing", "local", "x", 0.5, ++seq, msg,
 					sizeof(msg)), -ENOENT);
