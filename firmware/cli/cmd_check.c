@@ -14,7 +14,8 @@
 #include "opt.h"
 #include "rig/rig_auto.h"
 
-enum { OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_LOOP, OPT_PING_PONG, OPT_PASSES };
+enum { OPT_SIM = 256, OPT_MODE, OPT_FROM, OPT_TO, OPT_LOOP, OPT_PING_PONG, OPT_PASSES,
+       OPT_SHUTTER };
 
 static const struct option check_options[] = {
 	{ "sim", no_argument, NULL, OPT_SIM },
@@ -24,6 +25,7 @@ static const struct option check_options[] = {
 	{ "loop", no_argument, NULL, OPT_LOOP },
 	{ "ping-pong", no_argument, NULL, OPT_PING_PONG },
 	{ "passes", required_argument, NULL, OPT_PASSES },
+	{ "shutter", required_argument, NULL, OPT_SHUTTER },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -73,6 +75,8 @@ static int on_opt(void *ctx, int opt, const char *arg)
 			return cli_usage(o->cmd, o->err, "--passes %s: a count of 1 or more", arg);
 		o->run.passes = v;
 		return -1;
+	case OPT_SHUTTER:
+		return cli_shutter_arg(o->cmd, o->err, arg, &o->run.shutter);
 	default:
 		return cli_usage(o->cmd, o->err, "unknown option");
 	}
@@ -104,7 +108,11 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		o.run.from = ss.s.frame_first;
 	if (!o.have_to)
 		o.run.to = ss.s.frame_last;
+	o.run.expose_first = o.run.from;
+	o.run.expose_last = o.run.to;
 	rc = cli_limits_usage(cmd, err, &o.run);
+	if (rc < 0)
+		rc = cli_shutter_usage(cmd, err, &ss.s.timing, o.run.shutter);
 	if (rc >= 0)
 		goto out;
 	rig = &sf.rig;
@@ -149,7 +157,8 @@ const struct cli_cmd cmd_check = {
 	.name = "check",
 	.summary = "validate a scene and verify every limit over what a run plays",
 	.help = "usage: strand check SCENE.yaml [--from F] [--to F] [--loop | --ping-pong]\n"
-		"                   [--passes N] [--mode continuous|step] [--sim]\n\n"
+		"                   [--passes N] [--mode continuous|step] [--shutter ANGLE]\n"
+		"                   [--sim]\n\n"
 		"Validate the scene file, then walk what strand play would play, tick by tick,\n"
 		"as the controller will: the run-up into each pass, the scene's ticks, the\n"
 		"post-roll to rest. Every channel the rig drives is held to its output's limits\n"
@@ -158,7 +167,9 @@ const struct cli_cmd cmd_check = {
 		"leave it. Each run of ticks breaking a limit is one line:\n"
 		"  CHANNEL: KIND WORST UNIT beyond limit LIMIT UNIT, frames FIRST to LAST\n"
 		"then a summary line. The options are strand play's, and check what such a run\n"
-		"plays (default: the scene's span, once); --sim checks a scene without a rig\n"
+		"plays (default: the scene's span, once); --mode step --shutter ANGLE walks\n"
+		"go-motion: each frame's run-up from rest, its exposure of ANGLE/360 of a frame\n"
+		"centred on it, and its run-out to rest; --sim checks a scene without a rig\n"
 		"against the simulated rig strand play --sim makes for it.\n\n"
 		"exit codes: 0 within limits, 1 limits violated, 2 invalid scene, 3 usage,\n"
 		"            4 I/O, 8 the core's arithmetic saturated\n",

@@ -6,7 +6,9 @@
 #include <stdlib.h>
 
 #include "check/channels.h"
+#include "plan/gomo.h"
 #include "cli.h"
+#include "opt.h"
 
 static void on_violation(void *ctx, const struct lim_violation *v)
 {
@@ -29,6 +31,8 @@ int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run 
 		return cli_usage(cmd, err, "--loop or --ping-pong, not both");
 	if (r->passes && !r->loop && !r->ping_pong)
 		return cli_usage(cmd, err, "--passes goes with --loop or --ping-pong");
+	if (r->shutter && !r->step)
+		return cli_usage(cmd, err, "--shutter is go-motion, for --mode step");
 	if (r->step)
 		return -1;
 	if (r->to < r->from)
@@ -37,6 +41,28 @@ int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run 
 	if (r->ping_pong && r->to == r->from)
 		return cli_usage(cmd, err, "--ping-pong needs at least two frames");
 	return -1;
+}
+
+int cli_shutter_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, mot_q32 *s)
+{
+	double a;
+
+	if (!opt_double(arg, 0, 360, &a) || !gomo_shutter_of_angle(a, s))
+		return cli_usage(cmd, err, "--shutter %s: a shutter angle in degrees, above 0 and "
+				 "at most 360", arg);
+	return -1;
+}
+
+int cli_shutter_usage(const struct cli_cmd *cmd, FILE *err, const struct mot_timing *t,
+		      mot_q32 s)
+{
+	double ms = (double)s / 4294967296.0 * t->den / t->num * 1000;
+
+	if (!s || !gomo_shutter_check(t, s))
+		return -1;
+	return cli_usage(cmd, err, "--shutter: an exposure of %.6g ms is shorter than two ticks "
+			 "(%.6g ms at tick_hz %u): go-motion needs the scene's speed", ms,
+			 2000.0 / t->tick_hz, t->tick_hz);
 }
 
 int cli_limits_run(struct cli_limits *c, struct source_scene *ss, const struct rig_desc *rig,
@@ -80,6 +106,7 @@ void cli_limits_line(char *buf, size_t size, const struct cli_limits *c,
 	const char *unit = unit_name(ch->unit);
 	const char *per = v->kind == LIM_VEL ? "/s" : v->kind == LIM_ACC ? "/s^2" : "";
 	const char *back = v->dir < 0 ? " (backwards)" : "";
+	const char *gomo = v->gomo ? "go-motion " : "";
 	double worst = lim_file_units(ch->unit, v->worst);
 	double limit = lim_file_units(ch->unit, v->limit);
 	char where[160];
@@ -89,25 +116,27 @@ void cli_limits_line(char *buf, size_t size, const struct cli_limits *c,
 	switch (v->seg) {
 	case LIM_SEG_RUNUP:
 		if (v->kind == LIM_MIN || v->kind == LIM_MAX) {
-			snprintf(buf, size, "%s: the run-up into frame %.10g%s starts at %.7g %s, "
-				 "beyond limit %.7g %s; start from a frame where it moves slower",
-				 ch->name, v->frame_first, back, worst, unit, limit, unit);
+			snprintf(buf, size, "%s: the %srun-up into frame %.10g%s starts at %.7g %s, "
+				 "beyond limit %.7g %s; %s", ch->name, gomo, v->frame_first, back,
+				 worst, unit, limit, unit, v->gomo ?
+				 "it moves too fast there to come up to its speed from rest inside "
+				 "its limits" : "start from a frame where it moves slower");
 			return;
 		}
-		snprintf(where, sizeof(where), "in the run-up into frame %.10g%s", v->frame_first,
-			 back);
+		snprintf(where, sizeof(where), "in the %srun-up into frame %.10g%s", gomo,
+			 v->frame_first, back);
 		break;
 	case LIM_SEG_POSTROLL:
-		snprintf(where, sizeof(where), "in the post-roll after frame %.10g%s",
-			 v->frame_last, back);
+		snprintf(where, sizeof(where), "in the %s after frame %.10g%s",
+			 v->gomo ? "go-motion run-out" : "post-roll", v->frame_last, back);
 		break;
 	case LIM_SEG_FRAME:
 		snprintf(where, sizeof(where), "at frames %.10g to %.10g (step mode)", v->frame_first,
 			 v->frame_last);
 		break;
 	default:
-		snprintf(where, sizeof(where), "frames %.10g to %.10g%s", v->frame_first,
-			 v->frame_last, back);
+		snprintf(where, sizeof(where), "frames %.10g to %.10g%s%s", v->frame_first,
+			 v->frame_last, back, v->gomo ? " (go-motion exposure)" : "");
 		break;
 	}
 	if (v->kind == LIM_STOP)

@@ -30,6 +30,16 @@ struct cli_cmd;
  * usage error's exit code, said on err. */
 int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run *r);
 
+/* --shutter ANGLE (degrees, 0 < ANGLE <= 360) into *s, the fraction of a
+ * frame go-motion exposes (plan/gomo.h): -1, or the usage error's exit
+ * code, said on err. */
+int cli_shutter_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, mot_q32 *s);
+
+/* The shutter against the scene's timing: every exposure must hold two
+ * ticks. -1, or the usage error's exit code. */
+int cli_shutter_usage(const struct cli_cmd *cmd, FILE *err, const struct mot_timing *t,
+		      mot_q32 s);
+
 /* [init] The run over ss (the rig: its outputs and triggers, NULL: none)
  * into c; run's lead and tail are set from the rig's triggers. 0, or a
  * negative errno (-ENOMEM; -ENOENT: an output's channel is not the

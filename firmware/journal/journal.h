@@ -66,7 +66,10 @@
 #include "hal/rt.h" /* STRAND_RT */
 
 #define JOURNAL_MAGIC "STRANDJ1"
-#define JOURNAL_VERSION 2 /* 1: no byte order or layout in the header (read too) */
+/* 3: a record holds a go-motion exposure's ticks (open_tick, close_tick);
+ * 2: without them; 1: no byte order or layout in the header either. All
+ * three are read. */
+#define JOURNAL_VERSION 3
 #define JOURNAL_NAME_MAX 48
 #define JOURNAL_OUT_MAX 4096 /* outputs a journal holds at most */
 /* journal_info.capacity of a run without an end; the header says -1 */
@@ -81,6 +84,7 @@
 /* The header's mode: bits. */
 #define JOURNAL_MODE_STEP 1  /* step mode (else continuous) */
 #define JOURNAL_MODE_CHASE 2 /* --chase: records hold the source's frame */
+#define JOURNAL_MODE_GOMO 4  /* go-motion: records hold their exposure's poses too */
 
 enum journal_state {
 	JOURNAL_EMPTY = 0,
@@ -100,7 +104,7 @@ struct journal_out {
 	uint32_t pad;
 };
 
-/* Version 2. Version 1 is the same up to scene[], then out[] at once. */
+/* Versions 2 and 3. Version 1 is the same up to scene[], then out[] at once. */
 struct journal_hdr {
 	char magic[8];
 	uint32_t version;
@@ -131,8 +135,20 @@ struct journal_rec {
 	int32_t ferr_out; /* its output, -1 when no output has feedback */
 	uint32_t src_frame; /* --chase: the source's frame at the edge's due
 			     * time, plus one (its label's number in the day); 0: none */
-	int64_t sp[];     /* nout setpoints, Q32.32 core units */
+	/* go-motion (plan/gomo.h): the run ticks of the exposure's first and
+	 * last scene tick, written once it has ended (-1 until then, and in
+	 * every other mode) */
+	int64_t open_tick, close_tick;
+	/* nout setpoints at the edge, Q32.32 core units; with
+	 * JOURNAL_MODE_GOMO then nout at open_tick and nout at close_tick */
+	int64_t sp[];
 };
+
+/* Poses a record holds, nout setpoints each, in a journal of this mode. */
+static inline uint32_t journal_poses(uint32_t mode)
+{
+	return mode & JOURNAL_MODE_GOMO ? 3 : 1;
+}
 
 /* The record's layout as this build lays it out: the offsets of its
  * fields and the sizes it rests on, one byte each. A reader built with

@@ -32,6 +32,67 @@ static double to_file_units(int64_t q, uint32_t unit)
 	return unit == JOURNAL_UNIT_TURNS ? v * 360.0 : v;
 }
 
+/* A record of versions 1 and 2: version 3's without open_tick and
+ * close_tick. */
+struct journal_rec_v2 {
+	_Atomic uint32_t state;
+	uint32_t trigger;
+	int64_t frame;
+	int64_t tick;
+	int64_t due_ns;
+	int64_t mono_ns;
+	int64_t wall_ns;
+	double ferr;
+	int32_t ferr_out;
+	uint32_t src_frame;
+	int64_t sp[];
+};
+
+/* journal_layout() as a version 2 writer computed it. */
+static uint32_t layout_v2(void)
+{
+	return (uint32_t)offsetof(struct journal_rec_v2, frame) |
+	       (uint32_t)offsetof(struct journal_rec_v2, ferr) << 8 |
+	       (uint32_t)offsetof(struct journal_rec_v2, sp) << 16 |
+	       (uint32_t)(sizeof(double) << 4 | sizeof(struct journal_out) / 8) << 24;
+}
+
+/* A record of any version, as this reader prints it. */
+struct rec_view {
+	uint32_t state, trigger;
+	int64_t frame, tick, due_ns, mono_ns, wall_ns;
+	double ferr;
+	int32_t ferr_out;
+	uint32_t src_frame;
+	int64_t open_tick, close_tick;
+	const int64_t *sp;
+};
+
+static void view_of(struct rec_view *v, const void *raw, uint32_t version)
+{
+	if (version < 3) {
+		const struct journal_rec_v2 *r = raw;
+
+		*v = (struct rec_view){ atomic_load(&r->state), r->trigger, r->frame, r->tick,
+					r->due_ns, r->mono_ns, r->wall_ns, r->ferr, r->ferr_out,
+					r->src_frame, -1, -1, r->sp };
+	} else {
+		const struct journal_rec *r = raw;
+
+		*v = (struct rec_view){ atomic_load(&r->state), r->trigger, r->frame, r->tick,
+					r->due_ns, r->mono_ns, r->wall_ns, r->ferr, r->ferr_out,
+					r->src_frame, r->open_tick, r->close_tick, r->sp };
+	}
+}
+
+/* The bytes of a record of version v with nout outputs in mode `mode`. */
+static size_t rec_bytes(uint32_t v, uint32_t nout, uint32_t mode)
+{
+	if (v < 3)
+		return sizeof(struct journal_rec_v2) + nout * sizeof(int64_t);
+	return sizeof(struct journal_rec) + (size_t)nout * journal_poses(mode) * sizeof(int64_t);
+}
+
 /* Where version v's output names begin: version 1 had none of the byte
  * order and layout fields, its out[] began where they are now. */
 static size_t out_offset(uint32_t v)
@@ -52,9 +113,10 @@ static int check_header(const char *path, const struct journal_hdr *hh, off_t si
 	}
 	/* the version is the first number: in the other byte order it reads
 	 * reversed, in either version */
-	if ((v != 1 && v != JOURNAL_VERSION) || (v == JOURNAL_VERSION &&
-						  hh->byte_order != JOURNAL_BYTE_ORDER)) {
-		if (__builtin_bswap32(v) == 1 || __builtin_bswap32(v) == JOURNAL_VERSION)
+	if (v < 1 || v > JOURNAL_VERSION || (v >= 2 && hh->byte_order != JOURNAL_BYTE_ORDER)) {
+		uint32_t bv = __builtin_bswap32(v);
+
+		if (bv >= 1 && bv <= JOURNAL_VERSION)
 			snprintf(msg, msgsize, "%s: a strand journal written on a machine of the other "
 				 "byte order (%s-endian); read it with strand on such a machine", path,
 				 __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ ? "big" : "little");
@@ -65,21 +127,21 @@ static int check_header(const char *path, const struct journal_hdr *hh, off_t si
 			snprintf(msg, msgsize, "%s: not a strand journal", path);
 		return -EBADMSG;
 	}
-	if (v == JOURNAL_VERSION && hh->layout != journal_layout()) {
+	if (v >= 2 && hh->layout != (v == 2 ? layout_v2() : journal_layout())) {
 		snprintf(msg, msgsize, "%s: a strand journal whose records are laid out otherwise "
 			 "(layout 0x%08x, this build's 0x%08x: another architecture's ABI); read "
 			 "it with strand on the machine that wrote it", path, hh->layout,
-			 journal_layout());
+			 v == 2 ? layout_v2() : journal_layout());
 		return -EBADMSG;
 	}
-	if (v == JOURNAL_VERSION && hh->probe != JOURNAL_PROBE) {
+	if (v >= 2 && hh->probe != JOURNAL_PROBE) {
 		snprintf(msg, msgsize, "%s: a strand journal whose doubles are not this machine's "
 			 "IEEE 754 format; read it with strand on the machine that wrote it", path);
 		return -EBADMSG;
 	}
 	if (hh->nout > JOURNAL_OUT_MAX ||
 	    hh->hdr_bytes < out_offset(v) + hh->nout * sizeof(hh->out[0]) ||
-	    hh->rec_bytes != sizeof(struct journal_rec) + hh->nout * sizeof(int64_t) ||
+	    hh->rec_bytes != rec_bytes(v, hh->nout, hh->mode) ||
 	    !hh->rate_num || !hh->rate_den) {
 		snprintf(msg, msgsize, "%s: not a strand journal", path);
 		return -EBADMSG;
@@ -91,7 +153,9 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 {
 	struct journal_hdr hh, *h = NULL;
 	const struct journal_out *o;
-	struct journal_rec *r = NULL;
+	struct rec_view rv, *r = &rv;
+	void *raw = NULL;
+	bool gomo;
 	struct timecode tc, src_tc;
 	struct stat st;
 	int fd, err = 0;
@@ -117,8 +181,8 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		return err;
 	}
 	h = malloc(hh.hdr_bytes);
-	r = malloc(hh.rec_bytes);
-	if (!h || !r) {
+	raw = malloc(hh.rec_bytes);
+	if (!h || !raw) {
 		err = -ENOMEM;
 		snprintf(msg, msgsize, "out of memory");
 		goto out;
@@ -129,25 +193,33 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		goto out;
 	}
 	o = (const struct journal_out *)((const char *)h + out_offset(h->version));
+	gomo = h->version >= 3 && (h->mode & JOURNAL_MODE_GOMO);
 	timecode_init(&tc, h->rate_num, h->rate_den);
 	/* the source counts at most 30 labels a second (play.c) */
 	timecode_init(&src_tc, (double)h->rate_num / h->rate_den > 30.5 ? h->rate_num / 2 :
 			       h->rate_num, h->rate_den);
 	fprintf(out, "frame,timecode,%stick,trigger,state,due_ns,mono_ns,late_us,wall,ferr,"
-		"ferr_channel", h->mode & JOURNAL_MODE_CHASE ? "source_tc," : "");
+		"ferr_channel%s", h->mode & JOURNAL_MODE_CHASE ? "source_tc," : "",
+		gomo ? ",open_tick,close_tick" : "");
 	for (i = 0; i < h->nout; i++)
 		fprintf(out, ",%.*s", JOURNAL_NAME_MAX, o[i].name);
+	/* go-motion: the poses where the exposure opened and closed */
+	for (i = 0; gomo && i < h->nout; i++)
+		fprintf(out, ",%.*s@open", JOURNAL_NAME_MAX, o[i].name);
+	for (i = 0; gomo && i < h->nout; i++)
+		fprintf(out, ",%.*s@close", JOURNAL_NAME_MAX, o[i].name);
 	fputc('\n', out);
 	for (off = h->hdr_bytes; off + (off_t)h->rec_bytes <= st.st_size; off += h->rec_bytes) {
 		char tcs[48], wall[48];
 		uint32_t state;
 
-		if (pread(fd, r, h->rec_bytes, off) != (ssize_t)h->rec_bytes) {
+		if (pread(fd, raw, h->rec_bytes, off) != (ssize_t)h->rec_bytes) {
 			err = -EIO;
 			snprintf(msg, msgsize, "%s: read error", path);
 			break;
 		}
-		state = atomic_load(&r->state);
+		view_of(r, raw, h->version);
+		state = r->state;
 		if (state == JOURNAL_EMPTY)
 			break; /* the end of a journal whose writer was killed */
 		timecode_format(&tc, r->frame, tcs, sizeof(tcs));
@@ -177,8 +249,19 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 				JOURNAL_NAME_MAX, o[r->ferr_out].name);
 		else
 			fputc(',', out);
+		if (gomo && r->close_tick >= 0)
+			fprintf(out, ",%lld,%lld", (long long)r->open_tick, (long long)r->close_tick);
+		else if (gomo)
+			fputs(",,", out); /* the exposure had not ended */
 		for (i = 0; i < h->nout; i++)
 			fprintf(out, ",%.10g", to_file_units(r->sp[i], o[i].unit));
+		for (i = 0; gomo && i < 2 * h->nout; i++) {
+			if (r->close_tick >= 0)
+				fprintf(out, ",%.10g", to_file_units(r->sp[h->nout + i],
+								     o[i % h->nout].unit));
+			else
+				fputc(',', out);
+		}
 		fputc('\n', out);
 	}
 	if (!err && ferror(out)) {
@@ -187,7 +270,7 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 	}
 out:
 	free(h);
-	free(r);
+	free(raw);
 	close(fd);
 	return err;
 }

@@ -51,7 +51,8 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.rate_den = src->timing.den;
 	ji.tick_hz = src->timing.tick_hz;
 	ji.mode = (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
-		  (p->extclk ? JOURNAL_MODE_CHASE : 0);
+		  (p->extclk ? JOURNAL_MODE_CHASE : 0) |
+		  (p->o.loop.mode == LOOP_MODE_STEP && p->o.loop.shutter ? JOURNAL_MODE_GOMO : 0);
 	ji.start_wall_ns = hal_clock_wall(&p->clk);
 	ji.nout = n;
 	ji.out_name = names;
