@@ -110,6 +110,15 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		o.run.to = ss.s.frame_last;
 	o.run.expose_first = o.run.from;
 	o.run.expose_last = o.run.to;
+	if (o.run.step && o.run.shutter) {
+		/* go-motion runs the scene's own motion over its span and the
+		 * frames shot (strand play's loop.from and loop.to) */
+		int64_t lo = o.run.from < o.run.to ? o.run.from : o.run.to;
+		int64_t hi = o.run.from ^ o.run.to ^ lo;
+
+		o.run.from = lo < ss.s.frame_first ? lo : ss.s.frame_first;
+		o.run.to = hi > ss.s.frame_last ? hi : ss.s.frame_last;
+	}
 	rc = cli_limits_usage(cmd, err, &o.run);
 	if (rc < 0)
 		rc = cli_shutter_usage(cmd, err, &ss.s.timing, o.run.shutter);

@@ -352,13 +352,16 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 
 	if (c->step && fl->n) {
 		/* step mode shoots the frames it lists: their poses, or their
-		 * go-motion on the timeline of the frames from the first to
-		 * the last (as the loop runs it) */
+		 * go-motion on the timeline the loop runs it on */
 		run.from = frames_min(fl);
 		run.to = frames_max(fl);
 	}
 	run.expose_first = run.from;
 	run.expose_last = run.to;
+	if (c->step && c->o.loop.shutter) {
+		run.from = c->o.loop.from;
+		run.to = c->o.loop.to;
+	}
 	rc = cli_limits_run(&lc, ss, rig, &run);
 	if (rc) {
 		fprintf(c->err, "strand play: %s\n", strerror(-rc));
@@ -520,10 +523,13 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			goto out;
 		}
 		c.o.loop.frames = &fl;
-		/* go-motion runs on the timeline of the frames shot (check_first
-		 * walks the same) */
-		c.o.loop.from = frames_min(&fl);
-		c.o.loop.to = frames_max(&fl);
+		/* go-motion runs the scene's own motion over its span and the
+		 * frames shot, and beyond them at the speed of their ends
+		 * (plan/timeline.h); check_first walks the same */
+		c.o.loop.from = frames_min(&fl) < src.s.frame_first ? frames_min(&fl) :
+								      src.s.frame_first;
+		c.o.loop.to = frames_max(&fl) > src.s.frame_last ? frames_max(&fl) :
+								   src.s.frame_last;
 	}
 	rc = check_first(&c, path, &src, rig, &fl);
 	if (rc)

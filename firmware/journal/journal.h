@@ -66,9 +66,9 @@
 #include "hal/rt.h" /* STRAND_RT */
 
 #define JOURNAL_MAGIC "STRANDJ1"
-/* 3: a record holds a go-motion exposure's ticks (open_tick, close_tick);
- * 2: without them; 1: no byte order or layout in the header either. All
- * three are read. */
+/* 3: a go-motion journal's records end with their exposure (struct
+ * journal_gomo); 2: the same without go-motion; 1: no byte order or layout
+ * in the header. All three are read. */
 #define JOURNAL_VERSION 3
 #define JOURNAL_NAME_MAX 48
 #define JOURNAL_OUT_MAX 4096 /* outputs a journal holds at most */
@@ -135,19 +135,31 @@ struct journal_rec {
 	int32_t ferr_out; /* its output, -1 when no output has feedback */
 	uint32_t src_frame; /* --chase: the source's frame at the edge's due
 			     * time, plus one (its label's number in the day); 0: none */
-	/* go-motion (plan/gomo.h): the run ticks of the exposure's first and
-	 * last scene tick, written once it has ended (-1 until then, and in
-	 * every other mode) */
+	int64_t sp[];     /* nout setpoints, Q32.32 core units */
+};
+
+/* What a record of a go-motion journal (JOURNAL_MODE_GOMO, plan/gomo.h)
+ * holds after its nout setpoints: its exposure's first and last tick (run
+ * ticks, written once the exposure has ended: -1 until then) and the
+ * setpoints there, nout at open_tick, then nout at close_tick. */
+struct journal_gomo {
 	int64_t open_tick, close_tick;
-	/* nout setpoints at the edge, Q32.32 core units; with
-	 * JOURNAL_MODE_GOMO then nout at open_tick and nout at close_tick */
 	int64_t sp[];
 };
 
-/* Poses a record holds, nout setpoints each, in a journal of this mode. */
-static inline uint32_t journal_poses(uint32_t mode)
+static inline struct journal_gomo *journal_gomo_of(struct journal_rec *r, uint32_t nout)
 {
-	return mode & JOURNAL_MODE_GOMO ? 3 : 1;
+	return (struct journal_gomo *)(r->sp + nout);
+}
+
+/* The bytes of a record with nout outputs in a journal of this mode. */
+static inline size_t journal_rec_bytes(uint32_t nout, uint32_t mode)
+{
+	size_t b = sizeof(struct journal_rec) + nout * sizeof(int64_t);
+
+	if (mode & JOURNAL_MODE_GOMO)
+		b += sizeof(struct journal_gomo) + 2 * (size_t)nout * sizeof(int64_t);
+	return b;
 }
 
 /* The record's layout as this build lays it out: the offsets of its

@@ -32,67 +32,6 @@ static double to_file_units(int64_t q, uint32_t unit)
 	return unit == JOURNAL_UNIT_TURNS ? v * 360.0 : v;
 }
 
-/* A record of versions 1 and 2: version 3's without open_tick and
- * close_tick. */
-struct journal_rec_v2 {
-	_Atomic uint32_t state;
-	uint32_t trigger;
-	int64_t frame;
-	int64_t tick;
-	int64_t due_ns;
-	int64_t mono_ns;
-	int64_t wall_ns;
-	double ferr;
-	int32_t ferr_out;
-	uint32_t src_frame;
-	int64_t sp[];
-};
-
-/* journal_layout() as a version 2 writer computed it. */
-static uint32_t layout_v2(void)
-{
-	return (uint32_t)offsetof(struct journal_rec_v2, frame) |
-	       (uint32_t)offsetof(struct journal_rec_v2, ferr) << 8 |
-	       (uint32_t)offsetof(struct journal_rec_v2, sp) << 16 |
-	       (uint32_t)(sizeof(double) << 4 | sizeof(struct journal_out) / 8) << 24;
-}
-
-/* A record of any version, as this reader prints it. */
-struct rec_view {
-	uint32_t state, trigger;
-	int64_t frame, tick, due_ns, mono_ns, wall_ns;
-	double ferr;
-	int32_t ferr_out;
-	uint32_t src_frame;
-	int64_t open_tick, close_tick;
-	const int64_t *sp;
-};
-
-static void view_of(struct rec_view *v, const void *raw, uint32_t version)
-{
-	if (version < 3) {
-		const struct journal_rec_v2 *r = raw;
-
-		*v = (struct rec_view){ atomic_load(&r->state), r->trigger, r->frame, r->tick,
-					r->due_ns, r->mono_ns, r->wall_ns, r->ferr, r->ferr_out,
-					r->src_frame, -1, -1, r->sp };
-	} else {
-		const struct journal_rec *r = raw;
-
-		*v = (struct rec_view){ atomic_load(&r->state), r->trigger, r->frame, r->tick,
-					r->due_ns, r->mono_ns, r->wall_ns, r->ferr, r->ferr_out,
-					r->src_frame, r->open_tick, r->close_tick, r->sp };
-	}
-}
-
-/* The bytes of a record of version v with nout outputs in mode `mode`. */
-static size_t rec_bytes(uint32_t v, uint32_t nout, uint32_t mode)
-{
-	if (v < 3)
-		return sizeof(struct journal_rec_v2) + nout * sizeof(int64_t);
-	return sizeof(struct journal_rec) + (size_t)nout * journal_poses(mode) * sizeof(int64_t);
-}
-
 /* Where version v's output names begin: version 1 had none of the byte
  * order and layout fields, its out[] began where they are now. */
 static size_t out_offset(uint32_t v)
@@ -127,11 +66,11 @@ static int check_header(const char *path, const struct journal_hdr *hh, off_t si
 			snprintf(msg, msgsize, "%s: not a strand journal", path);
 		return -EBADMSG;
 	}
-	if (v >= 2 && hh->layout != (v == 2 ? layout_v2() : journal_layout())) {
+	if (v >= 2 && hh->layout != journal_layout()) {
 		snprintf(msg, msgsize, "%s: a strand journal whose records are laid out otherwise "
 			 "(layout 0x%08x, this build's 0x%08x: another architecture's ABI); read "
 			 "it with strand on the machine that wrote it", path, hh->layout,
-			 v == 2 ? layout_v2() : journal_layout());
+			 journal_layout());
 		return -EBADMSG;
 	}
 	if (v >= 2 && hh->probe != JOURNAL_PROBE) {
@@ -141,7 +80,7 @@ static int check_header(const char *path, const struct journal_hdr *hh, off_t si
 	}
 	if (hh->nout > JOURNAL_OUT_MAX ||
 	    hh->hdr_bytes < out_offset(v) + hh->nout * sizeof(hh->out[0]) ||
-	    hh->rec_bytes != rec_bytes(v, hh->nout, hh->mode) ||
+	    hh->rec_bytes != journal_rec_bytes(hh->nout, v >= 3 ? hh->mode : 0) ||
 	    !hh->rate_num || !hh->rate_den) {
 		snprintf(msg, msgsize, "%s: not a strand journal", path);
 		return -EBADMSG;
@@ -153,10 +92,9 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 {
 	struct journal_hdr hh, *h = NULL;
 	const struct journal_out *o;
-	struct rec_view rv, *r = &rv;
-	void *raw = NULL;
-	bool gomo;
+	struct journal_rec *r = NULL;
 	struct timecode tc, src_tc;
+	bool gomo;
 	struct stat st;
 	int fd, err = 0;
 	uint32_t i;
@@ -181,8 +119,8 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		return err;
 	}
 	h = malloc(hh.hdr_bytes);
-	raw = malloc(hh.rec_bytes);
-	if (!h || !raw) {
+	r = malloc(hh.rec_bytes);
+	if (!h || !r) {
 		err = -ENOMEM;
 		snprintf(msg, msgsize, "out of memory");
 		goto out;
@@ -203,7 +141,7 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		gomo ? ",open_tick,close_tick" : "");
 	for (i = 0; i < h->nout; i++)
 		fprintf(out, ",%.*s", JOURNAL_NAME_MAX, o[i].name);
-	/* go-motion: the poses where the exposure opened and closed */
+	/* go-motion: the setpoints where the exposure opened and closed */
 	for (i = 0; gomo && i < h->nout; i++)
 		fprintf(out, ",%.*s@open", JOURNAL_NAME_MAX, o[i].name);
 	for (i = 0; gomo && i < h->nout; i++)
@@ -211,15 +149,15 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 	fputc('\n', out);
 	for (off = h->hdr_bytes; off + (off_t)h->rec_bytes <= st.st_size; off += h->rec_bytes) {
 		char tcs[48], wall[48];
+		struct journal_gomo *g;
 		uint32_t state;
 
-		if (pread(fd, raw, h->rec_bytes, off) != (ssize_t)h->rec_bytes) {
+		if (pread(fd, r, h->rec_bytes, off) != (ssize_t)h->rec_bytes) {
 			err = -EIO;
 			snprintf(msg, msgsize, "%s: read error", path);
 			break;
 		}
-		view_of(r, raw, h->version);
-		state = r->state;
+		state = atomic_load(&r->state);
 		if (state == JOURNAL_EMPTY)
 			break; /* the end of a journal whose writer was killed */
 		timecode_format(&tc, r->frame, tcs, sizeof(tcs));
@@ -249,16 +187,16 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 				JOURNAL_NAME_MAX, o[r->ferr_out].name);
 		else
 			fputc(',', out);
-		if (gomo && r->close_tick >= 0)
-			fprintf(out, ",%lld,%lld", (long long)r->open_tick, (long long)r->close_tick);
-		else if (gomo)
+		g = gomo ? journal_gomo_of(r, h->nout) : NULL;
+		if (g && g->close_tick >= 0)
+			fprintf(out, ",%lld,%lld", (long long)g->open_tick, (long long)g->close_tick);
+		else if (g)
 			fputs(",,", out); /* the exposure had not ended */
 		for (i = 0; i < h->nout; i++)
 			fprintf(out, ",%.10g", to_file_units(r->sp[i], o[i].unit));
-		for (i = 0; gomo && i < 2 * h->nout; i++) {
-			if (r->close_tick >= 0)
-				fprintf(out, ",%.10g", to_file_units(r->sp[h->nout + i],
-								     o[i % h->nout].unit));
+		for (i = 0; g && i < 2 * h->nout; i++) {
+			if (g->close_tick >= 0)
+				fprintf(out, ",%.10g", to_file_units(g->sp[i], o[i % h->nout].unit));
 			else
 				fputc(',', out);
 		}
@@ -270,7 +208,7 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 	}
 out:
 	free(h);
-	free(raw);
+	free(r);
 	close(fd);
 	return err;
 }

@@ -72,8 +72,11 @@ static struct journal_rec STRAND_RT *journal_take(struct loop *L, uint32_t i, in
 	rec->ferr = 0;
 	rec->ferr_out = -1;
 	rec->src_frame = loop_chase_frame(L, due);
-	rec->open_tick = -1;
-	rec->close_tick = -1;
+	if (L->cfg.shutter) {
+		struct journal_gomo *g = journal_gomo_of(rec, L->n);
+
+		g->open_tick = g->close_tick = -1;
+	}
 	for (k = 0; k < L->n; k++)
 		rec->sp[k] = L->val[k];
 	journal_arm(jr, rec);
@@ -145,15 +148,17 @@ void STRAND_RT loop_gomo_journal(struct loop *L)
 		return;
 	for (i = 0; i < L->rig->ntrig; i++) {
 		struct journal_rec *r = L->trig.pulse[i].rec;
+		struct journal_gomo *g;
 
 		if (!r)
 			continue;
+		g = journal_gomo_of(r, n);
 		for (k = 0; k < n; k++) {
-			r->sp[n + k] = s->gomo_open[k];
-			r->sp[2 * n + k] = s->gomo_close[k];
+			g->sp[k] = s->gomo_open[k];
+			g->sp[n + k] = s->gomo_close[k];
 		}
-		r->open_tick = s->gomo_open_tick;
-		r->close_tick = s->gomo_close_tick;
+		g->open_tick = s->gomo_open_tick;
+		g->close_tick = s->gomo_close_tick;
 		L->trig.pulse[i].rec = NULL;
 	}
 }
