@@ -143,12 +143,16 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			"for its Q32.32 format\n", path, lc.res.sat_frame);
 		rc = STRAND_EXIT_INTERNAL;
 	} else {
-		ticks = mot_timing_trigger_tick(&ss.s.timing, o.run.to) -
-			mot_timing_trigger_tick(&ss.s.timing, o.run.from) + 1;
+		/* the frames asked for (go-motion's range reaches further) */
+		int64_t from = o.run.shutter ? o.run.expose_first : o.run.from;
+		int64_t to = o.run.shutter ? o.run.expose_last : o.run.to;
+
+		ticks = mot_timing_trigger_tick(&ss.s.timing, to) -
+			mot_timing_trigger_tick(&ss.s.timing, from) + 1;
 		fprintf(out, "%s: %u violation%s; %u channel%s with limits, frames %lld to %lld, "
 			"%lld ticks\n", path, lc.res.violations, lc.res.violations == 1 ? "" : "s",
 			cli_limits_count(&lc), cli_limits_count(&lc) == 1 ? "" : "s",
-			(long long)o.run.from, (long long)o.run.to, (long long)ticks);
+			(long long)from, (long long)to, (long long)ticks);
 		check_buses(out, rig, sf.desc.tick_hz);
 		rc = lc.res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
