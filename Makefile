@@ -23,7 +23,8 @@ Q       := $(if $(V),,@)
 MAKEFLAGS += --no-builtin-rules
 
 # ---- Debian packages -------------------------------------------------------
-DEB_BUILD := gcc make pkg-config libc6-dev libyaml-dev libjansson-dev libexpat1-dev
+DEB_BUILD := gcc make pkg-config libc6-dev libyaml-dev libjansson-dev libexpat1-dev \
+             libwebsockets-dev
 DEB_TEST  := libcmocka-dev
 DEB_CROSS := gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross \
              libc6-dev-armhf-cross qemu-user gcc-arm-none-eabi binutils-arm-none-eabi
@@ -81,7 +82,7 @@ FW_SAN_OBJ := $(LIB_SRC:%.c=$(BUILD)/san/%.o) $(CLI_LIB_SRC:%.c=$(BUILD)/san/%.o
 # No fused multiply-add contraction: the loader's double arithmetic must round
 # the same way on x86_64, aarch64 and armhf. '=': pkg-config is asked when a
 # recipe runs, after mk/deps.sh has installed the libraries.
-FW_PKGS     := yaml-0.1 jansson expat
+FW_PKGS     := yaml-0.1 jansson expat libwebsockets
 FW_CFLAGS   = -std=gnu11 $(WARN) -Werror -ffp-contract=off \
               $(shell pkg-config --cflags $(FW_PKGS) 2>/dev/null)
 FW_LIBS     = $(shell pkg-config --libs $(FW_PKGS) 2>/dev/null) -lm -lpthread

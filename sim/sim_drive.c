@@ -53,10 +53,22 @@ static int STRAND_RT sd_start(struct hal_axis *ax)
 	uint32_t i;
 
 	for (i = 0; i < ax->nch; i++) {
-		d->ch[i].w.powered = true;
-		d->ch[i].w.disabled_tick = -1;
+		struct sim_chan *c = &d->ch[i];
+
+		c->w.powered = true;
+		c->w.disabled_tick = -1;
+		/* a drive enabled (again) holds where it stands: its target is
+		 * there, at rest, until the first setpoint; what it followed
+		 * before a stop is gone with the power */
+		c->w.v = 0;
+		c->r = c->w.x;
+		c->w.target = c->p.velocity_mode ? 0 : (int64_t)llround(c->w.x);
+		c->rdot = 0;
+		c->prev_cmd_v = 0;
 	}
 	d->started = true;
+	/* a new run counts its ticks from 0 again: the next input() steps */
+	d->tick = INT64_MIN;
 	return 0;
 }
 

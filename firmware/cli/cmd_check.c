@@ -2,15 +2,15 @@
 /*
  * cmd_check.c - `strand check SCENE`: validate a scene file, then walk what
  * a run would play, tick by tick, against every limit the run would hold
- * its channels to (limits.h), and its CAN buses' load.
+ * its channels to (check/run_check.h), and its CAN buses' load.
  */
 #include <getopt.h>
 #include <string.h>
 
 #include "check/check_bus.h"
+#include "check/run_check.h"
 #include "cli.h"
 #include "exitcode.h"
-#include "limits.h"
 #include "opt.h"
 #include "rig/rig_auto.h"
 
@@ -85,7 +85,7 @@ static int on_opt(void *ctx, int opt, const char *arg)
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
 	struct opts o = { .cmd = cmd, .err = err };
-	struct cli_limits lc = { .out = out };
+	struct run_check lc = { .out = out };
 	struct scene_file sf;
 	struct scene_built b;
 	struct source_scene ss;
@@ -134,7 +134,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		}
 		rig = &ra.d;
 	}
-	rc = cli_limits_run(&lc, &ss, rig, &o.run);
+	rc = run_check(&lc, &ss, rig, &o.run);
 	if (rc) {
 		fprintf(err, "strand check: %s\n", strerror(-rc));
 		rc = STRAND_EXIT_INTERNAL;
@@ -151,13 +151,13 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			mot_timing_trigger_tick(&ss.s.timing, from) + 1;
 		fprintf(out, "%s: %u violation%s; %u channel%s with limits, frames %lld to %lld, "
 			"%lld ticks\n", path, lc.res.violations, lc.res.violations == 1 ? "" : "s",
-			cli_limits_count(&lc), cli_limits_count(&lc) == 1 ? "" : "s",
+			run_check_count(&lc), run_check_count(&lc) == 1 ? "" : "s",
 			(long long)from, (long long)to, (long long)ticks);
 		check_buses(out, rig, sf.desc.tick_hz);
 		rc = lc.res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
 out:
-	cli_limits_free(&lc);
+	run_check_free(&lc);
 	rig_auto_free(&ra);
 	source_scene_free(&ss);
 out_scene:

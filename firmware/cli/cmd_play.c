@@ -16,9 +16,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "check/run_check.h"
 #include "cli.h"
 #include "exitcode.h"
-#include "limits.h"
 #include "play/frames.h"
 #include "play/play.h"
 #include "rig/rig_auto.h"
@@ -341,7 +341,7 @@ static int write_hist(const char *path, const struct lat_stats *s)
 static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 		       const struct rig_desc *rig, struct frame_list *fl)
 {
-	struct cli_limits lc = { .out = NULL };
+	struct run_check lc = { .out = NULL };
 	struct lim_run run = {
 		.from = c->o.loop.from, .to = c->o.loop.to, .loop = c->o.loop.loop,
 		.ping_pong = c->o.loop.ping_pong, .passes = c->o.loop.passes, .step = c->step,
@@ -362,7 +362,7 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 		run.from = c->o.loop.from;
 		run.to = c->o.loop.to;
 	}
-	rc = cli_limits_run(&lc, ss, rig, &run);
+	rc = run_check(&lc, ss, rig, &run);
 	if (rc) {
 		fprintf(c->err, "strand play: %s\n", strerror(-rc));
 		rc = STRAND_EXIT_INTERNAL;
@@ -371,7 +371,7 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 			"large for its Q32.32 format\n", path, lc.res.sat_frame);
 		rc = STRAND_EXIT_INTERNAL;
 	} else if (lc.res.violations && !c->o.loop.force) {
-		cli_limits_line(line, sizeof(line), &lc, &lc.first);
+		run_check_line(line, sizeof(line), &lc, &lc.first);
 		fprintf(c->err,
 			"%s: strand check finds %u limit violation%s, the first: %s.\n"
 			"strand play refuses it ('strand check %s' with the same options lists "
@@ -379,7 +379,7 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 			path, lc.res.violations, lc.res.violations == 1 ? "" : "s", line, path);
 		rc = STRAND_EXIT_VIOLATION;
 	}
-	cli_limits_free(&lc);
+	run_check_free(&lc);
 	return rc;
 }
 

@@ -146,6 +146,10 @@ enum loop_state {
 	LOOP_STOPPING,
 	LOOP_ENDED,
 	LOOP_CUE,          /* --chase: at rest, waiting for the source (loop_chase.c) */
+	/* live mode (loop_live.h) */
+	LOOP_HOLD,
+	LOOP_JOG,
+	LOOP_MOVE,
 	/* go-motion (loop.h, "Sequence") */
 	LOOP_GOMO_ARMED,   /* at the run-up's start, settled, waiting for loop_gomo_go */
 	LOOP_GOMO_RUNUP,
@@ -180,6 +184,7 @@ enum loop_cause {
 	LOOP_CAUSE_JOURNAL,     /* the journal could not take the frame */
 	LOOP_CAUSE_SATURATION,  /* fixed-point arithmetic saturated */
 	LOOP_CAUSE_CHASE,       /* the chased source: detail is its enum chase_event */
+	LOOP_CAUSE_DISABLE,     /* live mode: the drives were disabled */
 };
 
 /* What ended the run, for the message at the edge. */
@@ -223,6 +228,7 @@ struct loop_cfg {
 	int64_t max_ticks; /* controlled stop after this many ticks, 0 = none */
 	uint32_t status_every; /* ticks between status samples (>= 1) */
 	bool wait_for_journal; /* virtual clock: wait for the journal's service */
+	bool live;         /* no run planned: loop_live_init makes it a live loop */
 };
 
 /* A status sample, pushed into the status ring. */

@@ -150,6 +150,7 @@ struct loop {
 	struct loop_step step;
 	int64_t *limited;         /* n: the result's, written here */
 	struct loop_result *res;
+	struct loop_live *live;   /* NULL but in live mode (loop_live.c) */
 	struct chase *chase;      /* NULL: the loop's own time */
 	struct loop_safety safety; /* last: the edge buffer is large and seldom used */
 };
@@ -267,5 +268,21 @@ bool loop_pulses_pending(const struct loop *L);
 /* [rt] Go-motion: the exposure's ticks and poses into this frame's
  * records, once the exposure has ended and they exist. */
 void loop_gomo_journal(struct loop *L);
+
+/* ---- loop_tick.c ---- */
+
+/* [rt] The ordinary status sample of this tick into *s. */
+void loop_status_fill(const struct loop *L, struct loop_status *s);
+
+/* ---- loop_live.c (live mode only) ---- */
+
+/* [rt] The commands waiting, at the start of a tick. */
+void loop_live_commands(struct loop *L);
+/* [rt] This tick's setpoints in HOLD, JOG and MOVE. */
+void loop_live_sequence(struct loop *L);
+/* [rt] A segment that ended goes back to HOLD; what ends the run stays. */
+void loop_live_tick_end(struct loop *L);
+/* [rt] The live status sample. */
+void loop_live_status(struct loop *L);
 
 #endif /* STRAND_LOOP_PRIV_H */

@@ -5,6 +5,7 @@
  * the plan into the first pass. Every function here is [init], but for
  * the two name tables, which any thread may read.
  */
+#include "loop_live.h"
 #include "loop_priv.h"
 
 #include <errno.h>
@@ -23,6 +24,8 @@ static const char *const state_names[] = {
 	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
 	[LOOP_STEP_EXPOSE] = "expose",	 [LOOP_STOPPING] = "stopping",
 	[LOOP_ENDED] = "ended",		 [LOOP_CUE] = "cue",
+	[LOOP_HOLD] = "hold",		 [LOOP_JOG] = "jog",
+	[LOOP_MOVE] = "move",
 	[LOOP_GOMO_ARMED] = "armed",	 [LOOP_GOMO_RUNUP] = "go-motion run-up",
 	[LOOP_GOMO_EXPOSE] = "go-motion exposure", [LOOP_GOMO_RUNOUT] = "go-motion run-out",
 };
@@ -45,6 +48,7 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
 	[LOOP_CAUSE_CHASE] = "chase",
+	[LOOP_CAUSE_DISABLE] = "drives disabled",
 };
 
 const char *loop_state_name(enum loop_state s)
@@ -54,7 +58,7 @@ const char *loop_state_name(enum loop_state s)
 
 const char *loop_cause_name(enum loop_cause c)
 {
-	return c <= LOOP_CAUSE_CHASE ? cause_names[c] : "?";
+	return c <= LOOP_CAUSE_DISABLE ? cause_names[c] : "?";
 }
 
 /* ---- the block ---- */
@@ -389,8 +393,10 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	L->seq.lead = -min_off;
 	L->seq.tail = max_off;
 	read_rig(L);
-	rc = standing(L, err, errsize);
-	if (!rc)
+	/* a live loop plans each segment when a command asks for it, and
+	 * may start outside the limits: a jog brings it back (loop_live.h) */
+	rc = cfg->live ? 0 : standing(L, err, errsize);
+	if (!rc && !cfg->live)
 		rc = cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
 						   plan_continuous(L, err, errsize);
 	if (rc) {
@@ -410,5 +416,6 @@ void loop_free(struct loop *L)
 {
 	STRAND_ASSERT_NOT_RT();
 
+	loop_live_free(L);
 	free(L); /* the block */
 }

@@ -204,6 +204,11 @@ static void STRAND_RT sequence(struct loop *L)
 		case LOOP_ENDED:
 			hold(L, L->prev);
 			return;
+		case LOOP_HOLD:
+		case LOOP_JOG:
+		case LOOP_MOVE:
+			loop_live_sequence(L);
+			return;
 		}
 	}
 }
@@ -258,25 +263,35 @@ static void STRAND_RT outputs(struct loop *L)
 
 /* ---- the tick ---- */
 
-static void STRAND_RT status(struct loop *L)
+void STRAND_RT loop_status_fill(const struct loop *L, struct loop_status *s)
 {
 	const struct loop_result *res = L->res;
+
+	s->tick = L->tick;
+	s->frame = res->last_frame;
+	s->fired = res->frames_fired;
+	s->total = res->total_frames;
+	s->lat_max_ns = res->lat.n ? res->lat.max_ns : 0;
+	s->overruns = res->lat.overruns;
+	s->ferr = res->ferr_worst;
+	s->ferr_out = res->ferr_worst_out;
+	s->state = (uint8_t)L->seq.state;
+	s->end = (uint8_t)res->rep.end;
+}
+
+static void STRAND_RT status(struct loop *L)
+{
 	struct loop_status s;
 
 	if (!L->status)
 		return;
+	if (L->live) {
+		loop_live_status(L);
+		return;
+	}
 	if (L->seq.state != LOOP_ENDED && L->tick % L->cfg.status_every)
 		return;
-	s.tick = L->tick;
-	s.frame = res->last_frame;
-	s.fired = res->frames_fired;
-	s.total = res->total_frames;
-	s.lat_max_ns = res->lat.n ? res->lat.max_ns : 0;
-	s.overruns = res->lat.overruns;
-	s.ferr = res->ferr_worst;
-	s.ferr_out = res->ferr_worst_out;
-	s.state = (uint8_t)L->seq.state;
-	s.end = (uint8_t)res->rep.end;
+	loop_status_fill(L, &s);
 	if (!hal_ring_push(L->status, &s))
 		L->res->status_dropped++;
 }
@@ -295,6 +310,8 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 	loop_inputs(L, now_ns);
 	if (L->seq.state == LOOP_ENDED)
 		goto out;
+	if (L->live)
+		loop_live_commands(L);
 	loop_chase_tick(L, now_ns);
 	req = atomic_load_explicit(&L->safety.stop_req, memory_order_relaxed);
 	if ((req & 3) == 2) {
@@ -333,6 +350,8 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 	}
 	L->seq.braked = false;
 out:
+	if (L->live)
+		loop_live_tick_end(L);
 	loop_chase_after(L);
 	res->ticks_run = k + 1;
 	status(L);

@@ -242,19 +242,34 @@ static void *rt_main(void *arg)
 	return NULL;
 }
 
+static const char *rig_out_name(const struct rig *r, int32_t i)
+{
+	return i >= 0 && (uint32_t)i < r->nout ? r->out[i].channel : "";
+}
+
+static double rig_out_file_units(const struct rig *r, int32_t i, double v)
+{
+	return i >= 0 && (uint32_t)i < r->nout ? rig_file_units(r->out[i].unit, v) : v;
+}
+
+static const char *rig_out_unit(const struct rig *r, int32_t i)
+{
+	return i >= 0 && (uint32_t)i < r->nout ? rig_unit_name(r->out[i].unit) : "";
+}
+
 static const char *out_name(const struct play *p, int32_t i)
 {
-	return i >= 0 && (uint32_t)i < p->rig.nout ? p->rig.out[i].channel : "";
+	return rig_out_name(&p->rig, i);
 }
 
 static double out_file_units(const struct play *p, int32_t i, double v)
 {
-	return i >= 0 && (uint32_t)i < p->rig.nout ? rig_file_units(p->rig.out[i].unit, v) : v;
+	return rig_out_file_units(&p->rig, i, v);
 }
 
 static const char *out_unit(const struct play *p, int32_t i)
 {
-	return i >= 0 && (uint32_t)i < p->rig.nout ? rig_unit_name(p->rig.out[i].unit) : "";
+	return rig_out_unit(&p->rig, i);
 }
 
 static void telemetry_line(struct play *p, const struct loop_status *s)
@@ -398,15 +413,15 @@ void play_signal(struct play *p, int sig, int count)
 		loop_request_stop(p->L, 1, LOOP_CAUSE_SIGNAL);
 }
 
-void play_describe(const struct play *p, char *buf, size_t size)
+void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
+			  const struct loop_result *res, char *buf, size_t size)
 {
-	const struct loop_result *res = loop_result(p->L);
 	const struct loop_report *r = &res->rep;
 	int32_t o = r->out;
 	char when[96];
 
 	snprintf(when, sizeof(when), "at tick %lld (%.3f s), last frame %lld", (long long)r->tick,
-		 (double)r->tick / p->tm->tick_hz, (long long)r->frame);
+		 (double)r->tick / tm->tick_hz, (long long)r->frame);
 	switch (r->cause) {
 	case LOOP_CAUSE_FINISHED:
 		snprintf(buf, size, "finished: %lld frames fired", (long long)res->frames_fired);
@@ -439,23 +454,23 @@ void play_describe(const struct play *p, char *buf, size_t size)
 		}
 		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s) %s",
 			 r->device ? r->device : "?", r->channel, o >= 0 ? " (" : "",
-			 out_name(p, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
+			 rig_out_name(rig, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
 			 strerror(r->code < 0 ? -r->code : r->code), when);
 		break;
 	case LOOP_CAUSE_FERROR:
 	case LOOP_CAUSE_IN_POSITION:
 		snprintf(buf, size, "%s: device '%s' channel %d (%s): %.6g %s beyond the bound %.6g %s %s",
 			 loop_cause_name(r->cause), r->device ? r->device : "?", r->channel,
-			 out_name(p, o), out_file_units(p, o, fabs(r->value)), out_unit(p, o),
-			 out_file_units(p, o, r->bound), out_unit(p, o), when);
+			 rig_out_name(rig, o), rig_out_file_units(rig, o, fabs(r->value)), rig_out_unit(rig, o),
+			 rig_out_file_units(rig, o, r->bound), rig_out_unit(rig, o), when);
 		break;
 	case LOOP_CAUSE_LIMIT_POS:
 	case LOOP_CAUSE_LIMIT_VEL:
 	case LOOP_CAUSE_LIMIT_ACC:
 		snprintf(buf, size, "%s: %s (device '%s' channel %d): %.6g beyond %.6g %s%s %s",
-			 loop_cause_name(r->cause), out_name(p, o), r->device ? r->device : "?",
-			 r->channel, out_file_units(p, o, r->value), out_file_units(p, o, r->bound),
-			 out_unit(p, o),
+			 loop_cause_name(r->cause), rig_out_name(rig, o), r->device ? r->device : "?",
+			 r->channel, rig_out_file_units(rig, o, r->value), rig_out_file_units(rig, o, r->bound),
+			 rig_out_unit(rig, o),
 			 r->cause == LOOP_CAUSE_LIMIT_VEL ? "/s" :
 			 r->cause == LOOP_CAUSE_LIMIT_ACC ? "/s^2" : "", when);
 		break;
@@ -480,10 +495,18 @@ void play_describe(const struct play *p, char *buf, size_t size)
 				 "within its limits", r->device ? r->device : "?",
 				 chase_event_name((enum chase_event)r->detail), when);
 		break;
+	case LOOP_CAUSE_DISABLE:
+		snprintf(buf, size, "drives disabled %s; every axis brought to rest first", when);
+		break;
 	default:
 		snprintf(buf, size, "ended (%d)", (int)r->end);
 		break;
 	}
+}
+
+void play_describe(const struct play *p, char *buf, size_t size)
+{
+	play_report_describe(&p->rig, p->tm, loop_result(p->L), buf, size);
 }
 
 /* What the chase did: lock, rate, stops and cues, the schedule's phase. */

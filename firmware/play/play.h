@@ -116,6 +116,10 @@ void play_signal(struct play *p, int sig, int count);
  * (line 0) at tick 5000, frame 119"), into buf. */
 void play_describe(const struct play *p, char *buf, size_t size);
 
+/* The same for any run of the loop on rig, whose scene has timing tm. */
+void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
+			  const struct loop_result *res, char *buf, size_t size);
+
 /* A summary of the run (frames, time, latency, following error), with
  * play_describe's line first when `reason`. */
 void play_summary(const struct play *p, FILE *f, bool reason);

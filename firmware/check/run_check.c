@@ -1,72 +1,65 @@
 /* SPDX-License-Identifier: MIT */
-/* limits.c - the limit check of strand check and strand play (see limits.h). */
-#include "limits.h"
+/* run_check.c - the limit check of strand check, strand play and a live session
+ * (run_check.h). */
+#include "run_check.h"
 
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
-#include "check/channels.h"
+#include "channels.h"
 #include "plan/gomo.h"
-#include "cli.h"
-#include "opt.h"
 
 static void on_violation(void *ctx, const struct lim_violation *v)
 {
-	struct cli_limits *c = ctx;
+	struct run_check *c = ctx;
 	char line[512];
 
 	if (c->res.violations == 1)
 		c->first = *v;
 	if (c->out) {
-		cli_limits_line(line, sizeof(line), c, v);
+		run_check_line(line, sizeof(line), c, v);
 		fprintf(c->out, "%s\n", line);
 	}
 }
 
-int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run *r)
+int run_check_options(const struct lim_run *r, char *msg, size_t size)
 {
+	const char *why = NULL;
+
 	if (r->step && (r->loop || r->ping_pong))
-		return cli_usage(cmd, err, "--loop and --ping-pong are for continuous mode");
-	if (r->loop && r->ping_pong)
-		return cli_usage(cmd, err, "--loop or --ping-pong, not both");
-	if (r->passes && !r->loop && !r->ping_pong)
-		return cli_usage(cmd, err, "--passes goes with --loop or --ping-pong");
-	if (r->shutter && !r->step)
-		return cli_usage(cmd, err, "--shutter is go-motion, for --mode step");
-	if (r->step)
-		return -1;
-	if (r->to < r->from)
-		return cli_usage(cmd, err, "--from %lld is after --to %lld", (long long)r->from,
-				 (long long)r->to);
-	if (r->ping_pong && r->to == r->from)
-		return cli_usage(cmd, err, "--ping-pong needs at least two frames");
-	return -1;
+		why = "--loop and --ping-pong are for continuous mode";
+	else if (r->loop && r->ping_pong)
+		why = "--loop or --ping-pong, not both";
+	else if (r->passes && !r->loop && !r->ping_pong)
+		why = "--passes goes with --loop or --ping-pong";
+	else if (r->shutter && !r->step)
+		why = "--shutter is go-motion, for --mode step";
+	else if (!r->step && r->to < r->from)
+		return snprintf(msg, size, "--from %lld is after --to %lld", (long long)r->from,
+				(long long)r->to), -EINVAL;
+	else if (!r->step && r->ping_pong && r->to == r->from)
+		why = "--ping-pong needs at least two frames";
+	if (!why)
+		return 0;
+	snprintf(msg, size, "%s", why);
+	return -EINVAL;
 }
 
-int cli_shutter_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, mot_q32 *s)
+int run_check_shutter(const struct mot_timing *t, mot_q32 s, char *msg, size_t size)
 {
-	double a;
-
-	if (!opt_double(arg, 0, 360, &a) || !gomo_shutter_of_angle(a, s))
-		return cli_usage(cmd, err, "--shutter %s: a shutter angle in degrees, above 0 and "
-				 "at most 360", arg);
-	return -1;
-}
-
-int cli_shutter_usage(const struct cli_cmd *cmd, FILE *err, const struct mot_timing *t,
-		      mot_q32 s)
-{
-	double ms = (double)s / 4294967296.0 * t->den / t->num * 1000;
-
 	if (!s || !gomo_shutter_check(t, s))
-		return -1;
-	return cli_usage(cmd, err, "--shutter: an exposure of %.6g ms is shorter than two ticks "
-			 "(%.6g ms at tick_hz %u): go-motion needs the scene's speed", ms,
-			 2000.0 / t->tick_hz, t->tick_hz);
+		return 0;
+	snprintf(msg, size, "--shutter: an exposure of %.6g ms is shorter than two ticks (%.6g ms "
+		 "at tick_hz %u): go-motion needs the scene's speed",
+		 (double)s / 4294967296.0 * t->den / t->num * 1000, 2000.0 / t->tick_hz,
+		 t->tick_hz);
+	return -EINVAL;
 }
 
-int cli_limits_run(struct cli_limits *c, struct source_scene *ss, const struct rig_desc *rig,
-		   struct lim_run *run)
+int run_check(struct run_check *c, struct source_scene *ss, const struct rig_desc *rig,
+	      struct lim_run *run)
 {
 	int rc = lim_channels(ss, rig, &c->ch, &c->n);
 
@@ -76,13 +69,13 @@ int cli_limits_run(struct cli_limits *c, struct source_scene *ss, const struct r
 	return lim_check(&ss->s, c->ch, c->n, run, on_violation, c, &c->res);
 }
 
-void cli_limits_free(struct cli_limits *c)
+void run_check_free(struct run_check *c)
 {
 	free(c->ch);
 	c->ch = NULL;
 }
 
-uint32_t cli_limits_count(const struct cli_limits *c)
+uint32_t run_check_count(const struct run_check *c)
 {
 	uint32_t i, k = 0;
 
@@ -99,8 +92,8 @@ static const char *unit_name(enum src_unit u)
 	return u == SRC_UNIT_TURNS ? "deg" : u == SRC_UNIT_RPM ? "rpm" : "units";
 }
 
-void cli_limits_line(char *buf, size_t size, const struct cli_limits *c,
-		     const struct lim_violation *v)
+void run_check_line(char *buf, size_t size, const struct run_check *c,
+		    const struct lim_violation *v)
 {
 	const struct lim_channel *ch = &c->ch[v->channel];
 	const char *unit = unit_name(ch->unit);

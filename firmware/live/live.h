@@ -1,0 +1,183 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * live.h - a rig under live control: the command API of strand serve, and
+ * of any other front end (a motion-control protocol, a gamepad daemon).
+ *
+ * A live session owns the rig: it opens the scene's devices (or their
+ * simulated twins), starts them with the drives disabled, and, while they
+ * are enabled, runs the real-time loop in live mode (play/loop_live.h):
+ * holding the pose at rest, taking commands between ticks. Every command
+ * is a function here, answered with 0 or a negative errno and a message
+ * that names what is wrong; none blocks longer than a tick or two of the
+ * loop, but enable and disable, which start and stop devices.
+ *
+ * Machine states (struct live_snap.state), changed by commands only:
+ *
+ *   DISABLED   the devices open, the drives disabled; enable -> ENABLED
+ *   ENABLED    the drives enabled, the rig at rest holding its pose
+ *   MOVING     jog, move to a frame or a pose, play, step
+ *   STOPPING   a controlled stop (stop, disable) under way
+ *   ESTOPPED   latched by an e-stop (a command or the input): drives off
+ *              until reset, which the e-stop input must allow
+ *   FAULTED    a device fault, following error or limit, named in
+ *              snap.reason, until reset clears it
+ *
+ * Threads. Any number of threads may call the commands; they take turns on
+ * the session's lock, which the loop never takes. live_estop() takes no
+ * lock at all: it reaches the loop through an atomic store, ahead of any
+ * command queued or under way. live_service() is the owner's to call
+ * every few milliseconds: it takes the loop's status samples in, services
+ * the journal and notices the end of a run.
+ */
+#ifndef STRAND_LIVE_H
+#define STRAND_LIVE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "play/loop_live.h"
+#include "play/rt.h"
+
+enum live_state {
+	LIVE_DISABLED,
+	LIVE_ENABLED,
+	LIVE_MOVING,
+	LIVE_STOPPING,
+	LIVE_ESTOPPED,
+	LIVE_FAULTED,
+};
+
+struct live_opts {
+	bool sim;             /* every device by its simulated twin */
+	bool virtual_clock;   /* virtual time, at the wall's pace at rest and in a jog */
+	bool pace_all;        /* virtual time: at the wall's pace in every state */
+	bool force;           /* play and teach what strand check rejects */
+	struct rt_opts rt;
+	const char *journal;  /* NULL: none */
+	const char *data_dir; /* where load and save find scene files */
+	double deadman_ms;    /* a jog lapses without a refresh (250) */
+	uint32_t status_hz;   /* status samples a second (50) */
+};
+
+/* A step-mode or continuous segment, as strand play's options say it. */
+struct live_play {
+	bool step;
+	bool has_from, has_to;
+	int64_t from, to;
+	const char *frames;   /* step: a --frames spec, or NULL */
+	bool loop, ping_pong;
+	int64_t passes;
+	double duration_s;    /* 0: none */
+	double settle_ms, exposure_ms, timeout_s; /* step mode (200, 100, 10) */
+};
+
+/* Teach: which strands take a key from the rig's pose. */
+enum live_teach_what {
+	LIVE_TEACH_ALL,       /* every strand that drives an output */
+	LIVE_TEACH_NODES,     /* the nodes named */
+};
+
+#define LIVE_MSG 512
+
+struct live;
+
+/* One output as a console shows it. */
+struct live_out_info {
+	const char *channel;
+	const char *unit;     /* "deg", "rpm", "" */
+	double min, max, vmax, amax; /* file units; +-inf when unlimited */
+	bool jog;             /* may be jogged (a position channel) */
+	bool teach;           /* a joint's value: teach keys it */
+	int32_t node;         /* its node, -1 */
+};
+
+/* The newest status: the loop's last sample and the session's state. */
+struct live_snap {
+	enum live_state state;
+	char reason[LIVE_MSG];  /* ESTOPPED, FAULTED: why; else the last end */
+	int64_t tick, t_ns;
+	int64_t frame;          /* where the rig is: the last frame fired or
+				 * moved to, -1 off any frame (after a jog) */
+	int64_t fired, total;
+	const char *loop_state; /* the loop's: hold, jog, move, pre-roll, play, ... */
+	int64_t lat_max_ns, lat_min_ns, lat_avg_ns, overruns;
+	uint64_t lat_n;
+	int64_t journal_frames; /* recorded so far, -1 without a journal */
+	uint32_t nout;
+	struct loop_live_out out[LOOP_LIVE_OUT_MAX]; /* file units */
+	uint64_t serial;        /* counts the samples taken in */
+	uint64_t cmd_sent;      /* the last command sent to the loop ... */
+	uint64_t cmd_seen;      /* ... and the last the sample's tick had taken */
+	uint64_t generation;    /* counts scene loads and teaches */
+};
+
+/* [init] Open SCENE (a path) for live control: load, check, build the rig,
+ * start the devices, disable the drives. 0, or a negative errno with the
+ * message in err (a scene's file:line:column: message). */
+int live_open(struct live **out, const char *scene, const struct live_opts *o, char *err,
+	      size_t errsize);
+void live_close(struct live *lv);
+
+/* The owner's round: status in, journal, a run's end. Returns the
+ * milliseconds until it wants the next round. */
+int live_service(struct live *lv);
+
+/* Copy out the newest status. */
+void live_snapshot(struct live *lv, struct live_snap *s);
+
+/* The scene's outputs and frames, for a console. */
+uint32_t live_outputs(struct live *lv, struct live_out_info *out, uint32_t max);
+void live_span(struct live *lv, int64_t *first, int64_t *last, uint32_t *num, uint32_t *den,
+	       uint32_t *tick_hz, const char **name, const char **path);
+
+/* Key frames of every strand that drives an output (for the timeline):
+ * calls fn for each (channel, frame). */
+void live_keys(struct live *lv, void (*fn)(void *ctx, const char *channel, double frame),
+	       void *ctx);
+
+const char *live_state_name(enum live_state s);
+
+/* ---- commands: 0 or a negative errno, the message in msg ---- */
+
+int live_enable(struct live *lv, char *msg, size_t size);
+int live_disable(struct live *lv, char *msg, size_t size);
+/* out by index; speed a fraction of its velocity limit, -1..1; seq must
+ * grow with each command of a client (a doubled or stale one is ignored,
+ * 0 returned); client: who sends it (a new client restarts the count). */
+int live_jog(struct live *lv, uint64_t client, uint32_t out, double speed, uint64_t seq,
+	     char *msg, size_t size);
+/* A client went away: its jogs end at once. */
+void live_client_gone(struct live *lv, uint64_t client);
+int live_goto(struct live *lv, int64_t frame, char *msg, size_t size);
+int live_step(struct live *lv, int dir, char *msg, size_t size);
+/* A pose in file units, one value per output (NaN: where it stands). */
+int live_move(struct live *lv, const double *pose, uint32_t n, char *msg, size_t size);
+int live_play(struct live *lv, const struct live_play *p, char *msg, size_t size);
+int live_stop(struct live *lv, char *msg, size_t size);
+/* At once, from any thread, never waiting (async-signal-safe). */
+void live_estop(struct live *lv);
+int live_reset(struct live *lv, char *msg, size_t size);
+/* A scene file of the data folder, by name (no path). */
+int live_load(struct live *lv, const char *name, char *msg, size_t size);
+/* Key the pose where the rig stands at frame (nodes: n names, or every
+ * strand that drives an output when n is 0). */
+int live_teach(struct live *lv, double frame, const char *const *nodes, uint32_t n,
+	       char *msg, size_t size);
+int live_teach_delete(struct live *lv, const char *node, double frame, char *msg, size_t size);
+int live_teach_move(struct live *lv, const char *node, double from, double to, char *msg,
+		    size_t size);
+/* The scene as it is now into the data folder as name (NULL: its own file). */
+int live_save(struct live *lv, const char *name, char *msg, size_t size);
+
+/* A probe of the command path: a command that does nothing, answered by
+ * the tick that takes it; *latency_ns from its arrival to that tick. */
+int live_ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size);
+
+/* Ask the loop to stop as a signal does (async-signal-safe): controlled,
+ * or immediate for level 2. */
+void live_signal(struct live *lv, int level);
+/* The session is done (a signal stopped it): the owner may close it. */
+bool live_finished(struct live *lv);
+
+#endif /* STRAND_LIVE_H */

@@ -1,0 +1,380 @@
+/* SPDX-License-Identifier: MIT */
+/* live_cmd.c - the commands of a live session (live.h). */
+#define _GNU_SOURCE
+#include "live_priv.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "play/frames.h"
+#include "scene/num.h"
+
+/* The command under the session's lock: lock, evaluate, unlock (the
+ * argument is evaluated before the call, after the lock). */
+static int unlocked(struct live *lv, int rc)
+{
+	pthread_mutex_unlock(&lv->mu);
+	return rc;
+}
+
+#define LOCKED(lv, expr) (pthread_mutex_lock(&(lv)->mu), unlocked((lv), (expr)))
+
+static int enable(struct live *lv, char *msg, size_t size)
+{
+	switch (lv->state) {
+	case LIVE_DISABLED:
+		break;
+	case LIVE_ESTOPPED:
+	case LIVE_FAULTED:
+		snprintf(msg, size, "%s: reset first (%s)", live_state_name(lv->state), lv->reason);
+		return -EPERM;
+	default:
+		if (lv->running)
+			return 0; /* enabled already */
+		break;
+	}
+	if (atomic_load(&lv->estop_req)) {
+		snprintf(msg, size, "e-stopped: reset first");
+		return -EPERM;
+	}
+	return live_run_start(lv, msg, size);
+}
+
+int live_enable(struct live *lv, char *msg, size_t size)
+{
+	return LOCKED(lv, enable(lv, msg, size));
+}
+
+static int disable(struct live *lv, char *msg, size_t size)
+{
+	struct loop_cmd c = { .kind = LOOP_CMD_DISABLE };
+	struct loop_ack a;
+
+	if (!lv->running)
+		return 0;
+	return live_send(lv, &c, &a, msg, size);
+}
+
+int live_disable(struct live *lv, char *msg, size_t size)
+{
+	return LOCKED(lv, disable(lv, msg, size));
+}
+
+static int jog(struct live *lv, uint64_t client, uint32_t out, double speed, uint64_t seq,
+	       char *msg, size_t size)
+{
+	struct loop_cmd c = { .kind = LOOP_CMD_JOG, .out = out, .speed = speed };
+	struct loop_ack a;
+
+	if (out >= lv->rig.nout) {
+		snprintf(msg, size, "output %u: the rig has %u", out, lv->rig.nout);
+		return -EINVAL;
+	}
+	if (!(fabs(speed) <= 1)) {
+		snprintf(msg, size, "speed %g: a fraction of the velocity limit, -1 to 1", speed);
+		return -ERANGE;
+	}
+	if (lv->rig.out[out].vel_mode) {
+		snprintf(msg, size, "%s is a speed (velocity mode): it cannot be jogged",
+			 lv->rig.out[out].channel);
+		return -EINVAL;
+	}
+	if (client != lv->jog_client) {
+		lv->jog_client = client;
+		memset(lv->jog_seq, 0, sizeof(lv->jog_seq));
+	}
+	if (seq <= lv->jog_seq[out])
+		return 0; /* doubled or stale: ignored */
+	lv->jog_seq[out] = seq;
+	return live_send(lv, &c, &a, msg, size);
+}
+
+int live_jog(struct live *lv, uint64_t client, uint32_t out, double speed, uint64_t seq,
+	     char *msg, size_t size)
+{
+	return LOCKED(lv, jog(lv, client, out, speed, seq, msg, size));
+}
+
+void live_client_gone(struct live *lv, uint64_t client)
+{
+	struct loop_cmd c = { .kind = LOOP_CMD_JOG };
+	struct loop_ack a;
+	char msg[LIVE_MSG];
+	uint32_t i;
+
+	pthread_mutex_lock(&lv->mu);
+	if (client == lv->jog_client && lv->running) {
+		for (i = 0; i < lv->rig.nout; i++) {
+			if (!lv->jog_seq[i])
+				continue;
+			c.out = i;
+			live_send(lv, &c, &a, msg, sizeof(msg));
+		}
+		lv->jog_client = 0;
+		memset(lv->jog_seq, 0, sizeof(lv->jog_seq));
+	}
+	pthread_mutex_unlock(&lv->mu);
+}
+
+static int move_pose(struct live *lv, const mot_q32 *pose, int64_t frame, char *msg,
+		     size_t size)
+{
+	struct loop_cmd c = { .kind = LOOP_CMD_MOVE, .frame = frame };
+	struct loop_ack a;
+
+	memcpy(c.pose, pose, lv->rig.nout * sizeof(*pose));
+	return live_send(lv, &c, &a, msg, size);
+}
+
+static int go_to(struct live *lv, int64_t frame, char *msg, size_t size)
+{
+	const struct play_source *s = &lv->sc->twin.s;
+	mot_q32 pose[LOOP_LIVE_OUT_MAX];
+	uint32_t sat = 0;
+	int rc;
+
+	if (frame < 0 || frame > INT32_MAX) {
+		snprintf(msg, size, "frame %lld: 0 to 2147483647", (long long)frame);
+		return -ERANGE;
+	}
+	src_eval(&lv->sc->twin.s, (mot_q32)frame * MOT_Q32_ONE, pose, &sat);
+	if (sat) {
+		snprintf(msg, size, "frame %lld: the scene's arithmetic saturates there",
+			 (long long)frame);
+		return -ERANGE;
+	}
+	(void)s;
+	rc = move_pose(lv, pose, frame, msg, size);
+	if (!rc)
+		lv->goto_frame = frame;
+	else if (rc == -ERANGE)
+		snprintf(msg + strlen(msg), size - strlen(msg), " at frame %lld",
+			 (long long)frame);
+	return rc;
+}
+
+int live_goto(struct live *lv, int64_t frame, char *msg, size_t size)
+{
+	return LOCKED(lv, go_to(lv, frame, msg, size));
+}
+
+static int step(struct live *lv, int dir, char *msg, size_t size)
+{
+	const struct play_source *s = &lv->sc->twin.s;
+	int64_t f = lv->at_frame;
+
+	if (f < 0)
+		f = dir > 0 ? s->frame_first - 1 : s->frame_last + 1; /* off any frame */
+	f += dir > 0 ? 1 : -1;
+	if (f < 0) {
+		snprintf(msg, size, "no frame before 0");
+		return -ERANGE;
+	}
+	return go_to(lv, f, msg, size);
+}
+
+int live_step(struct live *lv, int dir, char *msg, size_t size)
+{
+	return LOCKED(lv, step(lv, dir, msg, size));
+}
+
+static int move(struct live *lv, const double *pose, uint32_t n, char *msg, size_t size)
+{
+	mot_q32 q[LOOP_LIVE_OUT_MAX];
+	uint32_t i;
+
+	if (n != lv->rig.nout) {
+		snprintf(msg, size, "%u values for %u outputs", n, lv->rig.nout);
+		return -EINVAL;
+	}
+	for (i = 0; i < n; i++) {
+		const struct rig_out *o = &lv->rig.out[i];
+		double v = isnan(pose[i]) ? lv->snap.out[i].sp : pose[i];
+		double core = o->unit == SRC_UNIT_TURNS ? v / 360.0 : v;
+
+		if (!isfinite(v) || !sd_to_q32(core, &q[i])) {
+			snprintf(msg, size, "%s: %g is outside the core's range", o->channel, v);
+			return -ERANGE;
+		}
+	}
+	lv->goto_frame = -1;
+	return move_pose(lv, q, -1, msg, size);
+}
+
+int live_move(struct live *lv, const double *pose, uint32_t n, char *msg, size_t size)
+{
+	return LOCKED(lv, move(lv, pose, n, msg, size));
+}
+
+static int ticks(double v, bool ms, uint32_t hz, int64_t min, int64_t *out, const char *name,
+		 char *msg, size_t size)
+{
+	int rc = ms ? num_ms_to_ticks(v, hz, NUM_ROUND_NEAREST, min, NUM_TICKS_MAX, out) :
+		      num_s_to_ticks(v, hz, NUM_ROUND_NEAREST, min, NUM_TICKS_MAX, out);
+
+	if (rc)
+		snprintf(msg, size, "%s %g: out of range (at least a tick, at most 1e9 s)", name,
+			 v);
+	return rc;
+}
+
+static int play(struct live *lv, const struct live_play *p, char *msg, size_t size)
+{
+	const struct play_source *s = &lv->sc->twin.s;
+	uint32_t hz = s->timing.tick_hz, i;
+	struct loop_cmd c = { .kind = LOOP_CMD_PLAY };
+	struct frame_list fl = { 0 };
+	struct loop_ack a;
+	struct loop_cfg *cfg = &c.cfg;
+	struct lim_run run;
+	int64_t from = p->has_from ? p->from : s->frame_first;
+	int64_t to = p->has_to ? p->to : s->frame_last;
+	int rc;
+
+	if (from < 0 || to < 0 || from > INT32_MAX || to > INT32_MAX) {
+		snprintf(msg, size, "from/to: frame numbers 0 to 2147483647");
+		return -ERANGE;
+	}
+	if (p->frames && !p->step) {
+		snprintf(msg, size, "frames is for step mode");
+		return -EINVAL;
+	}
+	if (p->step && (p->loop || p->ping_pong)) {
+		snprintf(msg, size, "loop and ping_pong are for continuous mode");
+		return -EINVAL;
+	}
+	if (p->loop && p->ping_pong) {
+		snprintf(msg, size, "loop or ping_pong, not both");
+		return -EINVAL;
+	}
+	if (p->passes && !p->loop && !p->ping_pong) {
+		snprintf(msg, size, "passes goes with loop or ping_pong");
+		return -EINVAL;
+	}
+	if (p->passes < 0 || p->passes > INT32_MAX) {
+		snprintf(msg, size, "passes %lld: 1 to 2147483647", (long long)p->passes);
+		return -ERANGE;
+	}
+	if (!p->step && to < from) {
+		snprintf(msg, size, "from %lld is after to %lld", (long long)from, (long long)to);
+		return -EINVAL;
+	}
+	if (!p->step && p->ping_pong && to == from) {
+		snprintf(msg, size, "ping_pong needs at least two frames");
+		return -EINVAL;
+	}
+	cfg->mode = p->step ? LOOP_MODE_STEP : LOOP_MODE_CONTINUOUS;
+	cfg->from = from;
+	cfg->to = to;
+	cfg->loop = p->loop;
+	cfg->ping_pong = p->ping_pong;
+	cfg->passes = p->passes;
+	if (ticks(p->settle_ms, true, hz, 0, &cfg->settle_ticks, "settle", msg, size) ||
+	    ticks(p->exposure_ms, true, hz, 0, &cfg->exposure_ticks, "exposure", msg, size) ||
+	    ticks(p->timeout_s, false, hz, 1, &cfg->in_position_timeout_ticks, "timeout", msg,
+		  size) ||
+	    (p->duration_s > 0 &&
+	     ticks(p->duration_s, false, hz, 1, &cfg->max_ticks, "duration", msg, size)))
+		return -ERANGE;
+	cfg->ready_timeout_ticks = cfg->in_position_timeout_ticks;
+	if (p->step) {
+		rc = p->frames ? frames_parse(&fl, p->frames, msg, (unsigned)size) :
+				 frames_range(&fl, from, to);
+		if (rc) {
+			if (!p->frames)
+				snprintf(msg, size, "out of memory");
+			return rc;
+		}
+		if (fl.n > LOOP_LIVE_FRAME_ITEMS) {
+			snprintf(msg, size, "frames: %u items, at most %d", fl.n,
+				 LOOP_LIVE_FRAME_ITEMS);
+			frames_free(&fl);
+			return -E2BIG;
+		}
+		c.nframes = fl.n;
+		for (i = 0; i < fl.n; i++)
+			c.frames[i] = fl.items[i];
+		from = INT64_MAX;
+		to = INT64_MIN;
+		for (i = 0; i < fl.n; i++) {
+			int64_t lo = fl.items[i].first < fl.items[i].last ? fl.items[i].first :
+									    fl.items[i].last;
+			int64_t hi = fl.items[i].first ^ fl.items[i].last ^ lo;
+
+			from = lo < from ? lo : from;
+			to = hi > to ? hi : to;
+		}
+		frames_free(&fl);
+	}
+	/* held to exactly what strand check verifies, as strand play is */
+	run = (struct lim_run){ .from = from, .to = to, .loop = p->loop, .ping_pong = p->ping_pong,
+				.passes = p->passes, .step = p->step };
+	rc = live_scene_check(lv, lv->sc, &run, msg, size);
+	if (rc)
+		return rc;
+	rc = live_send(lv, &c, &a, msg, size);
+	if (!rc)
+		lv->goto_frame = -1;
+	return rc;
+}
+
+int live_play(struct live *lv, const struct live_play *p, char *msg, size_t size)
+{
+	return LOCKED(lv, play(lv, p, msg, size));
+}
+
+static int stop(struct live *lv, char *msg, size_t size)
+{
+	struct loop_cmd c = { .kind = LOOP_CMD_STOP };
+	struct loop_ack a;
+
+	if (!lv->running)
+		return 0;
+	return live_send(lv, &c, &a, msg, size);
+}
+
+int live_stop(struct live *lv, char *msg, size_t size)
+{
+	return LOCKED(lv, stop(lv, msg, size));
+}
+
+void live_estop(struct live *lv)
+{
+	atomic_store(&lv->estop_req, true);
+}
+
+static int reset(struct live *lv, char *msg, size_t size)
+{
+	if (lv->running) {
+		snprintf(msg, size, "%s: nothing to reset", live_state_name(lv->state));
+		return lv->state == LIVE_ENABLED ? 0 : -EBUSY;
+	}
+	if (live_estop_input(lv, msg, size))
+		return -EPERM;
+	atomic_store(&lv->estop_req, false);
+	lv->state = LIVE_DISABLED;
+	lv->reason[0] = 0;
+	return 0;
+}
+
+int live_reset(struct live *lv, char *msg, size_t size)
+{
+	return LOCKED(lv, reset(lv, msg, size));
+}
+
+static int ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
+{
+	struct loop_cmd c = { .kind = LOOP_CMD_NOP };
+	struct loop_ack a;
+	int rc = live_send(lv, &c, &a, msg, size);
+
+	*latency_ns = rc ? 0 : a.latency_ns;
+	return rc;
+}
+
+int live_ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
+{
+	return LOCKED(lv, ping(lv, latency_ns, msg, size));
+}

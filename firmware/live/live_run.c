@@ -1,0 +1,221 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * live_run.c - a run of the loop while the drives are enabled: the drives
+ * started, the loop prepared in live mode on its strand-rt thread, and at
+ * its end (an e-stop, a fault, a disable, a signal) the drives stopped and
+ * the machine state it leaves. Every function here is [init], called with
+ * the session's lock held.
+ */
+#define _GNU_SOURCE
+#include "live_priv.h"
+
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "hal/rt.h"
+#include "play/play.h"
+
+static void *rt_main(void *arg)
+{
+	struct live *lv = arg;
+	sigset_t all;
+	int64_t t0;
+
+	sigfillset(&all);
+	pthread_sigmask(SIG_BLOCK, &all, NULL);
+	rt_thread_setup(&lv->o.rt, &lv->rt);
+	if (!lv->clk.is_virtual)
+		t0 = (hal_clock_now(&lv->clk) / 1000000 + 2) * 1000000;
+	else
+		t0 = (hal_clock_now(&lv->clk) + 999999) / 1000000 * 1000000;
+	strand_rt_enter();
+	loop_run(lv->L, t0);
+	strand_rt_leave();
+	atomic_store(&lv->done, true);
+	return NULL;
+}
+
+/* Edges the inputs queued while no loop read them: an e-stop pressed and
+ * released before must not stop the next run (its level does, if held). */
+static void drain_inputs(struct live *lv)
+{
+	struct hal_edge ev[32];
+	int64_t now = hal_clock_now(&lv->clk);
+	uint32_t d;
+
+	for (d = 0; d < lv->rig.ndins; d++)
+		while (hal_din_poll(lv->rig.dins[d], now, ev, 32) == 32)
+			;
+}
+
+bool live_estop_input(struct live *lv, char *msg, size_t size)
+{
+	uint32_t i;
+
+	for (i = 0; i < lv->rig.nin; i++) {
+		const struct rig_in *in = &lv->rig.in[i];
+
+		if (in->role == RIG_INPUT_ESTOP && hal_din_level(lv->rig.dins[in->dev], in->line)) {
+			snprintf(msg, size, "the e-stop input '%s' is asserted: release it first",
+				 in->name);
+			return true;
+		}
+	}
+	return false;
+}
+
+int live_run_start(struct live *lv, char *msg, size_t size)
+{
+	struct loop_live_cfg lc;
+	struct loop_cfg cfg;
+	uint32_t i;
+	int rc;
+
+	drain_inputs(lv);
+	if (live_estop_input(lv, msg, size))
+		return -EPERM;
+	for (i = 0; i < lv->rig.naxes; i++) {
+		rc = hal_axis_start(lv->rig.axes[i]);
+		if (rc) {
+			snprintf(msg, size, "device '%s': enable: %s", lv->rig.axes[i]->name,
+				 strerror(-rc));
+			while (i--)
+				hal_axis_stop(lv->rig.axes[i]);
+			return rc;
+		}
+	}
+	memset(&cfg, 0, sizeof(cfg));
+	cfg.live = true;
+	cfg.force = lv->o.force;
+	cfg.status_every = lv->sc->src.s.timing.tick_hz / lv->o.status_hz;
+	if (cfg.status_every < 1)
+		cfg.status_every = 1;
+	loop_free(lv->L);
+	lv->L = NULL;
+	rc = loop_init(&lv->L, &cfg, &lv->rig, &lv->sc->src.s, &lv->clk, &lv->status, msg, size);
+	if (!rc) {
+		memset(&lc, 0, sizeof(lc));
+		lc.cmds = &lv->cmds;
+		lc.acks = &lv->acks;
+		lc.deadman_ticks = (int64_t)(lv->o.deadman_ms * 1e-3 *
+					     lv->sc->src.s.timing.tick_hz + 0.5);
+		lc.pace = lv->clk.is_virtual;
+		lc.pace_all = lv->o.pace_all;
+		lc.estop = &lv->estop_req;
+		lc.signal = &lv->signal_req;
+		rc = loop_live_init(lv->L, &lc, msg, size);
+	}
+	if (rc)
+		goto stop;
+	hal_ring_init(&lv->status, lv->st_buf, LIVE_STATUS_RING, lv->st_size);
+	hal_ring_init(&lv->cmds, lv->cmd_buf, LIVE_CMD_RING, sizeof(struct loop_cmd));
+	hal_ring_init(&lv->acks, lv->ack_buf, LIVE_CMD_RING, sizeof(struct loop_ack));
+	atomic_store(&lv->done, false);
+	rt_lock_memory(&lv->o.rt, &lv->rt);
+	rc = rt_thread_start(&lv->thread, &lv->o.rt, &lv->plan, &lv->rt, rt_main, lv);
+	if (rc) {
+		rt_release(&lv->rt);
+		snprintf(msg, size, "cannot start the loop thread: %s", strerror(-rc));
+		goto stop;
+	}
+	lv->running = true;
+	lv->state = LIVE_ENABLED;
+	lv->reason[0] = 0;
+	return 0;
+stop:
+	for (i = 0; i < lv->rig.naxes; i++)
+		hal_axis_stop(lv->rig.axes[i]);
+	return rc;
+}
+
+void live_run_end(struct live *lv)
+{
+	const struct loop_report *r;
+	uint32_t i;
+
+	hal_thread_join(&lv->thread);
+	rt_release(&lv->rt);
+	lv->running = false;
+	for (i = 0; i < lv->rig.naxes; i++)
+		hal_axis_stop(lv->rig.axes[i]);
+	r = &loop_result(lv->L)->rep;
+	play_report_describe(&lv->rig, &lv->sc->src.s.timing, loop_result(lv->L), lv->reason,
+			     sizeof(lv->reason));
+	if (r->cause == LOOP_CAUSE_ESTOP || atomic_load(&lv->estop_req))
+		lv->state = LIVE_ESTOPPED;
+	else if (r->end == LOOP_END_FAULT || r->end == LOOP_END_INTERNAL)
+		lv->state = LIVE_FAULTED;
+	else
+		lv->state = LIVE_DISABLED;
+	if (r->cause == LOOP_CAUSE_ESTOP && !atomic_load(&lv->estop_req))
+		atomic_store(&lv->estop_req, true); /* the input's: latched as the command's */
+	if (r->cause == LOOP_CAUSE_DISABLE)
+		lv->reason[0] = 0;
+	if (atomic_load(&lv->signal_req))
+		atomic_store(&lv->finished, true);
+	lv->goto_frame = -1;
+}
+
+int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg, size_t size)
+{
+	struct timespec nap = { .tv_nsec = 50000 };
+	int64_t deadline;
+
+	if (!lv->running || atomic_load(&lv->done)) {
+		snprintf(msg, size, "the drives are %s: %s", live_state_name(lv->state),
+			 lv->state == LIVE_DISABLED ? "enable them first" :
+			 lv->state == LIVE_ESTOPPED ? "e-stopped, reset first" :
+			 lv->state == LIVE_FAULTED ? "faulted, reset first" : "wait");
+		return -EPERM;
+	}
+	c->seq = ++lv->seq;
+	atomic_store(&lv->cmd_sent, c->seq);
+	c->arrival_ns = hal_mono_ns();
+	if (!hal_ring_push(&lv->cmds, c)) {
+		snprintf(msg, size, "the loop's command queue is full");
+		return -EBUSY;
+	}
+	deadline = hal_mono_ns() + 2000000000LL;
+	while (hal_mono_ns() < deadline) {
+		while (hal_ring_pop(&lv->acks, a))
+			if (a->seq == c->seq)
+				goto answered;
+		if (atomic_load(&lv->done)) {
+			snprintf(msg, size, "the run ended before the command was taken");
+			return -ECANCELED;
+		}
+		nanosleep(&nap, NULL);
+	}
+	snprintf(msg, size, "the loop did not answer within 2 s");
+	return -ETIMEDOUT;
+answered:
+	switch (a->code) {
+	case LOOP_CMD_OK:
+		return 0;
+	case LOOP_CMD_BUSY:
+		snprintf(msg, size, "the rig is not at rest (%s): stop first",
+			 lv->snap.loop_state ? lv->snap.loop_state : "moving");
+		return -EBUSY;
+	case LOOP_CMD_LIMIT:
+		if (a->out >= 0)
+			snprintf(msg, size, "%s: the target is outside its position limits",
+				 lv->rig.out[a->out].channel);
+		else
+			snprintf(msg, size, "the move would take longer than the loop counts");
+		return -ERANGE;
+	case LOOP_CMD_RUNUP:
+		snprintf(msg, size, "%s: the run-up into the first frame would start outside its "
+			 "position limits; start from a frame where it moves slower",
+			 a->out >= 0 ? lv->rig.out[a->out].channel : "?");
+		return -ERANGE;
+	case LOOP_CMD_STOPPING:
+		snprintf(msg, size, "the drives are being disabled");
+		return -EPERM;
+	default:
+		snprintf(msg, size, "invalid command");
+		return -EINVAL;
+	}
+}

@@ -1,0 +1,370 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_live.c - a live session on the simulated robot arm in virtual time
+ * (live/live.h): the machine states, jog (dead-man, a position limit),
+ * move to a frame (its exact pose), a play segment, the e-stop latch and
+ * its reset, teach (the file edited in place, a refused teach leaves it
+ * unchanged), disable.
+ */
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "live/live.h"
+#include "load/load.h"
+#include "scene/source_scene.h"
+#include "testutil.h"
+
+struct fixture {
+	struct live *lv;
+	pthread_t svc;
+	volatile int stop;
+	char dir[64], path[128];
+};
+
+static void *service(void *arg)
+{
+	struct fixture *f = arg;
+
+	while (!f->stop) {
+		int ms = live_service(f->lv);
+
+		nanosleep(&(struct timespec){ .tv_nsec = ms * 1000000L }, NULL);
+	}
+	return NULL;
+}
+
+static char *slurp(const char *path, size_t *len)
+{
+	FILE *fp = fopen(path, "rb");
+	char *buf;
+	long n;
+
+	assert_non_null(fp);
+	fseek(fp, 0, SEEK_END);
+	n = ftell(fp);
+	fseek(fp, 0, SEEK_SET);
+	buf = malloc((size_t)n + 1);
+	assert_int_equal(fread(buf, 1, (size_t)n, fp), (size_t)n);
+	buf[n] = 0;
+	fclose(fp);
+	if (len)
+		*len = (size_t)n;
+	return buf;
+}
+
+static void open_fixture(struct fixture *f, double deadman_ms)
+{
+	struct live_opts o = { .sim = true, .virtual_clock = true, .deadman_ms = deadman_ms };
+	char err[512], *text;
+	size_t len;
+	FILE *fp;
+
+	memset(f, 0, sizeof(*f));
+	snprintf(f->dir, sizeof(f->dir), "/tmp/strand-live-XXXXXX");
+	assert_non_null(mkdtemp(f->dir));
+	snprintf(f->path, sizeof(f->path), "%s/arm.yaml", f->dir);
+	text = slurp("examples/robot_arm.yaml", &len);
+	fp = fopen(f->path, "wb");
+	fwrite(text, 1, len, fp);
+	fclose(fp);
+	free(text);
+	o.rt.cpu = -1;
+	o.rt.name = "strand-rt";
+	if (live_open(&f->lv, f->path, &o, err, sizeof(err))) {
+		print_error("live_open: %s\n", err);
+		fail();
+	}
+	pthread_create(&f->svc, NULL, service, f);
+}
+
+static void close_fixture(struct fixture *f)
+{
+	char cmd[160];
+
+	f->stop = 1;
+	pthread_join(f->svc, NULL);
+	live_close(f->lv);
+	snprintf(cmd, sizeof(cmd), "rm -rf %s", f->dir);
+	assert_int_equal(system(cmd), 0);
+}
+
+/* Wait (at most 20 s of wall time) for a snapshot that pred accepts. */
+static void wait_for(struct fixture *f, bool (*pred)(const struct live_snap *, const void *),
+		     const void *arg, struct live_snap *s, const char *what)
+{
+	int i;
+
+	for (i = 0; i < 20000; i++) {
+		live_snapshot(f->lv, s);
+		if (pred(s, arg))
+			return;
+		nanosleep(&(struct timespec){ .tv_nsec = 1000000 }, NULL);
+	}
+	print_error("timed out waiting for %s (state %s, loop %s)\n", what,
+		    live_state_name(s->state), s->loop_state);
+	fail();
+}
+
+static bool is_state(const struct live_snap *s, const void *arg)
+{
+	return s->state == *(const enum live_state *)arg;
+}
+
+static bool at_rest(const struct live_snap *s, const void *arg)
+{
+	(void)arg;
+	return s->cmd_seen == s->cmd_sent && s->state == LIVE_ENABLED &&
+	       !strcmp(s->loop_state, "hold");
+}
+
+static void expect_state(struct fixture *f, enum live_state st, struct live_snap *s)
+{
+	wait_for(f, is_state, &st, s, live_state_name(st));
+}
+
+static void rest(struct fixture *f, struct live_snap *s)
+{
+	wait_for(f, at_rest, NULL, s, "the rig at rest");
+}
+
+/* A channel of a scene at a frame, as the session's source evaluates it. */
+static double scene_at(const char *path, const char *channel, int64_t frame)
+{
+	struct scene_file sf;
+	struct scene_built b;
+	struct source_scene ss;
+	struct src_channel info;
+	struct load_err e;
+	uint32_t idx, sat = 0;
+	mot_q32 v;
+	int i;
+
+	assert_int_equal(scene_file_load(&sf, path, &e), 0);
+	assert_int_equal(scene_file_build(&sf, &b, &e), 0);
+	assert_int_equal(source_scene_init(&ss, &sf.desc, &b.sc), 0);
+	i = src_lookup(&ss.s, channel, &info);
+	assert_true(i >= 0);
+	idx = (uint32_t)i;
+	assert_int_equal(src_select(&ss.s, &idx, 1), 0);
+	src_eval(&ss.s, (mot_q32)frame * MOT_Q32_ONE, &v, &sat);
+	source_scene_free(&ss);
+	scene_built_free(&b);
+	scene_file_free(&sf);
+	return (double)v * (360.0 / 4294967296.0);
+}
+
+static void ok(int rc, const char *msg)
+{
+	if (rc)
+		fprintf(stderr, "error: %s\n", msg);
+	assert_int_equal(rc, 0);
+}
+
+/* base.angle is output 0 of the simulated rig: its limits are the node's,
+ * -170..170 deg, 90 deg/s, 360 deg/s^2. */
+static void test_states_jog_goto_play(void **state)
+{
+	struct fixture f;
+	struct live_snap s;
+	char msg[512];
+	double moved;
+	int64_t lat;
+
+	open_fixture(&f, 250);
+	live_snapshot(f.lv, &s);
+	assert_int_equal(s.state, LIVE_DISABLED);
+	/* disabled: no command reaches the loop */
+	assert_int_equal(live_goto(f.lv, 10, msg, sizeof(msg)), -EPERM);
+	assert_non_null(strstr(msg, "enable"));
+	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_ENABLED, &s);
+	ok(live_ping(f.lv, &lat, msg, sizeof(msg)), msg);
+
+	/* one jog command and no refresh: the dead-man ends it; the axis
+	 * comes to rest having ramped for at most 250 ms (+ a tick) and
+	 * braked at the limit deceleration: v = a t = 90 at most, so it
+	 * moved at most a t^2 = 360 * 0.251^2 deg */
+	ok(live_jog(f.lv, 1, 0, 1.0, 1, msg, sizeof(msg)), msg);
+	/* a doubled command is ignored (answered 0, nothing done) */
+	ok(live_jog(f.lv, 1, 0, 1.0, 1, msg, sizeof(msg)), msg);
+	rest(&f, &s);
+	moved = s.out[0].sp;
+	printf("BOUND dead-man jog moved %.4f deg <= %.4f deg, then rest (v %.3g)\n", moved,
+	       360 * 0.251 * 0.251, s.out[0].vel);
+	assert_true(moved > 0);
+	assert_true(moved <= 360 * 0.251 * 0.251 + 1e-9);
+	assert_true(s.out[0].vel == 0);
+	assert_true(s.frame == -1);
+
+	/* move to frame 48: its exact pose, as step mode lands on it */
+	ok(live_goto(f.lv, 48, msg, sizeof(msg)), msg);
+	rest(&f, &s);
+	assert_int_equal(s.frame, 48);
+	{
+		double want = scene_at("examples/robot_arm.yaml", "base.angle", 48);
+
+		printf("BOUND goto 48: base %.12g deg == the scene's %.12g (exact)\n",
+		       s.out[0].sp, want);
+		assert_true(s.out[0].sp == want);
+	}
+	/* a frame whose pose is outside a limit is refused (none here): a
+	 * pose beyond base's limit is */
+	{
+		double pose[4] = { 200, NAN, NAN, NAN };
+
+		assert_int_equal(live_move(f.lv, pose, s.nout, msg, sizeof(msg)), -ERANGE);
+		assert_non_null(strstr(msg, "base.angle"));
+	}
+
+	/* a segment of play: frames 0..24, back to rest holding the last pose */
+	{
+		struct live_play p = { .has_from = true, .from = 0, .has_to = true, .to = 24,
+				       .settle_ms = 200, .exposure_ms = 100, .timeout_s = 10 };
+
+		struct live_play endless = p;
+
+		/* a looped segment without an end: busy until a stop */
+		endless.loop = true;
+		ok(live_play(f.lv, &endless, msg, sizeof(msg)), msg);
+		assert_int_equal(live_play(f.lv, &p, msg, sizeof(msg)), -EBUSY);
+		assert_int_equal(live_goto(f.lv, 3, msg, sizeof(msg)), -EBUSY);
+		ok(live_stop(f.lv, msg, sizeof(msg)), msg);
+		rest(&f, &s);
+		ok(live_play(f.lv, &p, msg, sizeof(msg)), msg);
+		rest(&f, &s);
+		assert_int_equal(s.fired, 25);
+		assert_int_equal(s.frame, 24);
+		assert_non_null(strstr(s.reason, "finished"));
+	}
+
+	/* e-stop: latched; enable refused until reset */
+	live_estop(f.lv);
+	expect_state(&f, LIVE_ESTOPPED, &s);
+	assert_non_null(strstr(s.reason, "e-stop"));
+	assert_int_equal(live_enable(f.lv, msg, sizeof(msg)), -EPERM);
+	ok(live_reset(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_DISABLED, &s);
+	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_ENABLED, &s);
+	ok(live_disable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_DISABLED, &s);
+	close_fixture(&f);
+}
+
+/* A jog held on (a dead-man longer than the test) into base's +170 limit:
+ * it arrives on the limit and never passes it. */
+static void test_jog_limit(void **state)
+{
+	struct fixture f;
+	struct live_snap s;
+	char msg[512];
+	double top = -1e9;
+	uint64_t last = 0;
+	int i;
+
+	open_fixture(&f, 1e9);
+	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_ENABLED, &s);
+	ok(live_jog(f.lv, 7, 0, 1.0, 1, msg, sizeof(msg)), msg);
+	/* 170 deg at 90 deg/s: ~2.2 s of virtual time, paced at the wall's */
+	for (i = 0; i < 10000; i++) {
+		live_snapshot(f.lv, &s);
+		if (s.serial != last) {
+			last = s.serial;
+			if (s.out[0].sp > top)
+				top = s.out[0].sp;
+			if (fabs(s.out[0].sp - 170) < 1e-7 && s.out[0].vel == 0)
+				break;
+		}
+		nanosleep(&(struct timespec){ .tv_nsec = 1000000 }, NULL);
+	}
+	/* on it: within a step of Q32.32 turns (8.4e-8 deg), never above */
+	printf("BOUND jog into the +170 limit: highest setpoint %.12g <= 170 + 1e-9 deg, at "
+	       "rest within 1e-7 deg of it\n", top);
+	assert_true(top <= 170 + 1e-9);
+	assert_true(fabs(s.out[0].sp - 170) < 1e-7);
+	assert_int_equal(s.state, LIVE_MOVING); /* still jogging, no fault: limits kept */
+	ok(live_jog(f.lv, 7, 0, 0, 2, msg, sizeof(msg)), msg);
+	rest(&f, &s);
+	assert_true(fabs(s.out[0].sp - 170) < 1e-7);
+	close_fixture(&f);
+}
+
+/* Teach: a key where the rig stands; a refused teach (a limit broken)
+ * leaves the file as it was; delete and move. */
+static void test_teach(void **state)
+{
+	struct fixture f;
+	struct live_snap s;
+	char msg[512], *before, *after, bak[160];
+	const char *base = "base";
+
+	open_fixture(&f, 250);
+	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_ENABLED, &s);
+	ok(live_goto(f.lv, 48, msg, sizeof(msg)), msg);
+	rest(&f, &s);
+	/* key base's 60 deg at frame 72 (between 48 and 96, both 60) */
+	before = slurp(f.path, NULL);
+	ok(live_teach(f.lv, 72, &base, 1, msg, sizeof(msg)), msg);
+	after = slurp(f.path, NULL);
+	{
+		char line[96];
+
+		/* where the rig stands, between the keys at 48 and 96, in their style */
+		snprintf(line, sizeof(line), "      - {frame: 48, angle: 60}\n"
+			 "      - {frame: 72, angle: %.10g}\n      - {frame: 96,", s.out[0].sp);
+		assert_non_null(strstr(after, line));
+	}
+	/* the comments stay */
+	assert_non_null(strstr(after, "# turns about y on the floor"));
+	snprintf(bak, sizeof(bak), "%s.bak", f.path);
+	{
+		char *b = slurp(bak, NULL);
+
+		assert_string_equal(b, before);
+		free(b);
+	}
+	free(before);
+	/* 60 deg at frame 1 next to 0 deg at frame 0 breaks base's speed
+	 * limit: refused, file unchanged */
+	assert_int_equal(live_teach(f.lv, 1, &base, 1, msg, sizeof(msg)), -EDOM);
+	assert_non_null(strstr(msg, "violation"));
+	before = slurp(f.path, NULL);
+	assert_string_equal(before, after);
+	free(before);
+	free(after);
+	/* move it to 70, then delete it */
+	ok(live_teach_move(f.lv, "base", 72, 70, msg, sizeof(msg)), msg);
+	after = slurp(f.path, NULL);
+	assert_non_null(strstr(after, "{frame: 70, angle: 53.47"));
+	free(after);
+	ok(live_teach_delete(f.lv, "base", 70, msg, sizeof(msg)), msg);
+	after = slurp(f.path, NULL);
+	assert_null(strstr(after, "frame: 70"));
+	free(after);
+	ok(live_disable(f.lv, msg, sizeof(msg)), msg);
+	close_fixture(&f);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_states_jog_goto_play),
+		cmocka_unit_test(test_jog_limit),
+		cmocka_unit_test(test_teach),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
