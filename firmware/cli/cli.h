@@ -83,6 +83,6 @@ struct loop_report;
 int cli_play_exit(const struct loop_report *r);
 
 extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info, cmd_play, cmd_journal,
-	cmd_import, cmd_serve;
+	cmd_import, cmd_serve, cmd_dfmoco;
 
 #endif /* STRAND_CLI_H */

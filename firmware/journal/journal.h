@@ -186,6 +186,7 @@ struct journal {
 	int fd;
 	uint32_t hdr_bytes;
 	uint32_t rec_bytes;
+	uint32_t mode;      /* the header's: JOURNAL_MODE_* */
 	uint32_t per_chunk; /* records per chunk */
 	long page;
 	int64_t capacity;   /* records at most; JOURNAL_UNBOUNDED: no end */

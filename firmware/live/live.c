@@ -168,6 +168,46 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 	return rc;
 }
 
+/* ---- the journal ---- */
+
+/* Records the journal keeps mapped ahead of the loop (as strand play's:
+ * ten seconds of frames at the scene's rate, 4096 at least). */
+static int journal_up(struct live *lv, char *err, size_t errsize)
+{
+	const struct play_source *s = &lv->sc->src.s;
+	const char *names[LOOP_LIVE_OUT_MAX];
+	uint32_t units[LOOP_LIVE_OUT_MAX], i, n = lv->rig.nout;
+	struct journal_info ji;
+	int rc;
+
+	for (i = 0; i < n; i++) {
+		names[i] = lv->rig.out[i].channel;
+		units[i] = lv->rig.out[i].unit == SRC_UNIT_TURNS ? JOURNAL_UNIT_TURNS :
+								    JOURNAL_UNIT_PLAIN;
+	}
+	memset(&ji, 0, sizeof(ji));
+	ji.scene = s->name;
+	ji.rate_num = s->timing.num;
+	ji.rate_den = s->timing.den;
+	ji.tick_hz = s->timing.tick_hz;
+	ji.mode = JOURNAL_MODE_STEP | (lv->o.journal_gomo ? JOURNAL_MODE_GOMO : 0);
+	ji.start_wall_ns = hal_clock_wall(&lv->clk);
+	ji.nout = n;
+	ji.out_name = names;
+	ji.out_unit = units;
+	ji.capacity = JOURNAL_UNBOUNDED;
+	ji.ahead = (int64_t)fmax(4096, 10.0 * s->timing.num / s->timing.den *
+					       (lv->rig.ntrig ? lv->rig.ntrig : 1));
+	ji.behind = lv->rig.ntrig ? lv->rig.ntrig : 1;
+	rc = journal_open(&lv->jr, lv->o.journal, &ji);
+	if (rc) {
+		snprintf(err, errsize, "journal %s: %s", lv->o.journal, strerror(-rc));
+		return rc;
+	}
+	lv->has_journal = true;
+	return 0;
+}
+
 /* ---- open and close ---- */
 
 static int data_dir_of(struct live *lv, const char *scene)
@@ -313,6 +353,8 @@ int live_open(struct live **out, const char *scene, const struct live_opts *o, c
 	rc = live_scene_open(&lv->sc, scene, err, errsize);
 	if (!rc)
 		rc = live_rig_up(lv, err, errsize);
+	if (!rc && lv->o.journal)
+		rc = journal_up(lv, err, errsize);
 	if (rc) {
 		live_close(lv);
 		return rc;
@@ -339,6 +381,8 @@ void live_close(struct live *lv)
 	}
 	loop_free(lv->L);
 	live_rig_down(lv);
+	if (lv->has_journal)
+		journal_close(&lv->jr);
 	live_scene_free(lv->sc);
 	free(lv->st_buf);
 	free(lv->st);
@@ -400,6 +444,7 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 		s->out[i].vel = live_file_units(lv, i, st->out[i].vel);
 	}
 	s->cmd_seen = st->cmd_seq;
+	s->journal_frames = lv->has_journal ? atomic_load(&lv->jr.written) : -1;
 	s->serial = ++lv->serial;
 }
 
@@ -407,6 +452,10 @@ int live_service(struct live *lv)
 {
 	bool any = false;
 
+	/* chunks mapped ahead of the loop (journal.h); its error stops the
+	 * run at the next shot, which the report then names */
+	if (lv->has_journal)
+		journal_service(&lv->jr, hal_mono_ns());
 	while (lv->running && hal_ring_pop(&lv->status, lv->st)) {
 		pthread_mutex_lock(&lv->snap_mu);
 		take_sample(lv, lv->st);
@@ -455,6 +504,24 @@ void live_snapshot(struct live *lv, struct live_snap *s)
 	s->generation = lv->generation;
 	s->cmd_sent = atomic_load(&lv->cmd_sent);
 	pthread_mutex_unlock(&lv->snap_mu);
+}
+
+int64_t live_counts(struct live *lv, uint32_t i, double v)
+{
+	const struct rig_out *o = &lv->rig.out[i];
+	double core = o->unit == SRC_UNIT_TURNS ? v / 360.0 : v;
+	mot_q32 q;
+
+	if (!sd_to_q32(core, &q))
+		q = core < 0 ? MOT_Q32_MIN : MOT_Q32_MAX;
+	return hal_scale_counts(&o->scale, q, NULL);
+}
+
+double live_units(struct live *lv, uint32_t i, int64_t counts)
+{
+	const struct rig_out *o = &lv->rig.out[i];
+
+	return rig_file_units(o->unit, (double)(counts - o->scale.offset) / o->scale.per_unit_d);
 }
 
 uint32_t live_outputs(struct live *lv, struct live_out_info *out, uint32_t max)

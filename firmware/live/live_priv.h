@@ -23,6 +23,7 @@
 #include "play/loop.h"
 #include "rig/rig.h"
 #include "rig/rig_auto.h"
+#include "scene/source_path.h"
 #include "scene/source_scene.h"
 
 #define LIVE_CMD_RING 16
@@ -84,6 +85,19 @@ struct live {
 	uint64_t generation;
 	struct live_snap snap;   /* snap_mu */
 	uint64_t serial;
+
+	/* the frame journal (o.journal): one for the session, every run's
+	 * shots in it */
+	struct journal jr;
+	bool has_journal;
+	/* go-motion through a front end's poses (live_gomo): the loop reads
+	 * the path while it runs the segment, live_gomo writes it at rest */
+	struct source_path path;
+	const char *path_names[LOOP_LIVE_OUT_MAX];
+	enum src_unit path_units[LOOP_LIVE_OUT_MAX];
+	bool gomo_armed;         /* a live_gomo's segment, not yet told to go */
+	uint64_t path_seq;       /* the command that runs the path: until a sample
+				  * at rest has seen it, the loop may read it */
 };
 
 /* live.c */

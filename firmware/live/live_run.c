@@ -90,6 +90,8 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 	memset(&cfg, 0, sizeof(cfg));
 	cfg.live = true;
 	cfg.force = lv->o.force;
+	/* on the virtual clock time waits for the journal's service */
+	cfg.wait_for_journal = lv->clk.is_virtual;
 	cfg.status_every = lv->sc->src.s.timing.tick_hz / lv->o.status_hz;
 	if (cfg.status_every < 1)
 		cfg.status_every = 1;
@@ -108,6 +110,8 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 		lc.signal = &lv->signal_req;
 		rc = loop_live_init(lv->L, &lc, msg, size);
 	}
+	if (!rc && lv->has_journal)
+		loop_set_journal(lv->L, &lv->jr);
 	if (rc)
 		goto stop;
 	hal_ring_init(&lv->status, lv->st_buf, LIVE_STATUS_RING, lv->st_size);

@@ -218,10 +218,12 @@ struct loop_cfg {
 	 * from..to (the ends go on at their speed, plan/timeline.h) of
 	 * gomo_src, or of the run's source when it is NULL (the same tick
 	 * rate); gomo_wait: each frame waits, settled at its run-up's start,
-	 * for loop_gomo_go() */
+	 * for loop_gomo_go(); gomo_runup_ticks: the run-up lasts this long at
+	 * least (a front end that said how long it takes: DFMoco's bf) */
 	mot_q32 shutter;
 	struct play_source *gomo_src;
 	bool gomo_wait;
+	int64_t gomo_runup_ticks;
 	int64_t settle_ticks, exposure_ticks;
 	int64_t in_position_timeout_ticks, ready_timeout_ticks;
 	bool force;        /* clamp setpoints beyond the limits instead of stopping */

@@ -53,6 +53,7 @@ enum loop_cmd_kind {
 	LOOP_CMD_DISABLE, /* a controlled stop, then the run ends */
 	LOOP_CMD_SOURCE,  /* a new source (a taught scene), at rest only */
 	LOOP_CMD_NOP,     /* answered, nothing done (a probe of the latency) */
+	LOOP_CMD_GO,      /* a go-motion frame waiting armed runs up (loop_gomo_go) */
 };
 
 /* Why the loop refused a command (struct loop_ack.code), 0 when taken. */
@@ -73,7 +74,8 @@ struct loop_cmd {
 	double speed;        /* JOG: fraction of vmax, -1..1 */
 	mot_q32 pose[LOOP_LIVE_OUT_MAX]; /* MOVE */
 	int64_t frame;       /* MOVE: the frame whose pose it is, -1 */
-	struct loop_cfg cfg; /* PLAY: mode, from, to, loop, ping_pong, passes, times */
+	struct loop_cfg cfg; /* PLAY: mode, from, to, loop, ping_pong, passes, times, and
+			      * go-motion's shutter, gomo_src, gomo_wait, gomo_runup_ticks */
 	uint32_t nframes;    /* PLAY step: frames[0..nframes) */
 	struct frame_item frames[LOOP_LIVE_FRAME_ITEMS];
 	struct play_source *src; /* SOURCE */

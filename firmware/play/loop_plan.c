@@ -150,6 +150,8 @@ int STRAND_RT loop_gomo_plan(struct loop *L, int32_t *bad)
 	 * offset) rises during the run-up, never before it */
 	if (s->ru_ticks < s->lead)
 		s->ru_ticks = s->lead;
+	if (s->ru_ticks < L->cfg.gomo_runup_ticks)
+		s->ru_ticks = L->cfg.gomo_runup_ticks;
 	return 0;
 }
 

@@ -72,7 +72,7 @@ static struct journal_rec STRAND_RT *journal_take(struct loop *L, uint32_t i, in
 	rec->ferr = 0;
 	rec->ferr_out = -1;
 	rec->src_frame = loop_chase_frame(L, due);
-	if (L->cfg.shutter) {
+	if (jr->mode & JOURNAL_MODE_GOMO) {
 		struct journal_gomo *g = journal_gomo_of(rec, L->n);
 
 		g->open_tick = g->close_tick = -1;
@@ -99,7 +99,7 @@ static bool STRAND_RT rise(struct loop *L, uint32_t i, int64_t f, int64_t due)
 			return false;
 		}
 	}
-	if (L->cfg.shutter) {
+	if (L->cfg.shutter && L->trig.jr && (L->trig.jr->mode & JOURNAL_MODE_GOMO)) {
 		/* its exposure, when that has ended already (a late edge) */
 		pl->rec = pl->armed;
 		loop_gomo_journal(L);
