@@ -334,6 +334,11 @@ void sim_drive_trace_actual(struct sim_drive *d, double *buf)
 	d->trace_x = buf;
 }
 
+int64_t sim_drive_trace_first(const struct sim_drive *d)
+{
+	return d->trace_first;
+}
+
 int64_t sim_drive_traced(const struct sim_drive *d)
 {
 	return d->traced;

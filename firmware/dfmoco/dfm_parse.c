@@ -111,3 +111,32 @@ int dfm_parse(const char *line, size_t len, struct dfm_cmd *c, char *msg, size_t
 	}
 	return 0;
 }
+
+void dfm_lines_feed(struct dfm_lines *l, const char *in, size_t n,
+		    void (*fn)(void *ctx, const char *line, size_t len, bool overlong),
+		    void *ctx)
+{
+	size_t i;
+
+	for (i = 0; i < n; i++) {
+		char ch = in[i];
+
+		if (ch == '\n') {
+			size_t len = l->len;
+
+			if (len && l->buf[len - 1] == '\r')
+				len--;
+			/* an empty line is no command: Dragonframe's own "\r\n"
+			 * after "\r" lines, a stray newline */
+			if (len || l->overlong)
+				fn(ctx, l->buf, len, l->overlong);
+			l->len = 0;
+			l->overlong = false;
+			continue;
+		}
+		if (l->len < DFM_LINE_MAX + 1)
+			l->buf[l->len++] = ch;
+		else
+			l->overlong = true;
+	}
+}

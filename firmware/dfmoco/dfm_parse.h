@@ -32,6 +32,7 @@
 #ifndef STRAND_DFM_PARSE_H
 #define STRAND_DFM_PARSE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -61,5 +62,19 @@ int dfm_parse(const char *line, size_t len, struct dfm_cmd *c, char *msg, size_t
 
 /* "hi", "ms", ... */
 const char *dfm_name(enum dfm_kind k);
+
+/* Line assembly: bytes in, whole lines out. */
+struct dfm_lines {
+	char buf[DFM_LINE_MAX + 1];
+	size_t len;
+	bool overlong; /* the present line outgrew buf: dropped to its end */
+};
+
+/* Feed n bytes; fn(ctx, line, len, overlong) for each line ended by "\n"
+ * (a "\r" before it cut off; an empty line is none); an over-long line is
+ * given once, at its end, with overlong set and what was kept of it. */
+void dfm_lines_feed(struct dfm_lines *l, const char *in, size_t n,
+		    void (*fn)(void *ctx, const char *line, size_t len, bool overlong),
+		    void *ctx);
 
 #endif /* STRAND_DFM_PARSE_H */

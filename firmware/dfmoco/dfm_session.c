@@ -22,35 +22,6 @@
 /* the client's number for live_jog */
 #define DFM_CLIENT 1
 
-void dfm_lines_feed(struct dfm_lines *l, const char *in, size_t n,
-		    void (*fn)(void *ctx, const char *line, size_t len, bool overlong),
-		    void *ctx)
-{
-	size_t i;
-
-	for (i = 0; i < n; i++) {
-		char ch = in[i];
-
-		if (ch == '\n') {
-			size_t len = l->len;
-
-			if (len && l->buf[len - 1] == '\r')
-				len--;
-			/* an empty line is no command: Dragonframe's own "\r\n"
-			 * after "\r" lines, a stray newline */
-			if (len || l->overlong)
-				fn(ctx, l->buf, len, l->overlong);
-			l->len = 0;
-			l->overlong = false;
-			continue;
-		}
-		if (l->len < DFM_LINE_MAX + 1)
-			l->buf[l->len++] = ch;
-		else
-			l->overlong = true;
-	}
-}
-
 /* ---- output ---- */
 
 static void put(struct dfm_session *s, const char *text, size_t n)
@@ -266,11 +237,23 @@ static void hi(struct dfm_session *s)
 	if (s->snap.state != LIVE_ENABLED && s->snap.state != LIVE_MOVING &&
 	    s->snap.state != LIVE_STOPPING && live_enable(s->lv, msg, sizeof(msg)))
 		why(s, "%s", msg);
+	/* a new run of the loop counts its commands afresh */
 	memset(s->has_want, 0, sizeof(s->has_want));
+	memset(s->involved, 0, sizeof(s->involved));
+	s->move_sent = false;
+	s->busy_seq = 0;
 	s->gomo_ready = false;
-	s->last_state = LIVE_ENABLED;
-	live_service(s->lv);
-	live_snapshot(s->lv, &s->snap);
+	/* the loop's first sample, so that what follows sees the drives on
+	 * (a loop that starts takes a tick or two; 200 ms at most) */
+	for (int k = 0; k < 200; k++) {
+		live_service(s->lv);
+		live_snapshot(s->lv, &s->snap);
+		if (s->snap.state == LIVE_ENABLED || s->snap.state == LIVE_MOVING ||
+		    s->snap.state == LIVE_STOPPING)
+			break;
+		nanosleep(&(struct timespec){ .tv_nsec = 1000000 }, NULL);
+	}
+	s->last_state = s->snap.state;
 }
 
 static void ms(struct dfm_session *s)
@@ -627,10 +610,14 @@ void dfm_session_tick(struct dfm_session *s, int64_t now)
 	live_snapshot(s->lv, &s->snap);
 	if (s->snap.state != s->last_state &&
 	    (s->snap.state == LIVE_ESTOPPED || s->snap.state == LIVE_FAULTED)) {
-		why(s, "%s: %s; every motor stopped, the drives disabled",
-		    s->snap.state == LIVE_ESTOPPED ? "e-stop" : "fault", s->snap.reason);
+		/* the reason names it: "e-stop: input 'estop' ...", "device
+		 * fault: ..." */
+		why(s, "%s; every motor stopped", s->snap.reason[0] ? s->snap.reason :
+		    s->snap.state == LIVE_ESTOPPED ? "e-stop" : "fault");
 		memset(s->has_want, 0, sizeof(s->has_want));
 		memset(s->involved, 0, sizeof(s->involved));
+		s->move_sent = false;
+		s->busy_seq = 0;
 		s->gomo_ready = false;
 		for (i = 0; i < s->n; i++)
 			say_mp(s, i);

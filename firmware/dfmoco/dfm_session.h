@@ -58,20 +58,6 @@
 /* While motors move, their positions are said this often. */
 #define DFM_REPORT_NS 100000000
 
-/* Line assembly: bytes in, whole lines out. */
-struct dfm_lines {
-	char buf[DFM_LINE_MAX + 1];
-	size_t len;
-	bool overlong; /* the present line outgrew buf: dropped to its end */
-};
-
-/* [any] Feed n bytes; fn(ctx, line, len, overlong) for each line ended by
- * "\n" (a "\r" before it cut off); an over-long line is given once, its
- * first DFM_LINE_MAX bytes, with overlong set. */
-void dfm_lines_feed(struct dfm_lines *l, const char *in, size_t n,
-		    void (*fn)(void *ctx, const char *line, size_t len, bool overlong),
-		    void *ctx);
-
 struct dfm_session {
 	struct live *lv;
 	FILE *log;              /* what was refused and why, or NULL */

@@ -584,6 +584,7 @@ static int reset(struct live *lv, char *msg, size_t size)
 		snprintf(msg, size, "%s: nothing to reset", live_state_name(lv->state));
 		return lv->state == LIVE_ENABLED ? 0 : -EBUSY;
 	}
+	live_drain_inputs(lv);
 	if (live_estop_input(lv, msg, size))
 		return -EPERM;
 	atomic_store(&lv->estop_req, false);

@@ -128,6 +128,8 @@ int live_run_start(struct live *lv, char *msg, size_t size);
 void live_run_end(struct live *lv);
 /* A command to the loop and its answer: 0, or a negative errno. */
 int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg, size_t size);
+/* The inputs' queued edges taken (no loop runs): their levels are now's. */
+void live_drain_inputs(struct live *lv);
 /* Where the e-stop inputs stand: true when one is asserted (named in msg). */
 bool live_estop_input(struct live *lv, char *msg, size_t size);
 

@@ -39,8 +39,10 @@ static void *rt_main(void *arg)
 }
 
 /* Edges the inputs queued while no loop read them: an e-stop pressed and
- * released before must not stop the next run (its level does, if held). */
-static void drain_inputs(struct live *lv)
+ * released before must not stop the next run (its level does, if held);
+ * and a level read after them is the input's now (a simulated input's
+ * level moves only as its edges are taken). */
+void live_drain_inputs(struct live *lv)
 {
 	struct hal_edge ev[32];
 	int64_t now = hal_clock_now(&lv->clk);
@@ -74,7 +76,7 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 	uint32_t i;
 	int rc;
 
-	drain_inputs(lv);
+	live_drain_inputs(lv);
 	if (live_estop_input(lv, msg, size))
 		return -EPERM;
 	for (i = 0; i < lv->rig.naxes; i++) {
