@@ -443,7 +443,8 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 		s->out[i].fe = live_file_units(lv, i, st->out[i].fe);
 		s->out[i].vel = live_file_units(lv, i, st->out[i].vel);
 	}
-	s->cmd_seen = st->cmd_seq;
+	/* a run's loop counts from the commands it took itself */
+	s->cmd_seen = st->cmd_seq > lv->seq_run ? st->cmd_seq : lv->seq_run;
 	s->journal_frames = lv->has_journal ? atomic_load(&lv->jr.written) : -1;
 	s->serial = ++lv->serial;
 }

@@ -74,6 +74,7 @@ struct live {
 	struct loop_live_status *st; /* a sample being taken in */
 	uint32_t st_size;
 	uint64_t seq;
+	uint64_t seq_run;        /* seq when the run began: all taken before it */
 	_Atomic uint64_t cmd_sent; /* seq, for the snapshot */
 
 	enum live_state state;   /* outside a run; a run's comes from its samples */

@@ -127,6 +127,7 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 		snprintf(msg, size, "cannot start the loop thread: %s", strerror(-rc));
 		goto stop;
 	}
+	lv->seq_run = lv->seq;
 	lv->running = true;
 	lv->state = LIVE_ENABLED;
 	lv->reason[0] = 0;

@@ -544,9 +544,8 @@ void STRAND_RT loop_live_status(struct loop *L)
 		so->vel = L->out[i].vel;
 		so->off = L->safety.dev_off[o->dev];
 		so->jog = L->seq.state == LOOP_JOG && lv->jog[i].v != 0;
-		so->has_act = !o->vel_mode && !so->off &&
-			      hal_axis_actual(L->rig->axes[o->dev], o->ch, &act) &&
-			      loop_ferror(L, i, &so->fe);
+		so->has_act = loop_ferror(L, i, &so->fe);
+		act = L->out[i].act;
 		so->act = so->has_act ? (double)(act - o->scale.offset) / o->scale.per_unit_d : 0;
 		if (!so->has_act)
 			so->fe = 0;

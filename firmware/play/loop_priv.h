@@ -51,6 +51,13 @@ struct loop_out {
 	 * tick's speed until a stop begins */
 	double stop_v;
 	int64_t sent;           /* counts sent last tick */
+	/* this tick's feedback, as loop_feedback read it after the devices'
+	 * input (a CANopen drive's answer to the last SYNC is current only
+	 * until the next is sent): where the drive is, in counts, and the
+	 * following error, core units */
+	int64_t act;
+	double fe;
+	bool has_fb;
 	struct hal_setpoint sp; /* this tick's, in counts */
 	struct runup_ramp ru;   /* its ramp into the pass */
 	struct lim_bounds lim;  /* its limits, as the predicate takes them */
@@ -175,18 +182,15 @@ static inline double STRAND_RT loop_speed(const struct loop *L, uint32_t i)
 	return (move_q2d(L->val[i]) - move_q2d(L->prev[i])) * L->tm->tick_hz;
 }
 
-/* [rt] Output i's following error (what was sent minus where the drive
- * is), core units, into *fe; false when there is none to measure: a
- * velocity channel, a disabled device, no feedback this tick. */
+/* [rt] Output i's following error this tick (what was sent last tick minus
+ * where the drive is, as loop_feedback read it), core units, into *fe;
+ * false when there is none to measure: a velocity channel, a disabled
+ * device, no feedback this tick. */
 static inline bool STRAND_RT loop_ferror(const struct loop *L, uint32_t i, double *fe)
 {
-	const struct rig_out *o = &L->rig->out[i];
-	int64_t act;
-
-	if (o->vel_mode || L->safety.dev_off[o->dev] ||
-	    !hal_axis_actual(L->rig->axes[o->dev], o->ch, &act))
+	if (!L->out[i].has_fb || L->safety.dev_off[L->rig->out[i].dev])
 		return false;
-	*fe = hal_scale_delta_units(&o->scale, L->out[i].sent - act);
+	*fe = L->out[i].fe;
 	return true;
 }
 

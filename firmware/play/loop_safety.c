@@ -218,10 +218,14 @@ void STRAND_RT loop_feedback(struct loop *L, double *worst, int32_t *worst_out)
 	}
 	for (i = 0; i < L->n; i++) {
 		const struct rig_out *o = &r->out[i];
+		struct loop_out *lo = &L->out[i];
 		double fe, bound;
 
-		if (!loop_ferror(L, i, &fe))
+		lo->has_fb = !o->vel_mode && !L->safety.dev_off[o->dev] &&
+			     hal_axis_actual(r->axes[o->dev], o->ch, &lo->act);
+		if (!lo->has_fb)
 			continue;
+		fe = lo->fe = hal_scale_delta_units(&o->scale, lo->sent - lo->act);
 		if (fabs(fe) > *worst) {
 			*worst = fabs(fe);
 			*worst_out = (int32_t)i;

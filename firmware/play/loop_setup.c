@@ -229,6 +229,7 @@ static void read_rig(struct loop *L)
 		L->val[i] = L->prev[i];
 		L->out[i].sent = o->vel_mode ? 0 : hal_scale_counts(&o->scale, L->prev[i], NULL);
 		L->out[i].lim = out_bounds(o);
+		L->out[i].has_fb = false; /* until loop_feedback reads some */
 		/* the run starts from rest where the rig stands */
 		lim_meter_reset(&L->out[i].meter, &L->stencil, L->out[i].meter.ring, L->prev[i],
 				true);

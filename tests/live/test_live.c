@@ -22,6 +22,7 @@
 
 #include "live/live.h"
 #include "load/load.h"
+#include "mbpeer.h"
 #include "scene/source_scene.h"
 #include "testutil.h"
 
@@ -63,9 +64,10 @@ static char *slurp(const char *path, size_t *len)
 	return buf;
 }
 
-static void open_fixture(struct fixture *f, double deadman_ms)
+/* A live session on a copy of the scene (its own devices unless sim). */
+static void open_scene(struct fixture *f, const char *scene, bool sim, double deadman_ms)
 {
-	struct live_opts o = { .sim = true, .virtual_clock = true, .deadman_ms = deadman_ms };
+	struct live_opts o = { .sim = sim, .virtual_clock = true, .deadman_ms = deadman_ms };
 	char err[512], *text;
 	size_t len;
 	FILE *fp;
@@ -74,7 +76,7 @@ static void open_fixture(struct fixture *f, double deadman_ms)
 	snprintf(f->dir, sizeof(f->dir), "/tmp/strand-live-XXXXXX");
 	assert_non_null(mkdtemp(f->dir));
 	snprintf(f->path, sizeof(f->path), "%s/arm.yaml", f->dir);
-	text = slurp("examples/robot_arm.yaml", &len);
+	text = slurp(scene, &len);
 	fp = fopen(f->path, "wb");
 	fwrite(text, 1, len, fp);
 	fclose(fp);
@@ -86,6 +88,11 @@ static void open_fixture(struct fixture *f, double deadman_ms)
 		fail();
 	}
 	pthread_create(&f->svc, NULL, service, f);
+}
+
+static void open_fixture(struct fixture *f, double deadman_ms)
+{
+	open_scene(f, "examples/robot_arm.yaml", true, deadman_ms);
 }
 
 static void close_fixture(struct fixture *f)
@@ -358,12 +365,172 @@ static void test_teach(void **state)
 	close_fixture(&f);
 }
 
+/*
+ * Drives stopped and started again, as a live session does between runs of
+ * the loop (a disable, an e-stop and its reset): each device must report
+ * where it stands when it starts again and follow from there. Every
+ * output has a following error bound (0.2 degrees at rest, 1 at speed): a
+ * device that stood still while the new run's setpoints moved, or pulled
+ * towards an old target, faults the run.
+ */
+static void restart_cycles(struct fixture *f, const char *what)
+{
+	struct live_snap s;
+	char msg[512];
+	uint32_t i;
+	int cycle;
+
+	ok(live_enable(f->lv, msg, sizeof(msg)), msg);
+	expect_state(f, LIVE_ENABLED, &s);
+	for (cycle = 0; cycle < 2; cycle++) {
+		ok(live_goto(f->lv, 36, msg, sizeof(msg)), msg);
+		rest(f, &s);
+		if (cycle == 0) {
+			live_estop(f->lv);
+			expect_state(f, LIVE_ESTOPPED, &s);
+			ok(live_reset(f->lv, msg, sizeof(msg)), msg);
+		} else {
+			ok(live_disable(f->lv, msg, sizeof(msg)), msg);
+		}
+		expect_state(f, LIVE_DISABLED, &s);
+		ok(live_enable(f->lv, msg, sizeof(msg)), msg);
+		expect_state(f, LIVE_ENABLED, &s);
+		rest(f, &s);
+		/* started again where the drives stood when they stopped: frame
+		 * 36's pose, give or take what a servo had still to settle (an
+		 * e-stop or a disable takes the power at once) */
+		for (i = 0; i < s.nout; i++) {
+			printf("BOUND %s restart %d: %s stands at %.6f, held at %.6f (|fe| %.2e <= "
+			       "0.05 deg)\n", what, cycle, i ? "b" : "a", s.out[i].act, s.out[i].sp,
+			       fabs(s.out[i].fe));
+			assert_true(s.out[i].has_act);
+			assert_true(fabs(s.out[i].fe) <= 0.05);
+		}
+		assert_true(fabs(s.out[0].sp - 40) < 0.01);
+		/* and follows from there: a move and a segment of play */
+		ok(live_goto(f->lv, 0, msg, sizeof(msg)), msg);
+		rest(f, &s);
+		{
+			struct live_play p = { .has_from = true, .from = 24, .has_to = true,
+					       .to = 48, .timeout_s = 10 };
+
+			ok(live_play(f->lv, &p, msg, sizeof(msg)), msg);
+			rest(f, &s);
+			assert_int_equal(s.state, LIVE_ENABLED);
+			assert_non_null(strstr(s.reason, "finished"));
+		}
+	}
+	ok(live_disable(f->lv, msg, sizeof(msg)), msg);
+	expect_state(f, LIVE_DISABLED, &s);
+}
+
+/* Two revolute joints a and b over frames 0..72 (tests/mbpeer.h's), on the
+ * rig of devices (a YAML text) with the outputs given. */
+static void two_joint_scene(const char *path, const char *devices, const char *outputs)
+{
+	FILE *fp = fopen(path, "w");
+
+	assert_non_null(fp);
+	fprintf(fp,
+		"scene: restart\n"
+		"timing: {tick_hz: 1000, frame_rate: 24, frames: [0, 72]}\n"
+		"nodes:\n"
+		"  - {name: a, joint: {type: revolute, axis: y},\n"
+		"     limits: {min: -170, max: 170, velocity: 90, acceleration: 360}}\n"
+		"  - {name: b, parent: a, pivot: [0, 0.3, 0], joint: {type: revolute, axis: z},\n"
+		"     limits: {min: -90, max: 90, velocity: 60, acceleration: 240}}\n"
+		"strands:\n"
+		"  - {node: a, interpolation: hermite, ease: {in: 12, out: 12},\n"
+		"     keys: [{frame: 0, angle: 0}, {frame: 36, angle: 40}, {frame: 72, angle: 0}]}\n"
+		"  - {node: b, interpolation: hermite, ease: {in: 12, out: 12},\n"
+		"     keys: [{frame: 0, angle: 0}, {frame: 48, angle: -20}, {frame: 72, angle: 0}]}\n"
+		"devices:\n%s  - {name: io, driver: sim}\n"
+		"outputs:\n%s"
+		"triggers:\n"
+		"  - {name: camera, device: io, line: 0, pulse_ms: 2}\n", devices, outputs);
+	fclose(fp);
+}
+
+static void test_restart_sim(void **state)
+{
+	struct fixture f;
+	char path[160];
+
+	snprintf(path, sizeof(path), "/tmp/strand-live-sim-%d.yaml", (int)getpid());
+	two_joint_scene(path, "  - {name: drives, driver: sim}\n",
+			"  - {channel: a.angle, device: drives, axis: 0, counts_per_unit: 1000,\n"
+			"     ferror: 1, min_ferror: 0.2}\n"
+			"  - {channel: b.angle, device: drives, axis: 1, counts_per_unit: 1000,\n"
+			"     ferror: 1, min_ferror: 0.2}\n");
+	open_scene(&f, path, false, 250);
+	unlink(path);
+	restart_cycles(&f, "sim");
+	close_fixture(&f);
+}
+
+/* CiA 402 drives on the simulated bus (interface sim: the master, the
+ * protocol and the drives in-process): the drives' NMT and 402 states
+ * through a stop and a start. */
+static void test_restart_canopen(void **state)
+{
+	struct fixture f;
+	char path[160];
+
+	snprintf(path, sizeof(path), "/tmp/strand-live-co-%d.yaml", (int)getpid());
+	two_joint_scene(path, "  - {name: arm, driver: canopen,\n"
+			"     canopen: {interface: sim, bitrate: 1000000, heartbeat_ms: 20}}\n",
+			"  - {channel: a.angle, device: arm, node: 3, counts_per_unit: 1000,\n"
+			"     ferror: 1, min_ferror: 0.2}\n"
+			"  - {channel: b.angle, device: arm, node: 7, counts_per_unit: 1000,\n"
+			"     ferror: 1, min_ferror: 0.2}\n");
+	open_scene(&f, path, false, 250);
+	unlink(path);
+	restart_cycles(&f, "canopen");
+	close_fixture(&f);
+}
+
+/* A Modbus drive: strand-simdrive, a server in a process of its own,
+ * whose enable coil is cleared and set again. */
+static struct mbp_peer peer = { .pid = -1 };
+
+/* The server goes whatever the test came to (it holds the test's output). */
+static int stop_peer(void **state)
+{
+	if (peer.pid > 0)
+		mbp_stop(&peer);
+	peer.pid = -1;
+	return 0;
+}
+
+static void test_restart_modbus(void **state)
+{
+	struct fixture f;
+	char path[160], conn[96];
+	int port = mbp_free_port();
+
+	assert_true(port > 0);
+	snprintf(path, sizeof(path), "/tmp/strand-live-mb-%d.yaml", (int)getpid());
+	snprintf(conn, sizeof(conn), "tcp: {host: 127.0.0.1, port: %d}", port);
+	mbp_scene(path, 1000, conn, NULL, ", ferror: 1, min_ferror: 0.2");
+	if (mbp_start(&peer, path, ""))
+		fail_msg("strand-simdrive did not start: '%s'", peer.line);
+	open_scene(&f, path, false, 250);
+	unlink(path);
+	restart_cycles(&f, "modbus");
+	close_fixture(&f);
+	assert_int_equal(mbp_stop(&peer), 0);
+	peer.pid = -1;
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_states_jog_goto_play),
 		cmocka_unit_test(test_jog_limit),
 		cmocka_unit_test(test_teach),
+		cmocka_unit_test(test_restart_sim),
+		cmocka_unit_test(test_restart_canopen),
+		cmocka_unit_test_teardown(test_restart_modbus, stop_peer),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
