@@ -5,13 +5,15 @@
 #   make bench           all of them
 #   make bench-fixmath   libfixmath's Q16.16 against double (fix.h's choice)
 #   make bench-motion    the core against its double twin (bench/motion_bench.c)
+#   make bench-systems   surfaces, particles and flocks against double twins
+#                        (bench/sys_bench.c)
 #   make bench-play      the play loop against cyclictest, CPU per tick (mk/bench-play.sh)
 #   make bench-count     instructions per node per tick of every scene, core
 #                        and twin, counted by callgrind (bench/scene_count.c)
 
-.PHONY: bench-fixmath bench-motion bench-play bench-count
+.PHONY: bench-fixmath bench-motion bench-play bench-count bench-systems
 
-BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench
+BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench $(BUILD)/bench/sys_bench
 
 bench: $(BENCH_PROGS) $(BUILD)/strand | $(BUILD)/.deps-bench-play
 	$(Q)for p in $(BENCH_PROGS); do $$p || exit 1; done
@@ -48,7 +50,8 @@ MB_OBJ      := $(MB_SRC:%.c=$(BUILD)/bench/%.o)
 MB_CFLAGS    = -std=gnu11 -D_GNU_SOURCE -O2 $(filter-out -Wpedantic,$(WARN)) -Werror \
                -ffp-contract=off -iquote . -iquote firmware -iquote bench -iquote tests \
                $(shell pkg-config --cflags cmocka 2>/dev/null)
-MB_LINK     := $(BUILD)/firmware/scene/scene_build.o $(BUILD)/firmware/scene/scene_desc.o \
+MB_LINK     := $(BUILD)/firmware/scene/scene_build.o $(BUILD)/firmware/scene/scene_build_sys.o \
+               $(BUILD)/firmware/scene/scene_desc.o \
                $(BUILD)/libmotion.a
 
 $(BUILD)/bench/%.o: %.c | $(BUILD)/.deps-test
@@ -57,6 +60,15 @@ $(BUILD)/bench/%.o: %.c | $(BUILD)/.deps-test
 
 $(BUILD)/bench/motion_bench: $(MB_OBJ) $(MB_LINK)
 	$(Q)$(CC) $^ -lm -o $@
+
+# ---- the systems ---------------------------------------------------------------------
+SB_OBJ := $(BUILD)/bench/bench/sys_bench.o $(BUILD)/bench/bench/dbl_curve.o
+
+$(BUILD)/bench/sys_bench: $(SB_OBJ) $(MB_LINK)
+	$(Q)$(CC) $^ -lm -o $@
+
+bench-systems: $(BUILD)/bench/sys_bench
+	$(Q)$<
 
 # ---- the play loop ------------------------------------------------------------------
 # Its wake-up latency on the wall clock against cyclictest (Debian's

@@ -29,6 +29,7 @@ cross_run.armhf    := qemu-arm
 
 # The scene workloads build scenes in code through the firmware's builder.
 DIGEST_SRC := tests/digest/digest.c tests/synth.c firmware/scene/scene_build.c \
+              firmware/scene/scene_build_sys.c \
               firmware/scene/scene_desc.c
 DIGEST_CFLAGS := -std=gnu11 -O2 $(WARN) -Werror -ffp-contract=off -iquote . -iquote firmware \
                  -iquote tests

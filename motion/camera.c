@@ -13,7 +13,7 @@ static void cam_dir_at(struct cam_dir *d, const struct mot_camera *cam,
 		       const struct mot_curve *curves, struct mot_cursor *cursors, mot_q32 g,
 		       uint32_t *sat)
 {
-	mot_q32 v[MOT_CAM_NCHANNELS], dx, dy, dz, h;
+	mot_q32 v[MOT_CAM_NCHANNELS], dir[3];
 	int k;
 
 	for (k = 0; k < MOT_CAM_NCHANNELS; k++)
@@ -24,22 +24,23 @@ static void cam_dir_at(struct cam_dir *d, const struct mot_camera *cam,
 		d->look[k] = v[MOT_CAM_LOOK_X + k];
 	}
 	d->twist = v[MOT_CAM_TWIST];
-	dx = mot_sub_sat(d->look[0], d->eye[0], sat);
-	dy = mot_sub_sat(d->look[1], d->eye[1], sat);
-	dz = mot_sub_sat(d->look[2], d->eye[2], sat);
-	d->vertical = dx == 0 && dz == 0;
-	d->pan = mot_atan2(-dx, -dz);
-	h = (mot_q32)mot_isqrt_acc(mot_acc_mac(mot_acc_mul(dx, dx), dz, dz), sat);
-	d->tilt = mot_atan2(dy, h);
+	for (k = 0; k < 3; k++)
+		dir[k] = mot_sub_sat(d->look[k], d->eye[k], sat);
+	d->vertical = !mot_look(dir, &d->pan, &d->tilt, sat);
 }
 
-/* The representative of `principal` (mod 1 turn) nearest to ref. */
+bool mot_look(const mot_q32 d[3], mot_q32 *pan, mot_q32 *tilt, uint32_t *sat)
+{
+	mot_q32 h = (mot_q32)mot_isqrt_acc(mot_acc_mac(mot_acc_mul(d[0], d[0]), d[2], d[2]), sat);
+
+	*pan = mot_atan2(-d[0], -d[2]);
+	*tilt = mot_atan2(d[1], h);
+	return d[0] != 0 || d[2] != 0;
+}
+
 static mot_q32 unwrap(mot_q32 principal, mot_q32 ref)
 {
-	/* k = round(ref - principal) in whole turns */
-	mot_q32 k = (ref - principal + MOT_Q32_HALF) >> 32;
-
-	return principal + k * MOT_Q32_ONE;
+	return mot_pan_unwrap(principal, ref);
 }
 
 /* Shortest signed difference a - b on the circle, in (-1/2, 1/2] turn. */

@@ -52,6 +52,23 @@ struct mot_cam_pose {
 	struct mot_mat m;
 };
 
+/*
+ * The pan and tilt (turns) that look along d from a point (section 10):
+ * pan = atan2(-dx, -dz), tilt = atan2(dy, sqrt(dx^2 + dz^2)). Returns
+ * false when d is vertical (or zero): pan is then undefined (set to 0).
+ * Real-time safe. The camera and the aims (aim.h) share it.
+ */
+bool mot_look(const mot_q32 d[3], mot_q32 *pan, mot_q32 *tilt, uint32_t *sat);
+
+/* The representative of `principal` (mod 1 turn) nearest to ref. */
+static inline mot_q32 mot_pan_unwrap(mot_q32 principal, mot_q32 ref)
+{
+	/* k = round(ref - principal) in whole turns */
+	mot_q32 k = (ref - principal + MOT_Q32_HALF) >> 32;
+
+	return principal + k * MOT_Q32_ONE;
+}
+
 /* Number of pan samples init needs for a camera with nkeys keys. */
 uint32_t mot_camera_ref_count(uint32_t nkeys);
 

@@ -113,6 +113,16 @@ int mot_scene_validate(const struct mot_scene *sc)
 	for (i = 0; i < sc->nattrs; i++)
 		if (!in_range(sc->attr_curve[i], sc->ncurves))
 			return MOT_E_INVAL;
+	for (i = 0; i < sc->nsys; i++)
+		if ((uint64_t)sc->sys[i].out0 + sc->sys[i].nout > sc->nsysout)
+			return MOT_E_INVAL;
+	for (i = 0; i < sc->naims; i++) {
+		const struct mot_aim *a = &sc->aims[i];
+
+		if (a->src == MOT_AIM_SRC_NODE ? a->index >= sc->nnodes :
+		    a->src != MOT_AIM_SRC_SYS || (uint64_t)a->index + 3 > sc->nsysout)
+			return MOT_E_INVAL;
+	}
 	return MOT_OK;
 }
 
@@ -126,6 +136,8 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 		ev->cursors[i].seg = 0;
 		ev->cursors[i].key = 0;
 	}
+	for (i = 0; i < sc->nsys; i++)
+		mot_system_eval_reset(&ev->sys[i]);
 	ev->sat = 0;
 	return MOT_OK;
 }
@@ -549,4 +561,57 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 
 		out->attr[i] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], frame, &ev->sat);
 	}
+	for (i = 0; i < sc->nsys; i++)
+		mot_system_eval(&sc->sys[i], sc->curves, ev->cursors, &ev->sys[i], frame,
+				out->sysout + sc->sys[i].out0, &ev->sat);
+	for (i = 0; i < sc->naims; i++) {
+		const struct mot_aim *a = &sc->aims[i];
+		const mot_q32 *tgt = a->src == MOT_AIM_SRC_NODE ? out->pos[a->index] :
+								  out->sysout + a->index;
+
+		mot_aim_eval(a, tgt, frame, &out->aim[i][0], &out->aim[i][1], &ev->sat);
+	}
+}
+
+int mot_scene_aims_init(const struct mot_scene *sc, struct mot_aim *aims, struct mot_eval *ev,
+			struct mot_pose *out, struct mot_aim_march *m, uint32_t *bad)
+{
+	struct mot_scene tmp = *sc;
+	uint32_t i, k, nfine;
+	int err;
+
+	tmp.naims = 0; /* the march evaluates the targets, not the aims */
+	tmp.aims = NULL;
+	*bad = 0;
+	if (!sc->naims)
+		return MOT_OK;
+	err = mot_scene_validate(sc);
+	if (err)
+		return err;
+	/* one march for all: they share the span and the grid */
+	for (i = 0; i < sc->naims; i++) {
+		if (aims[i].nref != aims[0].nref || aims[i].f0 != aims[0].f0 ||
+		    aims[i].sub != aims[0].sub || !aims[i].pan_ref)
+			return MOT_E_INVAL;
+		m[i].have = false;
+		m[i].prev = m[i].ref = 0;
+	}
+	nfine = (aims[0].nref - 1) * 4 + 1;
+	mot_eval_reset(ev, sc);
+	for (k = 0; k < nfine; k++) {
+		mot_scene_eval(&tmp, ev, mot_aim_fine_frame(&aims[0], k, &ev->sat), out);
+		for (i = 0; i < sc->naims; i++) {
+			const mot_q32 *tgt = aims[i].src == MOT_AIM_SRC_NODE ?
+						     out->pos[aims[i].index] :
+						     out->sysout + aims[i].index;
+
+			err = mot_aim_march(&aims[i], &m[i], k, tgt, &ev->sat);
+			if (err) {
+				*bad = i;
+				return err;
+			}
+		}
+	}
+	mot_eval_reset(ev, sc);
+	return MOT_OK;
 }

@@ -26,12 +26,14 @@
 #ifndef MOT_SCENE_H
 #define MOT_SCENE_H
 
+#include "aim.h"
 #include "camera.h"
 #include "curve.h"
 #include "cycle.h"
 #include "fix.h"
 #include "mat.h"
 #include "strand.h"
+#include "system.h"
 #include "timing.h"
 
 enum mot_node_kind {
@@ -83,6 +85,18 @@ struct mot_scene {
 	const struct mot_cycle *cycles;
 	uint32_t nattrs;
 	const int32_t *attr_curve; /* curve index of each attribute */
+	uint32_t nsys;             /* surfaces, particle systems, flocks (system.h) */
+	const struct mot_system *sys;
+	uint32_t nsysout;          /* values they write: pose->sysout */
+	uint32_t naims;            /* pan/tilt heads following a target (aim.h) */
+	const struct mot_aim *aims;
+};
+
+/* Where an aim's target is: a node's pivot (index: the node), or three
+ * consecutive values x, y, z of pose->sysout (index: the x). */
+enum mot_aim_src {
+	MOT_AIM_SRC_NODE,
+	MOT_AIM_SRC_SYS,
 };
 
 /* Mutable evaluation state. cursors has mot_eval_cursor_count() entries. */
@@ -90,6 +104,7 @@ struct mot_eval {
 	struct mot_cursor *cursors; /* curves first, then rotation tracks */
 	uint32_t ncursors;
 	uint32_t sat;               /* sticky MOT_SAT_* bits of every evaluation */
+	struct mot_sys_eval *sys;   /* nsys: each laid out by mot_system_eval_init() */
 };
 
 /* The result of one evaluation; every array is caller-owned and sized from
@@ -102,6 +117,8 @@ struct mot_pose {
 	struct mot_cam_pose cam;
 	int32_t *cycle;        /* ncycles */
 	mot_q32 *attr;         /* nattrs */
+	mot_q32 *sysout;       /* nsysout: the systems' values (system.h) */
+	mot_q32 (*aim)[2];     /* naims: pan and tilt, turns */
 };
 
 /*
@@ -136,6 +153,16 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc);
  */
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out);
+
+/*
+ * Prepare every aim's pan grid (aim.h) by marching the scene over the aims'
+ * span (they share it, and their grid) with ev and out (sized for sc) and
+ * m (naims march states); aims is the scene's array (writable at build).
+ * 0, MOT_E_RANGE for a target too fast for an aim's grid (*bad: that aim),
+ * MOT_E_INVAL for a target out of range. Init only.
+ */
+int mot_scene_aims_init(const struct mot_scene *sc, struct mot_aim *aims, struct mot_eval *ev,
+			struct mot_pose *out, struct mot_aim_march *m, uint32_t *bad);
 
 /* The local matrix of one node at a frame (for jog/teach and the tests). */
 void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,

@@ -14,7 +14,8 @@
 
 const char *const cli_examples[NEXAMPLES] = {
 	"examples/robot_arm.yaml",  "examples/propeller.yaml", "examples/camera_move.yaml",
-	"examples/cycled_data.yaml", "examples/curves.yaml",
+	"examples/cycled_data.yaml", "examples/curves.yaml", "examples/kinetic_surface.yaml",
+	"examples/fountain_lights.yaml", "examples/flock_heads.yaml", "examples/cloth_winches.yaml",
 };
 
 void strand(struct run *r, const char *args)

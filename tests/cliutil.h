@@ -9,7 +9,7 @@
 #include <stddef.h>
 
 extern const char *const cli_examples[];
-#define NEXAMPLES 5
+#define NEXAMPLES 9
 
 struct run {
 	int rc;

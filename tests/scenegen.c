@@ -349,6 +349,94 @@ static void run_options(struct scenegen *g, struct tu_rng *r)
 	}
 }
 
+/*
+ * The seed's systems (issue 16), now and then: a surface, scripted or
+ * Newtonian particles (emitted, or a small pinned lattice), a flock, maybe
+ * a head aiming at an item, with limits on some channel that the run may or
+ * may not keep. From a generator of their own, after everything else, so
+ * that a seed's scene without them is what it was before they came.
+ */
+static void systems(struct scenegen *g, uint64_t seed)
+{
+	double secs = (double)(g->last - g->first) * g->den / g->num, f[3];
+	const char *interp;
+	struct tu_rng r;
+	uint32_t kind, k, a, b, n;
+	bool aim = false;
+	char target[32] = "";
+
+	tu_seed(&r, seed * 0xbf58476d1ce4e5b9ull + 16);
+	if (secs > 60 || !chance(&r, 0.3))
+		return;
+	kind = pick(&r, 4);
+	interp = interps[pick(&r, 6)];
+	key_frames(&r, (double)g->first, (double)g->last, 3, f);
+	if (kind == 0) {
+		uint32_t cu = 2 + pick(&r, 3), cv = 2 + pick(&r, 3), su = 1 + pick(&r, 4),
+			 sv = 1 + pick(&r, 4);
+
+		say(g, "surfaces:\n  - name: gs0\n    control: [%u, %u]\n    samples: [%u, %u]\n"
+		       "    origin: [-1, 2, -1]\n    size: [2, 2]\n    interpolation: %s\n"
+		       "    keys:\n", cu, cv, su, sv, interp);
+		for (k = 0; k < 3; k++) {
+			say(g, "      - {frame: %.1f, heights: [", f[k]);
+			for (a = 0; a < cu; a++) {
+				say(g, "%s[", a ? ", " : "");
+				for (b = 0; b < cv; b++)
+					say(g, "%s%.3f", b ? ", " : "", tu_uniform(&r, -0.5, 0.5));
+				say(g, "]");
+			}
+			say(g, "]}\n");
+		}
+		if (chance(&r, 0.5))
+			say(g, "    limits: {y: {min: %.2f, max: %.2f, velocity: %.3f, "
+			       "acceleration: %.3f}}\n", tu_uniform(&r, 1.3, 1.8),
+			    tu_uniform(&r, 2.2, 2.7), logu(&r, 0.05, 5), logu(&r, 0.05, 50));
+		aim = chance(&r, 0.5);
+		snprintf(target, sizeof(target), "gs0.%u.%u", pick(&r, su), pick(&r, sv));
+	} else if (kind == 1) {
+		n = 1 + pick(&r, 8);
+		say(g, "particles:\n  - name: gp0\n    pool: %u\n    motion: %s\n    step_hz: %u\n"
+		       "    seed: %u\n    emit:\n      interpolation: %s\n      keys:\n"
+		       "        - {frame: %.1f, rate: %.2f, spread: %.2f, velocity: [[-0.5, 1, -0.5], "
+		       "[0.5, 3, 0.5]], lifetime: [0.2, %.2f], colour: [[0, 0, 0], [1, 1, 1]]}\n"
+		       "        - {frame: %.1f, rate: %.2f}\n"
+		       "    over_life: {interpolation: linear, keys: [{age: 0, alpha: 1}, "
+		       "{age: 1, alpha: 0}]}\n    gravity: [0, -9.81, 0]\n", n,
+		    chance(&r, 0.5) ? "newtonian" : "scripted", 10 + pick(&r, 91), pick(&r, 1000),
+		    interps[pick(&r, 3)], f[0], tu_uniform(&r, 0, 10), tu_uniform(&r, 0, 5),
+		    tu_uniform(&r, 0.3, 2), f[2], tu_uniform(&r, 0, 10));
+	} else if (kind == 2) {
+		a = 2 + pick(&r, 3);
+		say(g, "particles:\n  - name: gc0\n    motion: newtonian\n    step_hz: 200\n"
+		       "    lattice: {size: [%u, %u], spacing: [0.2, 0.2], origin: [0, 2, 0]}\n"
+		       "    mass: 0.05\n    springs: {stiffness: %.2f, damping: 0.01}\n"
+		       "    gravity: [0, -9.81, 0]\n    drag: 2\n    pins: [{at: [1, 1]}, "
+		       "{at: [1, %u], keys: [{frame: %.1f, offset: [0, 0, 0]}, "
+		       "{frame: %.1f, offset: [0, %.2f, 0]}]}]\n", a, a, tu_uniform(&r, 1, 20), a,
+		    f[0], f[2], tu_uniform(&r, -0.3, 0.3));
+		if (chance(&r, 0.5))
+			say(g, "    limits: {y: {min: %.2f, velocity: %.3f, acceleration: %.3f}}\n",
+			    tu_uniform(&r, 0.5, 1.9), logu(&r, 0.2, 10), logu(&r, 1, 200));
+	} else {
+		n = 1 + pick(&r, 8);
+		say(g, "flocks:\n  - name: gb0\n    members: %u\n    step_hz: %u\n    seed: %u\n"
+		       "    start: {centre: [0, 2, 0], spread: 1, velocity: [0.3, 0, 0]}\n"
+		       "    separation: {distance: 0.4, weight: 2}\n    cohesion: 1\n"
+		       "    alignment: 1\n    goal: {weight: 1, interpolation: %s, keys: "
+		       "[{frame: %.1f, position: [1, 2, 0]}, {frame: %.1f, position: [-1, 2, 1]}]}\n"
+		       "    speed: %.2f\n    acceleration: %.2f\n", n, 10 + pick(&r, 91),
+		    pick(&r, 1000), interps[pick(&r, 3)], f[0], f[2], tu_uniform(&r, 0.2, 1),
+		    tu_uniform(&r, 0.5, 3));
+		aim = chance(&r, 0.5);
+		snprintf(target, sizeof(target), "gb0.%u", pick(&r, n));
+	}
+	/* a head far enough for no target to sweep a quarter turn in a grid step */
+	if (aim)
+		say(g, "aims:\n  - {name: gh0, at: [0, 8, -6], target: %s%s}\n", target,
+		    chance(&r, 0.5) ? ", limits: {pan: {velocity: 30, acceleration: 100}}" : "");
+}
+
 void scenegen_make(struct scenegen *g, uint64_t seed)
 {
 	struct tu_rng r;
@@ -373,6 +461,7 @@ void scenegen_make(struct scenegen *g, uint64_t seed)
 		camera(g, &r);
 	extras(g, &r);
 	run_options(g, &r);
+	systems(g, seed);
 }
 
 void scenegen_free(struct scenegen *g)

@@ -5,7 +5,8 @@
  * prismatic, about a coordinate axis or a tilted one), free nodes, every
  * interpolation and ease, rpm strands, cycles, attributes and a camera;
  * spans from a second to a day, tick rates from 100 Hz to 10 kHz, 24, 25
- * and 30000/1001 fps; with limits on some joints and none on others. The
+ * and 30000/1001 fps; with limits on some joints and none on others; now
+ * and then a surface, particles, a flock and a head aiming at an item. The
  * same seed gives the same scene on every machine.
  */
 #ifndef SCENEGEN_H

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "check/check_bus.h"
+#include "check/pools.h"
 #include "check/run_check.h"
 #include "cli.h"
 #include "exitcode.h"
@@ -93,6 +94,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	const struct rig_desc *rig;
 	const char *path;
 	int64_t ticks;
+	uint32_t pools;
 	int rc;
 
 	rc = cli_scene_args(cmd, argc, argv, out, err, check_options, on_opt, &o, &path, &sf, &b);
@@ -149,12 +151,16 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 
 		ticks = mot_timing_trigger_tick(&ss.s.timing, to) -
 			mot_timing_trigger_tick(&ss.s.timing, from) + 1;
+		/* a particle pool that runs out is a violation too */
+		pools = lim_pools(out, NULL, &sf.desc, &b.sc, o.run.to, NULL, 0);
 		fprintf(out, "%s: %u violation%s; %u channel%s with limits, frames %lld to %lld, "
-			"%lld ticks\n", path, lc.res.violations, lc.res.violations == 1 ? "" : "s",
+			"%lld ticks\n", path, lc.res.violations + pools,
+			lc.res.violations + pools == 1 ? "" : "s",
 			run_check_count(&lc), run_check_count(&lc) == 1 ? "" : "s",
 			(long long)from, (long long)to, (long long)ticks);
 		check_buses(out, rig, sf.desc.tick_hz);
-		rc = lc.res.violations ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
+		lim_pools(NULL, out, &sf.desc, &b.sc, o.run.to, NULL, 0);
+		rc = lc.res.violations || pools ? STRAND_EXIT_VIOLATION : STRAND_EXIT_OK;
 	}
 out:
 	run_check_free(&lc);
@@ -177,7 +183,8 @@ const struct cli_cmd cmd_check = {
 		"post-roll to rest. Every channel the rig drives is held to its output's limits\n"
 		"(its node's where the output gives none), every other joint to its node's:\n"
 		"min and max value, velocity, acceleration, and where a controlled stop would\n"
-		"leave it. Each run of ticks breaking a limit is one line:\n"
+		"leave it; every particle system's pool, that its slots suffice. Each run of\n"
+		"ticks breaking a limit is one line:\n"
 		"  CHANNEL: KIND WORST UNIT beyond limit LIMIT UNIT, frames FIRST to LAST\n"
 		"then a summary line. The options are strand play's, and check what such a run\n"
 		"plays (default: the scene's span, once); --mode step --shutter ANGLE walks\n"

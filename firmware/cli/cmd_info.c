@@ -160,6 +160,42 @@ static void others(FILE *out, const struct scene_desc *d)
 	}
 }
 
+/* The systems and aims: what each is, its items and channels, its steps
+ * and checkpoints (what seeking costs). */
+static void systems(FILE *out, const struct scene_desc *d, const struct mot_scene *sc)
+{
+	uint32_t i;
+
+	if (d->nsys)
+		fprintf(out, "\nsystems: %u\n", d->nsys);
+	for (i = 0; i < d->nsys; i++) {
+		const struct sd_system *s = &d->sys[i];
+		const struct mot_system *m = &sc->sys[i];
+		const struct mot_steps *st = m->kind == MOT_SYS_PARTICLES ? &m->particles->steps :
+					     m->kind == MOT_SYS_FLOCK ? &m->flock->steps : NULL;
+
+		fprintf(out, "  %-16s ", sd_sys_name(s));
+		if (s->kind == SD_SURFACE)
+			fprintf(out, "surface, %s net %u x %u, %u x %u samples", s->surface->basis ==
+				MOT_SURFACE_BEZIER ? "Bezier" : "B-spline", s->surface->ncu,
+				s->surface->ncv, s->surface->nsu, s->surface->nsv);
+		else if (s->kind == SD_PARTICLES)
+			fprintf(out, "particles, %s, %s of %u", s->particles->motion ==
+				MOT_PARTICLES_NEWTON ? "newtonian" : "scripted",
+				s->particles->emit ? "a pool" : "a lattice", m->nitems);
+		else
+			fprintf(out, "flock of %u", m->nitems);
+		fprintf(out, ": %u channels", m->nout);
+		if (st)
+			fprintf(out, ", %lld steps at %g a second, a checkpoint every %u",
+				(long long)st->nsteps, (double)st->rate_num / st->rate_den, st->every);
+		fprintf(out, "\n");
+	}
+	if (d->naims)
+		fprintf(out, "\naims: %u (pan and tilt, %u grid points a frame)\n", d->naims,
+			sc->aims[0].sub);
+}
+
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
 	static const struct option opts[] = { { "help", no_argument, NULL, 'h' }, { 0 } };
@@ -188,6 +224,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	}
 	strands(out, &sf);
 	others(out, d);
+	systems(out, d, &b.sc);
 	fprintf(out, "\ncore: %zu bytes in one block (%u curves, %u rotation tracks, %u free strands)\n",
 		b.block_size, b.sc.ncurves, b.sc.nrot, b.sc.nfree);
 	scene_built_free(&b);

@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "check/pools.h"
 #include "check/run_check.h"
 #include "cli.h"
 #include "exitcode.h"
@@ -348,6 +349,7 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 		.shutter = c->o.loop.shutter,
 	};
 	char line[512];
+	uint32_t pools;
 	int rc;
 
 	if (c->step && fl->n) {
@@ -370,6 +372,16 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 		fprintf(c->err, "%s: the core's arithmetic saturated at frame %.10g: values too "
 			"large for its Q32.32 format\n", path, lc.res.sat_frame);
 		rc = STRAND_EXIT_INTERNAL;
+	} else if (!lc.res.violations && !c->o.loop.force &&
+		   (pools = lim_pools(NULL, NULL, ss->d, ss->sc, run.to, line, sizeof(line)))) {
+		/* check prints a pool's line after the walk's: the first when the
+		 * walk finds none */
+		fprintf(c->err,
+			"%s: strand check finds %u violation%s, the first: %s.\n"
+			"strand play refuses it ('strand check %s' with the same options lists "
+			"them all); --force plays it,\nthe particles that find no slot left out.\n",
+			path, pools, pools == 1 ? "" : "s", line, path);
+		rc = STRAND_EXIT_VIOLATION;
 	} else if (lc.res.violations && !c->o.loop.force) {
 		run_check_line(line, sizeof(line), &lc, &lc.first);
 		fprintf(c->err,

@@ -11,10 +11,11 @@
 #include <string.h>
 
 static const char *const top_keys[] = { "scene",      "timing",  "nodes",   "strands",
-					"camera",     "cycles",  "attributes", "devices",
+					"camera",     "cycles",  "attributes", "surfaces",
+					"particles",  "flocks",  "aims",    "devices",
 					"outputs",    "triggers", "inputs",  NULL };
-enum { T_SCENE, T_TIMING, T_NODES, T_STRANDS, T_CAMERA, T_CYCLES, T_ATTRS, T_DEVICES,
-       T_OUTPUTS, T_TRIGGERS, T_INPUTS, T_COUNT };
+enum { T_SCENE, T_TIMING, T_NODES, T_STRANDS, T_CAMERA, T_CYCLES, T_ATTRS, T_SURFACES,
+       T_PARTICLES, T_FLOCKS, T_AIMS, T_DEVICES, T_OUTPUTS, T_TRIGGERS, T_INPUTS, T_COUNT };
 
 static int yaml_error(struct ld *l, const yaml_parser_t *p)
 {
@@ -27,6 +28,52 @@ static int yaml_error(struct ld *l, const yaml_parser_t *p)
 		return ld_fail_at(l, m, -EBADMSG, "not valid YAML: %s %s",
 				  p->problem ? p->problem : "error", p->context);
 	return ld_fail_at(l, m, -EBADMSG, "not valid YAML: %s", p->problem ? p->problem : "error");
+}
+
+/* The name of anything before system or aim i that a channel name begins
+ * with, or NULL. */
+static const char *taken(struct ld *l, const char *name, uint32_t sys, uint32_t aim)
+{
+	const struct scene_desc *d = l->d;
+	uint32_t j;
+
+	if (ld_find_node(l, name, strlen(name)) >= 0)
+		return "a node";
+	if (!strcmp(name, "camera"))
+		return "the camera";
+	for (j = 0; j < d->ncycles; j++)
+		if (!strcmp(name, d->cycles[j].name))
+			return "a cycle";
+	for (j = 0; j < d->nattrs; j++)
+		if (!strcmp(name, d->attrs[j].name))
+			return "an attribute";
+	for (j = 0; j < sys && j < d->nsys; j++)
+		if (!strcmp(name, sd_sys_name(&d->sys[j])))
+			return "a system";
+	for (j = 0; j < aim; j++)
+		if (!strcmp(name, d->aims[j].name))
+			return "an aim";
+	return NULL;
+}
+
+/* Systems and aims share the channels' namespace too. */
+static int unique_sys_names(struct ld *l)
+{
+	const struct scene_desc *d = l->d;
+	const char *what;
+	uint32_t i;
+
+	for (i = 0; i < d->nsys; i++)
+		if ((what = taken(l, sd_sys_name(&d->sys[i]), i, 0)))
+			return ld_fail_at(l, l->mk->sys[i], -EINVAL,
+					  "system name '%s' is already the name of %s",
+					  sd_sys_name(&d->sys[i]), what);
+	for (i = 0; i < d->naims; i++)
+		if ((what = taken(l, d->aims[i].name, d->nsys, i)))
+			return ld_fail_at(l, l->mk->aim[i], -EINVAL,
+					  "aim name '%s' is already the name of %s", d->aims[i].name,
+					  what);
+	return 0;
 }
 
 /* Node, cycle and attribute names are channel prefixes: one namespace. */
@@ -71,7 +118,7 @@ static int unique_names(struct ld *l)
 	if (ld_find_node(l, "camera", 6) >= 0)
 		return ld_fail_at(l, l->mk->node[ld_find_node(l, "camera", 6)].at, -EINVAL,
 				  "'camera' names the camera's channels; call the node something else");
-	return 0;
+	return unique_sys_names(l);
 }
 
 static int sections(struct ld *l, yaml_node_t *root)
@@ -109,6 +156,14 @@ static int sections(struct ld *l, yaml_node_t *root)
 		err = ld_cycles(l, v[T_CYCLES]);
 	if (!err && v[T_ATTRS])
 		err = ld_attributes(l, v[T_ATTRS]);
+	if (!err && v[T_SURFACES])
+		err = ld_systems(l, v[T_SURFACES], SD_SURFACE);
+	if (!err && v[T_PARTICLES])
+		err = ld_systems(l, v[T_PARTICLES], SD_PARTICLES);
+	if (!err && v[T_FLOCKS])
+		err = ld_systems(l, v[T_FLOCKS], SD_FLOCK);
+	if (!err && v[T_AIMS])
+		err = ld_aims(l, v[T_AIMS]);
 	if (!err)
 		err = unique_names(l);
 	if (!err) {

@@ -62,6 +62,41 @@ static const struct sf_curve_marks *curve_marks(const struct scene_file *sf,
 	for (i = 0; i < sf->desc.ncycles; i++)
 		if (!strcmp(e->what, sf->desc.cycles[i].name))
 			*at = mk->cycle[i];
+	for (i = 0; i < sf->desc.nsys; i++)
+		if (!strcmp(e->what, sd_sys_name(&sf->desc.sys[i])))
+			*at = mk->sys[i];
+	for (i = 0; i < sf->desc.naims; i++)
+		if (!strcmp(e->what, sf->desc.aims[i].name))
+			*at = mk->aim[i];
+	return NULL;
+}
+
+/* Why the core refused a system or an aim (their own words). */
+static const char *sys_reason(const struct scene_file *sf, const char *what, int code)
+{
+	uint32_t i;
+
+	for (i = 0; i < sf->desc.naims; i++)
+		if (!strcmp(what, sf->desc.aims[i].name))
+			return code == MOT_E_RANGE ?
+			       "the target turns the head's pan by a quarter turn or more between two "
+			       "points of its grid: raise grid: (points a frame)" :
+			       "its target is not in the scene";
+	for (i = 0; i < sf->desc.nsys; i++) {
+		const struct sd_system *s = &sf->desc.sys[i];
+
+		if (strcmp(what, sd_sys_name(s)))
+			continue;
+		if (code == MOT_E_RANGE && s->kind == SD_PARTICLES)
+			return "unstable at its step: the springs' stiffness (per mass) and step "
+			       "want w h < 1.8 for the highest frequency w = sqrt(2 k n) of a point "
+			       "with n springs, and h (drag + 2 n damping) < 1: raise step_hz or "
+			       "soften the springs";
+		if (code == MOT_E_RANGE)
+			return "its span takes more steps than the core counts, or its values "
+			       "saturated the core's Q32.32 while it ran";
+		return "refused by the core (invalid settings)";
+	}
 	return NULL;
 }
 
@@ -118,6 +153,8 @@ int scene_file_build(const struct scene_file *sf, struct scene_built *out, struc
 	if (e.node >= 0)
 		snprintf(err->msg, sizeof(err->msg), "%s of node '%s': %s", what,
 			 sf->desc.nodes[e.node].name, reason(rc, false));
+	else if (sys_reason(sf, what, rc))
+		snprintf(err->msg, sizeof(err->msg), "'%s': %s", what, sys_reason(sf, what, rc));
 	else
 		snprintf(err->msg, sizeof(err->msg), "%s: %s", what,
 			 reason(rc, !strncmp(what, "camera", 6)));

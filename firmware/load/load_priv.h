@@ -35,6 +35,8 @@ struct sf_marks {
 	struct sf_curve_marks cam[MOT_CAM_NCHANNELS];
 	struct ld_mark *cycle;                /* ncycles */
 	struct sf_curve_marks *attr;          /* nattrs */
+	struct ld_mark *sys;                  /* nsys: each system's mapping */
+	struct ld_mark *aim;                  /* naims: each aim's mapping */
 };
 
 /* A joint that mimics another (`mimic:` on a node): its value is
@@ -223,6 +225,10 @@ int ld_tangent_check(struct ld *l, const struct sd_curve *c, const struct ld_mar
 int ld_camera(struct ld *l, yaml_node_t *n);     /* load_camera.c */
 int ld_cycles(struct ld *l, yaml_node_t *n);     /* load_cycle.c */
 int ld_attributes(struct ld *l, yaml_node_t *n); /* load_attr.c */
+/* surfaces:, particles:, flocks: (appended to the scene's systems, in
+ * that order) and aims: (load_system.c). */
+int ld_systems(struct ld *l, yaml_node_t *n, enum sd_sys_kind kind);
+int ld_aims(struct ld *l, yaml_node_t *n);
 
 /* The rig: devices:, outputs:, triggers:, inputs: (load_rig.c). */
 struct ld_rig_sections {

@@ -43,6 +43,7 @@ struct rl {
 	const char **dev_names;
 	yaml_node_t **dev_map;   /* each device's mapping */
 	yaml_node_item_t *out_it; /* the outputs' items */
+	uint32_t *out_item;      /* each output's item (a pattern makes several) */
 	struct rl_keys dk, ok;   /* a device's keys, an output's */
 	const char *drv_names[RL_DRIVERS_MAX + 1];
 	struct mot_timing t;     /* the scene's, for the triggers */
@@ -260,17 +261,19 @@ static bool is_angle(const struct rl *rl, const struct chan *c)
 {
 	if (c->kind == CHAN_VALUE)
 		return rl->l->d->nodes[c->index].kind == MOT_NODE_REVOLUTE;
-	return c->kind == CHAN_CAMERA && c->comp >= 3;
+	return (c->kind == CHAN_CAMERA && c->comp >= 3) || c->kind == CHAN_AIM ||
+	       (c->kind == CHAN_SYS && chan_is_angle(c));
 }
 
 /* An output's keys: the loader's, then the drivers' (in the table's order). */
-enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME, O_N };
+enum { O_CH, O_DEV, O_AXIS, O_CPU, O_OFF, O_LIM, O_FE, O_MINFE, O_INPOS, O_HOME, O_STRIDE,
+       O_N };
 
 static void output_keys(struct rl *rl)
 {
 	static const char *const own[] = { "channel", "device", "axis", "counts_per_unit",
 					   "offset", "limits", "ferror", "min_ferror",
-					   "in_position", "home", NULL };
+					   "in_position", "home", "stride", NULL };
 	const struct rig_driver *const *d;
 
 	rl->ok.n = 0;
@@ -295,6 +298,7 @@ static int output_axis(struct rl *rl, yaml_node_t *map, yaml_node_t *const *v,
 			return ld_fail(l, first, -EINVAL, "%s; '%s' is not one",
 				       (*d)->output_foreign, o->device);
 	*at = v[O_AXIS];
+	p.dev = &rl->r->devices[find(rl->dev_names, o->device)];
 	if (drv->parse_output) {
 		driver_values(&rl->ok, v, drv, dv);
 		return drv->parse_output(&p, v[O_AXIS], c, o, axis, at);
@@ -302,8 +306,50 @@ static int output_axis(struct rl *rl, yaml_node_t *map, yaml_node_t *const *v,
 	return v[O_AXIS] ? ld_int(l, v[O_AXIS], 0, 1023, axis) : 0;
 }
 
+/* A channel pattern: '*' stands for one or more characters other than '.'. */
+static bool glob(const char *pat, const char *name)
+{
+	if (!*pat)
+		return !*name;
+	if (*pat == '*') {
+		const char *n = name;
+
+		if (!*n || *n == '.')
+			return false;
+		for (; *n && *n != '.'; n++)
+			if (glob(pat + 1, n + 1))
+				return true;
+		return false;
+	}
+	return *pat == *name && glob(pat + 1, name + 1);
+}
+
+/* The channels a pattern matches, in the channels' order (row by row for
+ * a surface's samples): their count, and their indices into idx when not
+ * NULL. */
+static uint32_t matches(const struct rl *rl, const char *pat, uint32_t *idx)
+{
+	uint32_t i, n = 0;
+
+	for (i = 0; i < rl->ch.n; i++)
+		if (glob(pat, rl->chan_names[i])) {
+			if (idx)
+				idx[n] = i;
+			n++;
+		}
+	return n;
+}
+
+/* An output's item: a channel, or a pattern and the one of its matches
+ * this output is (k, ch). */
+struct out_item {
+	bool pattern;
+	uint32_t k;
+	int ch;
+};
+
 static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output_desc *o,
-		  const yaml_node_item_t *it)
+		  const yaml_node_item_t *it, const struct out_item *pi)
 {
 	struct ld *l = rl->l;
 	yaml_node_t *v[RL_KEYS_MAX], *axis_at = NULL;
@@ -323,10 +369,15 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 		err = ld_require(l, map, "output", v[O_DEV], "device");
 	if (!err)
 		err = ld_require(l, map, "output", v[O_CPU], "counts_per_unit");
-	if (!err)
+	if (!err && pi->pattern)
+		ch = pi->ch;
+	else if (!err)
 		err = lookup(rl, v[O_CH], "channel", rl->chan_names, "the scene's channels", &ch);
 	if (!err)
 		err = lookup(rl, v[O_DEV], "device", rl->dev_names, "devices:", &dev);
+	if (!err && v[O_STRIDE] && !pi->pattern)
+		err = ld_fail(l, v[O_STRIDE], -EINVAL,
+			      "stride spaces the outputs of a channel pattern (a channel with '*')");
 	if (err)
 		return err;
 	c = &rl->ch.c[ch];
@@ -340,6 +391,18 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 	err = output_axis(rl, map, v, c, drv, o, &axis, &axis_at);
 	if (err)
 		return err;
+	if (pi->pattern && pi->k) {
+		/* the pattern's k-th match: stride axes on from the first's (the
+		 * first's own default is the device's next axis) */
+		long long stride = 1;
+
+		if (v[O_STRIDE] && (err = ld_int(l, v[O_STRIDE], 1, 1 << 20, &stride)))
+			return err;
+		axis = (long long)rl->r->outputs[i - pi->k].axis + stride * (long long)pi->k;
+		if (axis > (1 << 24))
+			return ld_fail(l, map, -EINVAL, "the pattern's %u-th channel would take axis "
+				       "%lld", pi->k + 1, axis);
+	}
 	o->axis = (uint32_t)axis;
 	for (j = 0; j < i; j++)
 		if (!strcmp(rl->r->outputs[j].device, o->device) && rl->r->outputs[j].axis == o->axis)
@@ -347,7 +410,7 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 				       "%s %u of device '%s' already drives '%s' (line %u)",
 				       drv->axis_name ? drv->axis_name : "axis", o->axis, o->device,
 				       rl->r->outputs[j].channel,
-				       (unsigned)ld_mark_of(ld_node(l, it[j])).line);
+				       (unsigned)ld_mark_of(ld_node(l, it[rl->out_item[j]])).line);
 	err = ld_num(l, v[O_CPU], &o->counts_per_unit);
 	if (err)
 		return err;
@@ -374,13 +437,23 @@ static int output(struct rl *rl, yaml_node_t *map, uint32_t i, struct rig_output
 	if (err)
 		return ld_fail(l, at_min ? v[O_MINFE] : map, err, "%s", msg);
 	/* moves and stops are planned with these: the output's, else its node's */
-	rig_output_limits(&o->limits, c->kind == CHAN_VALUE ? &l->d->nodes[c->index].limits : NULL,
-			  &o->limits);
-	err = rig_output_check_limits(o->channel, &o->limits, c->kind == CHAN_VALUE, msg,
+	rig_output_limits(&o->limits, chan_limits(c, l->d), &o->limits);
+	err = rig_output_check_limits(o->channel, &o->limits, chan_limits(c, l->d) != NULL, msg,
 				      sizeof(msg));
 	if (err)
 		return ld_fail(l, map, err, "%s", msg);
 	return 0;
+}
+
+/* The pattern of an item's channel: the string, if it has a '*'. */
+static const char *pattern_of(struct rl *rl, yaml_node_t *map)
+{
+	yaml_node_t *c = map->type == YAML_MAPPING_NODE ? yml_value(&rl->l->y, map, "channel") :
+							  NULL;
+	const char *s = c && c->type == YAML_SCALAR_NODE ? (const char *)c->data.scalar.value :
+							    NULL;
+
+	return s && strchr(s, '*') ? s : NULL;
 }
 
 static int outputs(struct rl *rl, yaml_node_t *seq)
@@ -388,21 +461,45 @@ static int outputs(struct rl *rl, yaml_node_t *seq)
 	struct ld *l = rl->l;
 	struct rig_output_desc *out;
 	yaml_node_item_t *it;
-	size_t count, i;
+	size_t count, i, total = 0;
+	uint32_t *idx = NULL, n = 0, k;
 	int err = ld_seq(l, seq, "outputs", &it, &count);
 
 	if (err)
 		return err;
-	out = pool_array(l->pool, count ? count : 1, sizeof(*out));
-	if (!out)
+	/* a channel pattern is an output for each channel it matches */
+	for (i = 0; i < count; i++) {
+		const char *pat = pattern_of(rl, ld_node(l, it[i]));
+
+		n = pat ? matches(rl, pat, NULL) : 1;
+		if (!n)
+			return ld_fail(l, yml_value(&l->y, ld_node(l, it[i]), "channel"), -EINVAL,
+				       "channel pattern '%s' matches no channel of the scene ('*' "
+				       "stands for a part between dots: skin.*.*.y)", pat);
+		total += n;
+	}
+	out = pool_array(l->pool, total ? total : 1, sizeof(*out));
+	rl->out_item = pool_array(l->pool, total ? total : 1, sizeof(*rl->out_item));
+	idx = pool_array(l->pool, rl->ch.n ? rl->ch.n : 1, sizeof(*idx));
+	if (!out || !rl->out_item || !idx)
 		return ld_nomem(l);
 	rl->r->outputs = out;
 	rl->out_it = it;
-	for (i = 0; i < count; i++) {
-		err = output(rl, ld_node(l, it[i]), (uint32_t)i, &out[i], it);
-		if (err)
-			return err;
-		rl->r->noutputs = (uint32_t)i + 1;
+	for (i = 0, total = 0; i < count; i++) {
+		yaml_node_t *map = ld_node(l, it[i]);
+		const char *pat = pattern_of(rl, map);
+		struct out_item pi = { pat != NULL, 0, -1 };
+
+		n = pat ? matches(rl, pat, idx) : 1;
+		for (k = 0; k < n; k++, total++) {
+			pi.k = k;
+			pi.ch = pat ? (int)idx[k] : -1;
+			rl->out_item[total] = (uint32_t)i;
+			err = output(rl, map, (uint32_t)total, &out[total], it, &pi);
+			if (err)
+				return err;
+			rl->r->noutputs = (uint32_t)total + 1;
+		}
 	}
 	return 0;
 }
@@ -577,7 +674,7 @@ static int validate(struct rl *rl)
 	if (!err)
 		return 0;
 	if (e.output >= 0) {
-		at = ld_node(l, rl->out_it[e.output]);
+		at = ld_node(l, rl->out_it[rl->out_item[e.output]]);
 		if (e.key && yml_value(&l->y, at, e.key))
 			at = yml_value(&l->y, at, e.key);
 	} else if (e.device >= 0)

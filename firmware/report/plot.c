@@ -20,6 +20,12 @@
 #define LEFT 70
 #define GAP_X 90
 #define GAP_Y 70
+/* The most values sampled (channels x samples): a 64 x 64 surface's 12288
+ * channels get fewer samples, not a 200 MB table. */
+#define PLOT_VALUES_MAX (4u << 20)
+/* The most items of a system drawn (paths, lines on a chart), evenly
+ * chosen among them. */
+#define PLOT_ITEMS_MAX 64u
 
 int plot_samples_make(struct plot_samples *ps, const struct scene_file *sf,
 		      const struct mot_scene *sc, const struct chan_list *ch, double first,
@@ -29,6 +35,8 @@ int plot_samples_make(struct plot_samples *ps, const struct scene_file *sf,
 	struct mot_pose pose;
 	uint32_t s, c;
 
+	if ((uint64_t)n * ch->n > PLOT_VALUES_MAX)
+		n = PLOT_VALUES_MAX / ch->n > 2 ? PLOT_VALUES_MAX / ch->n : 2;
 	ps->n = n;
 	ps->frame = calloc(n, sizeof(*ps->frame));
 	ps->val = calloc((size_t)n * (ch->n ? ch->n : 1), sizeof(*ps->val));
@@ -113,19 +121,56 @@ struct page {
 	uint32_t next_id;
 };
 
-/* Top (x, z) or side (x, y) view of every node's path, keys marked. */
+/* The first channel of system s's item `item` (its x), or of the first
+ * system channel when item is UINT32_MAX. */
+static uint32_t sys_chan(const struct chan_list *ch, const struct scene_desc *d, uint32_t s,
+			 uint32_t item)
+{
+	uint32_t i, base = 0;
+
+	for (i = 0; i < ch->n && ch->c[i].kind != CHAN_SYS; i++)
+		;
+	for (base = 0; base < s; base++)
+		i += sd_sys_items(&d->sys[base]) * sd_sys_per(&d->sys[base]);
+	return i + (item == UINT32_MAX ? 0 : item * sd_sys_per(&d->sys[s]));
+}
+
+/* The items of system s drawn: every one, or PLOT_ITEMS_MAX evenly spaced. */
+static uint32_t drawn(const struct sd_system *s, uint32_t k)
+{
+	uint32_t n = sd_sys_items(s);
+
+	return n <= PLOT_ITEMS_MAX ? k : (uint32_t)((uint64_t)k * n / PLOT_ITEMS_MAX);
+}
+
+static uint32_t ndrawn(const struct sd_system *s)
+{
+	uint32_t n = sd_sys_items(s);
+
+	return n < PLOT_ITEMS_MAX ? n : PLOT_ITEMS_MAX;
+}
+
+/* Top (x, z) or side (x, y) view of every node's path, keys marked, and
+ * the paths of the systems' items (surface samples, particles, members). */
 static int view(struct page *p, double x, double y, uint32_t vaxis, const char *title)
 {
 	const struct scene_desc *d = &p->sf->desc;
 	struct chart c = { x, y, VIEW_W, VIEW_H, 0, 0, 0, 0, true, p->next_id++ };
 	double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
-	uint32_t i, k, n = p->ps->n;
+	uint32_t i, k, s, n = p->ps->n;
 
 	for (i = 0; i < d->nnodes; i++) {
 		range_of(plot_series(p->ps, 3 * i), n, &xlo, &xhi);
 		range_of(plot_series(p->ps, 3 * i + vaxis), n, &ylo, &yhi);
 	}
-	if (!d->nnodes)
+	for (s = 0; s < d->nsys; s++)
+		for (k = 0; k < ndrawn(&d->sys[s]); k++) {
+			uint32_t c0 = sys_chan(p->ch, d, s, drawn(&d->sys[s], k));
+
+			range_of(plot_series(p->ps, c0), n, &xlo, &xhi);
+			range_of(plot_series(p->ps, c0 + vaxis), n, &ylo, &yhi);
+		}
+	if (!d->nnodes && !d->nsys)
 		xlo = xhi = ylo = yhi = 0;
 	chart_fit(&c, xlo, xhi, ylo, yhi);
 	chart_axes(p->f, &c, title, "x", vaxis == 1 ? "y" : "z");
@@ -141,7 +186,40 @@ static int view(struct page *p, double x, double y, uint32_t vaxis, const char *
 				   svg_color(i));
 		}
 	}
+	for (s = 0; s < d->nsys; s++)
+		for (k = 0; k < ndrawn(&d->sys[s]); k++) {
+			uint32_t c0 = sys_chan(p->ch, d, s, drawn(&d->sys[s], k));
+
+			chart_line(p->f, &c, plot_series(p->ps, c0), plot_series(p->ps, c0 + vaxis),
+				   n, svg_color(d->nnodes + s), 0.8, NULL);
+		}
 	return 0;
+}
+
+/* One chart of channel k of every (drawn) item of system s against
+ * frames. */
+static void sys_chart(struct page *p, double x, double y, uint32_t s, uint32_t k)
+{
+	const struct scene_desc *d = &p->sf->desc;
+	const struct sd_system *sys = &d->sys[s];
+	const struct plot_samples *ps = p->ps;
+	struct chart c = { x, y, CHART_W, CHART_H, 0, 0, 0, 0, false, p->next_id++ };
+	double lo = INFINITY, hi = -INFINITY;
+	uint32_t i, nd = ndrawn(sys), c0 = sys_chan(p->ch, d, s, UINT32_MAX);
+	char title[160];
+
+	for (i = 0; i < nd; i++)
+		range_of(plot_series(ps, c0 + drawn(sys, i) * sd_sys_per(sys) + k), ps->n, &lo, &hi);
+	chart_fit(&c, ps->frame[0], ps->frame[ps->n - 1], lo, hi);
+	snprintf(title, sizeof(title), "%s.*.%s%s (%u of %u %s)", sd_sys_name(sys),
+		 sd_sys_suffix(sys, k), sd_sys_angle(sys, k) ? ", degrees" : "", nd,
+		 sd_sys_items(sys), sys->kind == SD_SURFACE ? "samples" :
+		 sys->kind == SD_FLOCK ? "members" : "slots");
+	chart_axes(p->f, &c, title, "frame", sd_sys_angle(sys, k) ? "deg" : "");
+	for (i = 0; i < nd; i++)
+		chart_line(p->f, &c, ps->frame,
+			   plot_series(ps, c0 + drawn(sys, i) * sd_sys_per(sys) + k), ps->n,
+			   svg_color(i), 0.8, NULL);
 }
 
 /* Key marks: points in data coordinates. */
@@ -259,11 +337,17 @@ static int channel_chart(struct page *p, double x, double y, uint32_t chan, uint
 }
 
 /* Charts: a node's three position channels together, the camera's eye and
- * its angles together, every other channel alone. */
+ * its angles together, an aim's pan and tilt together, a system's items
+ * all on one chart per channel (sys_chart), every other channel alone. */
 static uint32_t chart_group(const struct chan_list *ch, uint32_t i, char *title, size_t size)
 {
 	const struct chan *c = &ch->c[i];
 
+	if (c->kind == CHAN_AIM) {
+		snprintf(title, size, "%.*s (.pan .tilt, degrees)",
+			 (int)(strrchr(c->name, '.') - c->name), c->name);
+		return 2;
+	}
 	if (c->kind == CHAN_POS) {
 		snprintf(title, size, "%.*s position (.x .y .z)",
 			 (int)(strrchr(c->name, '.') - c->name), c->name);
@@ -288,8 +372,12 @@ int plot_overview(FILE *f, const struct scene_file *sf, const struct mot_scene *
 	char title[160];
 	int err = 0;
 
-	for (i = 0; i < ch->n; i += n, groups++)
+	for (i = 0; i < ch->n && ch->c[i].kind != CHAN_SYS; i += n, groups++)
 		n = chart_group(ch, i, title, sizeof(title));
+	for (n = 0; n < sf->desc.nsys; n++)
+		groups += sd_sys_per(&sf->desc.sys[n]);
+	for (; i < ch->n; i++)
+		groups += ch->c[i].kind == CHAN_AIM && ch->c[i].comp == 0;
 	height = 90 + VIEW_H + 90 + ((groups + 1) / 2) * (CHART_H + GAP_Y) + 20;
 	p.at_key = calloc(ch->n ? ch->n : 1, sizeof(*p.at_key));
 	if (!p.at_key)
@@ -298,15 +386,34 @@ int plot_overview(FILE *f, const struct scene_file *sf, const struct mot_scene *
 	snprintf(title, sizeof(title), "%s - %s", sf->desc.name[0] ? sf->desc.name : "scene",
 		 sf->path);
 	svg_text(f, LEFT, 30, 18, "start", "#000", title);
-	err = view(&p, LEFT, 80, 2, "top view (x, z): node paths, keys ringed");
+	err = view(&p, LEFT, 80, 2, sf->desc.nsys ? "top view (x, z): node and item paths, keys ringed" :
+						     "top view (x, z): node paths, keys ringed");
 	if (!err)
-		err = view(&p, LEFT + VIEW_W + GAP_X, 80, 1, "side view (x, y): node paths, keys ringed");
+		err = view(&p, LEFT + VIEW_W + GAP_X, 80, 1,
+			   sf->desc.nsys ? "side view (x, y): node and item paths, keys ringed" :
+					   "side view (x, y): node paths, keys ringed");
 	y = 80 + VIEW_H + 40;
-	for (i = 0; i < sf->desc.nnodes; i++)
+	for (i = 0; i < sf->desc.nnodes + sf->desc.nsys; i++)
 		svg_legend(f, LEFT + (i % 8) * 140, y + (i / 8) * 16, svg_color(i),
-			   sf->desc.nodes[i].name, NULL);
-	y += ((sf->desc.nnodes + 7) / 8) * 16 + 40;
+			   i < sf->desc.nnodes ? sf->desc.nodes[i].name :
+						 sd_sys_name(&sf->desc.sys[i - sf->desc.nnodes]),
+			   NULL);
+	y += ((sf->desc.nnodes + sf->desc.nsys + 7) / 8) * 16 + 40;
 	for (i = 0; !err && i < ch->n; i += n) {
+		if (ch->c[i].kind == CHAN_SYS) {
+			/* a system: one chart per channel of an item */
+			uint32_t s = ch->c[i].owner, k, per = sd_sys_per(&sf->desc.sys[s]);
+
+			for (k = 0; k < per; k++) {
+				sys_chart(&p, LEFT + col * (CHART_W + GAP_X), y, s, k);
+				if (++col == 2) {
+					col = 0;
+					y += CHART_H + GAP_Y;
+				}
+			}
+			n = sd_sys_items(&sf->desc.sys[s]) * per;
+			continue;
+		}
 		n = chart_group(ch, i, title, sizeof(title));
 		err = channel_chart(&p, LEFT + col * (CHART_W + GAP_X), y, i, n, title);
 		if (++col == 2) {

@@ -7,13 +7,15 @@
 
 #include "rig_driver.h"
 
-extern const struct rig_driver rig_drv_sim, rig_drv_modbus, rig_drv_gpio, rig_drv_canopen;
+extern const struct rig_driver rig_drv_sim, rig_drv_modbus, rig_drv_gpio, rig_drv_canopen,
+	rig_drv_dmx;
 
 const struct rig_driver *const rig_drivers[] = {
 	&rig_drv_sim,
 	&rig_drv_modbus,
 	&rig_drv_gpio,
 	&rig_drv_canopen,
+	&rig_drv_dmx,
 	NULL,
 };
 

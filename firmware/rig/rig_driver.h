@@ -14,6 +14,7 @@
  *   drv_gpio.c     trigger and input lines on a GPIO chip (hal/gpio/)
  *   drv_canopen.c  a CANopen bus of CiA 402 drives (hal/canopen/), or its
  *                  simulated bus (interface "sim")
+ *   drv_dmx.c      lights on DMX512 universes over E1.31 or Art-Net (hal/dmx/)
  *
  * Every hook is [init]. A hook left NULL is a thing the driver does not
  * do: a driver without make_axes drives no output, one without make_lines
@@ -42,6 +43,7 @@ struct rig_parse {
 	uint32_t tick_hz;       /* the scene's */
 	yaml_node_t *map;       /* the device's or the output's mapping */
 	yaml_node_t *const *v;  /* the values of the driver's keys, in its order; NULL: absent */
+	const struct rig_device_desc *dev; /* parse_output: the output's device */
 };
 
 /* What a driver's make hooks build on: the rig, its outputs bound and

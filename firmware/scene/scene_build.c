@@ -16,27 +16,8 @@
 #include <string.h>
 
 #include "motion/arena.h"
+#include "scene_build_priv.h"
 
-/* Where the layout pass puts things; filled on the real pass. */
-struct layout {
-	struct mot_arena *a;
-	struct mot_scene *sc;
-	struct mot_node *nodes;
-	struct mot_curve *curves;
-	struct mot_rot_track *rot;
-	struct mot_free_strand *free;
-	struct mot_camera *camera;
-	struct mot_cycle *cycles;
-	int32_t *attr_curve;
-	uint32_t ncurves, nrot, nfree;
-};
-
-#define ALLOC(a, type, n) ((type *)mot_arena_alloc((a), sizeof(type) * (size_t)(n), _Alignof(type)))
-
-static bool curve_used(const struct sd_curve *c)
-{
-	return c->nkeys > 0;
-}
 
 /* Count what the scene needs (independent of the arena). */
 static void count(const struct scene_desc *d, struct layout *l)
@@ -62,12 +43,13 @@ static void count(const struct scene_desc *d, struct layout *l)
 	if (d->has_camera)
 		l->ncurves += MOT_CAM_NCHANNELS;
 	l->ncurves += d->nattrs;
+	l->ncurves += sb_sys_curves(d);
 }
 
 /* One curve: key array, segment array, init. `scale` converts values
  * (1 for units, 1/360 for degrees). */
-static int build_curve(struct layout *l, struct mot_curve *c, const struct sd_curve *sc,
-		       double scale, bool integral, uint32_t *bad_key)
+int sb_curve(struct layout *l, struct mot_curve *c, const struct sd_curve *sc, double scale,
+	     bool integral, uint32_t *bad_key)
 {
 	uint32_t nseg = sc->compact ? 0 : mot_curve_seg_count(sc->interp, sc->nkeys), i;
 	bool tangents = false;
@@ -182,7 +164,7 @@ static void free_span(const struct sd_free *f, double *lo, double *hi)
 		*lo = *hi = 0;
 }
 
-static int set_err(struct scene_build_err *e, int code, int node, const char *what, uint32_t key)
+int sb_err(struct scene_build_err *e, int code, int node, const char *what, uint32_t key)
 {
 	if (e) {
 		e->code = code;
@@ -222,12 +204,12 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 	l->cycles = ALLOC(a, struct mot_cycle, d->ncycles ? d->ncycles : 1);
 	l->attr_curve = ALLOC(a, int32_t, d->nattrs ? d->nattrs : 1);
 	if (fill && a->failed)
-		return set_err(e, MOT_E_CAPACITY, -1, "scene", UINT32_MAX);
+		return sb_err(e, MOT_E_CAPACITY, -1, "scene", UINT32_MAX);
 
 	if (fill) {
 		err = mot_timing_init(&l->sc->timing, d->rate_num, d->rate_den, d->tick_hz);
 		if (err)
-			return set_err(e, err, -1, "timing", UINT32_MAX);
+			return sb_err(e, err, -1, "timing", UINT32_MAX);
 	}
 	for (i = 0; i < d->nnodes; i++) {
 		const struct sd_node *sn = &d->nodes[i];
@@ -244,33 +226,33 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 			n->curve = n->spin = n->strand = -1;
 			for (k = 0; k < 3; k++) {
 				if (!sd_to_q32(sn->pivot[k], &n->pivot[k]))
-					return set_err(e, MOT_E_RANGE, (int)i, "pivot", UINT32_MAX);
+					return sb_err(e, MOT_E_RANGE, (int)i, "pivot", UINT32_MAX);
 				if (sn->kind == MOT_NODE_FREE)
 					n->axis[k] = 0;
 				else if (sn->axis_id != MOT_AXIS_VEC)
 					n->axis[k] = k == (uint32_t)sn->axis_id ? MOT_Q32_ONE : 0;
 				else if (!(len > 1e-9) || !sd_to_q32(sn->axis[k] / len, &n->axis[k]))
-					return set_err(e, MOT_E_INVAL, (int)i, "axis", UINT32_MAX);
+					return sb_err(e, MOT_E_INVAL, (int)i, "axis", UINT32_MAX);
 			}
 			if (!sd_to_q32(sn->rest * scale, &n->rest))
-				return set_err(e, MOT_E_RANGE, (int)i, "rest", UINT32_MAX);
+				return sb_err(e, MOT_E_RANGE, (int)i, "rest", UINT32_MAX);
 			mot_node_prepare(n);
 		}
 		if (sn->kind != MOT_NODE_FREE) {
 			if (curve_used(&sn->value)) {
-				err = build_curve(l, fill ? &l->curves[ci] : NULL, &sn->value, scale,
+				err = sb_curve(l, fill ? &l->curves[ci] : NULL, &sn->value, scale,
 						  false, &bad);
 				if (err)
-					return set_err(e, err, (int)i, "value", bad);
+					return sb_err(e, err, (int)i, "value", bad);
 				if (n)
 					n->curve = (int32_t)ci;
 				ci++;
 			}
 			if (curve_used(&sn->spin)) {
-				err = build_curve(l, fill ? &l->curves[ci] : NULL, &sn->spin, 1.0, true,
+				err = sb_curve(l, fill ? &l->curves[ci] : NULL, &sn->spin, 1.0, true,
 						  &bad);
 				if (err)
-					return set_err(e, err, (int)i, "spin", bad);
+					return sb_err(e, err, (int)i, "spin", bad);
 				if (n)
 					n->spin = (int32_t)ci;
 				ci++;
@@ -290,10 +272,10 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 					fs->channel[k] = -1;
 				if (!curve_used(&sf->ch[k]))
 					continue;
-				err = build_curve(l, fill ? &l->curves[ci] : NULL, &sf->ch[k], 1.0,
+				err = sb_curve(l, fill ? &l->curves[ci] : NULL, &sf->ch[k], 1.0,
 						  false, &bad);
 				if (err)
-					return set_err(e, err, (int)i, sd_free_names[k], bad);
+					return sb_err(e, err, (int)i, sd_free_names[k], bad);
 				if (fs)
 					fs->channel[k] = (int32_t)ci;
 				ci++;
@@ -304,12 +286,12 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 				if (!curve_used(&sf->quat[0]))
 					continue;
 				if (sf->nrot || !curve_used(&sf->quat[k]))
-					return set_err(e, MOT_E_INVAL, (int)i, sd_quat_names[k],
-						       UINT32_MAX);
-				err = build_curve(l, fill ? &l->curves[ci] : NULL, &sf->quat[k],
-						  1.0, false, &bad);
+					return sb_err(e, MOT_E_INVAL, (int)i, sd_quat_names[k],
+						      UINT32_MAX);
+				err = sb_curve(l, fill ? &l->curves[ci] : NULL, &sf->quat[k], 1.0,
+					       false, &bad);
 				if (err)
-					return set_err(e, err, (int)i, sd_quat_names[k], bad);
+					return sb_err(e, err, (int)i, sd_quat_names[k], bad);
 				if (fs)
 					fs->quat[k] = (int32_t)ci;
 				ci++;
@@ -319,7 +301,7 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 			if (sf->nrot) {
 				err = build_rot(l, fill ? &l->rot[ri] : NULL, sf, &bad);
 				if (err)
-					return set_err(e, err, (int)i, "rotation", bad);
+					return sb_err(e, err, (int)i, "rotation", bad);
 				if (fs)
 					fs->rot = (int32_t)ri;
 				ri++;
@@ -328,10 +310,10 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 				free_span(sf, &lo, &hi);
 				if (!sd_to_q32(lo, &qlo) || !sd_to_q32(hi, &qhi) ||
 				    !sd_to_q32(sf->ease_in, &qin) || !sd_to_q32(sf->ease_out, &qout))
-					return set_err(e, MOT_E_RANGE, (int)i, "ease", UINT32_MAX);
+					return sb_err(e, MOT_E_RANGE, (int)i, "ease", UINT32_MAX);
 				err = mot_warp_init(&fs->warp, qlo, qhi, qout, qin, &sat);
 				if (err)
-					return set_err(e, err, (int)i, "ease", UINT32_MAX);
+					return sb_err(e, err, (int)i, "ease", UINT32_MAX);
 				n->strand = (int32_t)fi;
 			}
 			fi++;
@@ -345,10 +327,10 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 		for (k = 0; k < MOT_CAM_NCHANNELS; k++) {
 			double scale = k == MOT_CAM_TWIST ? 1.0 / 360.0 : 1.0;
 
-			err = build_curve(l, fill ? &l->curves[ci] : NULL, &d->camera.ch[k], scale,
+			err = sb_curve(l, fill ? &l->curves[ci] : NULL, &d->camera.ch[k], scale,
 					  false, &bad);
 			if (err)
-				return set_err(e, err, -1, sd_cam_names[k], bad);
+				return sb_err(e, err, -1, sd_cam_names[k], bad);
 			if (fill)
 				l->camera->ch[k] = (int32_t)ci;
 			ci++;
@@ -360,39 +342,40 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 			mot_q32 qlo = 0, qhi = 0;
 
 			if (!ref)
-				return set_err(e, MOT_E_CAPACITY, -1, "camera", UINT32_MAX);
+				return sb_err(e, MOT_E_CAPACITY, -1, "camera", UINT32_MAX);
 			if (c0->nkeys == 0)
-				return set_err(e, MOT_E_NOKEYS, -1, "camera", UINT32_MAX);
+				return sb_err(e, MOT_E_NOKEYS, -1, "camera", UINT32_MAX);
 			if (!sd_to_q32(c0->keys[0].frame, &qlo) ||
 			    !sd_to_q32(c0->keys[c0->nkeys - 1].frame, &qhi) ||
 			    !sd_to_q32(d->camera.ease_in, &qin) || !sd_to_q32(d->camera.ease_out, &qout))
-				return set_err(e, MOT_E_RANGE, -1, "camera", UINT32_MAX);
+				return sb_err(e, MOT_E_RANGE, -1, "camera", UINT32_MAX);
 			err = mot_warp_init(&l->camera->warp, qlo, qhi, qout, qin, &sat);
 			if (err)
-				return set_err(e, err, -1, "camera.ease", UINT32_MAX);
+				return sb_err(e, err, -1, "camera.ease", UINT32_MAX);
 			err = mot_camera_init(l->camera, l->curves, ref, nref, &sat);
 			if (err)
-				return set_err(e, err, -1, "camera", UINT32_MAX);
+				return sb_err(e, err, -1, "camera", UINT32_MAX);
 		}
 	}
 	for (i = 0; i < d->nattrs; i++) {
-		err = build_curve(l, fill ? &l->curves[ci] : NULL, &d->attrs[i].curve, 1.0, false,
+		err = sb_curve(l, fill ? &l->curves[ci] : NULL, &d->attrs[i].curve, 1.0, false,
 				  &bad);
 		if (err)
-			return set_err(e, err, -1, d->attrs[i].name, bad);
+			return sb_err(e, err, -1, d->attrs[i].name, bad);
 		if (fill)
 			l->attr_curve[i] = (int32_t)ci;
 		ci++;
 	}
-	if (!fill)
-		return 0;
+	err = sb_systems(l, d, &ci, e);
+	if (err || !fill)
+		return err;
 	for (i = 0; i < d->ncycles; i++) {
 		const struct sd_cycle *c = &d->cycles[i];
 
 		err = mot_cycle_init(&l->cycles[i], c->first, c->last, c->skip, c->mode,
 				     c->frames_per_step, c->start_frame);
 		if (err)
-			return set_err(e, err, -1, c->name, UINT32_MAX);
+			return sb_err(e, err, -1, c->name, UINT32_MAX);
 	}
 	l->sc->nnodes = d->nnodes;
 	l->sc->nodes = l->nodes;
@@ -409,8 +392,13 @@ static int layout_all(struct layout *l, const struct scene_desc *d, struct scene
 	l->sc->attr_curve = l->attr_curve;
 	err = mot_scene_validate(l->sc);
 	if (err)
-		return set_err(e, err, -1, "hierarchy", UINT32_MAX);
-	return 0;
+		return sb_err(e, err, -1, "hierarchy", UINT32_MAX);
+	/* the systems run over their span once every curve is in place,
+	 * then the aims march over the whole scene */
+	err = sb_systems_init(l, d, e);
+	if (!err)
+		err = sb_aims_init(l, d, e);
+	return err;
 }
 
 int scene_build(struct scene_built *out, const struct scene_desc *d, struct scene_build_err *e)
@@ -422,7 +410,7 @@ int scene_build(struct scene_built *out, const struct scene_desc *d, struct scen
 	int err;
 
 	memset(out, 0, sizeof(*out));
-	set_err(e, 0, -1, NULL, UINT32_MAX);
+	sb_err(e, 0, -1, NULL, UINT32_MAX);
 	count(d, &l);
 	mot_arena_init(&a, NULL, 0);
 	l.a = &a;
@@ -432,7 +420,7 @@ int scene_build(struct scene_built *out, const struct scene_desc *d, struct scen
 	size = (a.used + 63) & ~(size_t)63;
 	block = aligned_alloc(64, size ? size : 64);
 	if (!block)
-		return set_err(e, -ENOMEM, -1, "scene", UINT32_MAX);
+		return sb_err(e, -ENOMEM, -1, "scene", UINT32_MAX);
 	mot_arena_init(&a, block, size);
 	err = layout_all(&l, d, e);
 	if (err) {
@@ -452,13 +440,40 @@ void scene_built_free(struct scene_built *b)
 	b->block = NULL;
 }
 
+/* Each system's part of an evaluation in one block after the array of
+ * struct mot_sys_eval (system.h). */
+static int sys_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
+{
+	size_t head = ((size_t)(sc->nsys ? sc->nsys : 1) * sizeof(*ev->sys) + 63) & ~(size_t)63;
+	size_t size = head, off;
+	unsigned char *block;
+	uint32_t i;
+
+	for (i = 0; i < sc->nsys; i++)
+		size += (mot_system_eval_bytes(&sc->sys[i]) + 63) & ~(size_t)63;
+	block = aligned_alloc(64, size);
+	if (!block)
+		return -ENOMEM;
+	ev->sys = (struct mot_sys_eval *)(void *)block;
+	for (i = 0, off = head; i < sc->nsys; i++) {
+		size_t n = mot_system_eval_bytes(&sc->sys[i]);
+
+		mot_system_eval_init(&ev->sys[i], &sc->sys[i], block + off, n);
+		off += (n + 63) & ~(size_t)63;
+	}
+	return 0;
+}
+
 int scene_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
 {
 	uint32_t n = mot_eval_cursor_count(sc);
 
+	memset(ev, 0, sizeof(*ev));
 	ev->cursors = calloc(n ? n : 1, sizeof(*ev->cursors));
-	if (!ev->cursors)
+	if (!ev->cursors || sys_eval_new(ev, sc)) {
+		scene_eval_free(ev);
 		return -ENOMEM;
+	}
 	ev->ncursors = n;
 	return mot_eval_reset(ev, sc);
 }
@@ -466,7 +481,9 @@ int scene_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
 void scene_eval_free(struct mot_eval *ev)
 {
 	free(ev->cursors);
+	free(ev->sys);
 	ev->cursors = NULL;
+	ev->sys = NULL;
 }
 
 int scene_pose_new(struct mot_pose *p, const struct mot_scene *sc)
@@ -480,7 +497,10 @@ int scene_pose_new(struct mot_pose *p, const struct mot_scene *sc)
 	p->rpm = calloc(n, sizeof(*p->rpm));
 	p->cycle = calloc(sc->ncycles ? sc->ncycles : 1, sizeof(*p->cycle));
 	p->attr = calloc(sc->nattrs ? sc->nattrs : 1, sizeof(*p->attr));
-	if (!p->world || !p->pos || !p->value || !p->rpm || !p->cycle || !p->attr) {
+	p->sysout = calloc(sc->nsysout ? sc->nsysout : 1, sizeof(*p->sysout));
+	p->aim = calloc(sc->naims ? sc->naims : 1, sizeof(*p->aim));
+	if (!p->world || !p->pos || !p->value || !p->rpm || !p->cycle || !p->attr || !p->sysout ||
+	    !p->aim) {
 		scene_pose_free(p);
 		return -ENOMEM;
 	}
@@ -495,5 +515,7 @@ void scene_pose_free(struct mot_pose *p)
 	free(p->rpm);
 	free(p->cycle);
 	free(p->attr);
+	free(p->sysout);
+	free(p->aim);
 	memset(p, 0, sizeof(*p));
 }

@@ -22,3 +22,56 @@ bool sd_deg_to_turns(double deg, mot_q32 *out)
 {
 	return sd_to_q32(deg / 360.0, out);
 }
+
+uint32_t sd_sys_items(const struct sd_system *s)
+{
+	switch (s->kind) {
+	case SD_SURFACE:
+		return s->surface->nsu * s->surface->nsv;
+	case SD_PARTICLES:
+		return s->particles->emit ? s->particles->npool :
+					    s->particles->lu * s->particles->lv;
+	default:
+		return s->flock->n;
+	}
+}
+
+uint32_t sd_sys_per(const struct sd_system *s)
+{
+	switch (s->kind) {
+	case SD_SURFACE:
+		return 3;
+	case SD_PARTICLES:
+		return s->particles->emit ? MOT_PART_NOUT : 3;
+	default:
+		return MOT_FLOCK_NOUT;
+	}
+}
+
+const char *sd_sys_name(const struct sd_system *s)
+{
+	return s->kind == SD_SURFACE ? s->surface->name :
+	       s->kind == SD_PARTICLES ? s->particles->name : s->flock->name;
+}
+
+const char *sd_sys_suffix(const struct sd_system *s, uint32_t k)
+{
+	static const char *const part[MOT_PART_NOUT] = { "x", "y", "z", "r", "g", "b", "alpha",
+							 "size" };
+	static const char *const flock[MOT_FLOCK_NOUT] = { "x", "y", "z", "heading" };
+
+	if (k >= sd_sys_per(s))
+		return NULL;
+	return s->kind == SD_FLOCK ? flock[k] : part[k];
+}
+
+const struct sd_limits *sd_sys_limits(const struct sd_system *s, uint32_t k)
+{
+	return s->kind == SD_SURFACE ? &s->surface->lim[k] :
+	       s->kind == SD_PARTICLES ? &s->particles->lim[k] : &s->flock->lim[k];
+}
+
+bool sd_sys_angle(const struct sd_system *s, uint32_t k)
+{
+	return s->kind == SD_FLOCK && k == MOT_FLOCK_HEADING;
+}

@@ -19,6 +19,7 @@
 #include "motion/curve.h"
 #include "motion/cycle.h"
 #include "motion/scene.h"
+#include "motion/system.h"
 
 struct sd_key {
 	double frame;
@@ -96,6 +97,99 @@ struct sd_attr {
 	struct sd_curve curve;
 };
 
+/*
+ * The seed's advanced systems (motion/system.h). Each has a name, the prefix
+ * of its channels, and limits per channel of an item (`y` of every sample,
+ * `alpha` of every slot), in the file's units; their channels are ordinary
+ * channels of the scene (channel.h).
+ */
+#define SD_SYS_CHANNELS 8 /* most channels an item has */
+
+/* Soft surface: a control net of ncu x ncv points, each coordinate a curve
+ * or its rest value, sampled at nsu x nsv points. */
+struct sd_surface {
+	const char *name;
+	enum mot_surface_basis basis;
+	uint32_t ncu, ncv, nsu, nsv;
+	const double *rest;           /* ncu * ncv * 3: (row a, column b, coordinate k) */
+	const struct sd_curve *curve; /* ncu * ncv * 3: nkeys 0 = the rest value */
+	struct sd_limits lim[3];      /* x, y, z of every sample */
+};
+
+struct sd_pin {
+	uint32_t row, col;            /* the lattice point held */
+	struct sd_curve off[3];       /* its offset from rest (nkeys 0: none) */
+};
+
+/* A particle system: emitted (emit) or a lattice (lu x lv particles). */
+struct sd_particles {
+	const char *name;
+	enum mot_particles_motion motion;
+	uint32_t npool;               /* with emission */
+	bool emit;
+	struct sd_curve c[MOT_PC_COUNT]; /* keyed values; nkeys 0: v[k] */
+	double v[MOT_PC_COUNT];       /* seconds, scene units, plain numbers */
+	uint64_t seed;
+	double gravity[3], drag;
+	bool ground;
+	double ground_y, restitution;
+	double pair_radius, pair_strength;
+	double spring_k, spring_c;    /* per unit mass: stiffness / mass, damping / mass */
+	uint32_t lu, lv;              /* lattice rows (along z) and columns (along x) */
+	double origin[3], spacing[2]; /* lattice point (i, j) rests at origin + (j sx, 0, i sz) */
+	bool shear;                   /* diagonal springs too */
+	uint32_t npins;
+	const struct sd_pin *pins;
+	uint32_t rate_num, rate_den;  /* steps a second */
+	struct sd_limits lim[MOT_PART_NOUT];
+};
+
+struct sd_obstacle {
+	double c[3], r;
+};
+
+struct sd_flock {
+	const char *name;
+	uint32_t n;
+	uint64_t seed;
+	double start_c[3], start_r, start_v[3], start_dv;
+	double radius, sep;
+	uint32_t max_neighbours;
+	double w_sep, w_coh, w_ali, w_goal, w_obst;
+	enum mot_flock_goal goal;
+	struct sd_curve goal_c[3];    /* nkeys 0: goal_v[k] */
+	double goal_v[3];
+	uint32_t nobst;
+	const struct sd_obstacle *obst;
+	double margin;
+	double vmax, amax;
+	uint32_t rate_num, rate_den;
+	struct sd_limits lim[MOT_FLOCK_NOUT]; /* x y z heading (degrees) */
+};
+
+enum sd_sys_kind { SD_SURFACE, SD_PARTICLES, SD_FLOCK };
+
+/* A system in the order of the scene's systems: the surfaces, then the
+ * particle systems, then the flocks. */
+struct sd_system {
+	enum sd_sys_kind kind;
+	const struct sd_surface *surface;
+	const struct sd_particles *particles;
+	const struct sd_flock *flock;
+};
+
+/* A pan/tilt head following a target: a node's pivot, or item `item` of
+ * system `sys` (its x, y, z). */
+struct sd_aim {
+	const char *name;             /* its channels: <name>.pan, <name>.tilt */
+	double at[3];
+	int32_t node;                 /* or -1 */
+	int32_t sys;                  /* or -1 */
+	uint32_t item;
+	uint32_t sub;                 /* pan grid points a frame */
+	struct sd_limits lim[2];      /* pan, tilt (degrees) */
+};
+
 struct scene_desc {
 	const char *name;
 	uint32_t rate_num, rate_den; /* frames per second */
@@ -109,7 +203,23 @@ struct scene_desc {
 	const struct sd_cycle *cycles;
 	uint32_t nattrs;
 	const struct sd_attr *attrs;
+	uint32_t nsys;
+	const struct sd_system *sys;
+	uint32_t naims;
+	const struct sd_aim *aims;
+	uint32_t ckpt_every;          /* steps between checkpoints (0: the default) */
 };
+
+/* The channels an item of system s has (3 a sample, 3 or 8 a slot, 4 a
+ * member), and their suffixes. */
+uint32_t sd_sys_per(const struct sd_system *s);
+uint32_t sd_sys_items(const struct sd_system *s);
+const char *sd_sys_name(const struct sd_system *s);
+const char *sd_sys_suffix(const struct sd_system *s, uint32_t k);
+/* The limits of channel k of an item of system s. */
+const struct sd_limits *sd_sys_limits(const struct sd_system *s, uint32_t k);
+/* Is channel k of an item an angle (degrees in files, turns in the core)? */
+bool sd_sys_angle(const struct sd_system *s, uint32_t k);
 
 /* A built scene: the core's view plus the one block that holds it. */
 struct scene_built {

@@ -21,6 +21,12 @@ static enum src_unit unit_of(const struct source_scene *ss, const struct chan *c
 		return c->comp >= 3 ? SRC_UNIT_TURNS : SRC_UNIT_LENGTH;
 	case CHAN_POS:
 		return SRC_UNIT_LENGTH;
+	case CHAN_AIM:
+		return SRC_UNIT_TURNS;
+	case CHAN_SYS:
+		/* positions and sizes are lengths; colours and alpha plain */
+		return c->unit[0] ? SRC_UNIT_TURNS :
+		       c->comp < 3 || c->comp == MOT_PART_SIZE ? SRC_UNIT_LENGTH : SRC_UNIT_PLAIN;
 	default:
 		return SRC_UNIT_PLAIN;
 	}
@@ -38,8 +44,8 @@ static int ss_lookup(struct play_source *s, const char *name, struct src_channel
 		if (strcmp(c->name, name))
 			continue;
 		info->unit = unit_of(ss, c);
-		if (c->kind == CHAN_VALUE)
-			info->limits = ss->d->nodes[c->index].limits;
+		if (chan_limits(c, ss->d))
+			info->limits = *chan_limits(c, ss->d);
 		return (int)i;
 	}
 	return -ENOENT;
@@ -99,6 +105,12 @@ static void STRAND_RT ss_eval(struct play_source *s, mot_q32 frame, mot_q32 *out
 			break;
 		case CHAN_CYCLE:
 			out[i] = MOT_Q32_INT(p->cycle[c->index]);
+			break;
+		case CHAN_SYS:
+			out[i] = p->sysout[c->index];
+			break;
+		case CHAN_AIM:
+			out[i] = p->aim[c->index][c->comp];
 			break;
 		default:
 			out[i] = p->attr[c->index];

@@ -42,6 +42,8 @@
 #include "motion/fix.h"
 #include "motion/mat.h"
 #include "motion/quat.h"
+#include "motion/rng.h"
+#include "motion/system.h"
 #include "motion/trig.h"
 #include "scene/scene_desc.h"
 #include "tests/synth.h"
@@ -703,6 +705,245 @@ static void wl_scene_random(struct dg *d)
 	}
 }
 
+/* ---- systems: surfaces, particles, flocks ---------------------------------------- */
+
+/* A system built by hand over 30 s at 25 fps and 1 kHz, evaluated at
+ * every 17th tick of the first 20 s, then at 100 random ticks (seeks from
+ * checkpoints), every value put: a fraction of a second natively, under
+ * qemu a few. */
+struct dg_sys {
+	struct mot_timing t;
+	struct mot_system sys;
+	struct mot_sys_eval ev;
+	void *block, *ckpt;
+	mot_q32 *out;
+	struct mot_curve curves[4];
+	struct mot_key keys[4][4];
+	struct mot_curve_seg seg[4][8];
+};
+
+static void dg_sys_run(struct dg *d, struct dg_sys *s, struct mot_steps *steps, uint32_t sbytes)
+{
+	uint32_t sat = 0, i;
+	size_t bytes;
+	int64_t k;
+
+	if (steps) {
+		dg_put(d, (uint64_t)mot_steps_init(steps, &s->t, 0, MOT_Q32_INT(750), 50, 1, 16,
+						   sbytes));
+		s->ckpt = calloc(mot_steps_ckpt_count(steps), steps->state_bytes);
+		steps->ckpt = s->ckpt;
+	}
+	bytes = mot_system_eval_bytes(&s->sys);
+	s->block = aligned_alloc(64, (bytes + 63) & ~(size_t)63);
+	if (!s->block || (steps && !s->ckpt)) {
+		fprintf(stderr, "digest: out of memory\n");
+		exit(1);
+	}
+	mot_system_eval_init(&s->ev, &s->sys, s->block, bytes);
+	dg_put(d, (uint64_t)mot_system_init(&s->sys, s->curves, 4, &s->ev, &sat));
+	s->out = calloc(s->sys.nout ? s->sys.nout : 1, sizeof(*s->out));
+	for (k = 0; k < 20000 + 100; k++) {
+		int64_t tick = k < 20000 ? k : dg_range(d, 0, 30000);
+
+		if (k < 20000 && k % 17)
+			continue;
+		mot_system_eval(&s->sys, s->curves, NULL, &s->ev, mot_timing_tick_frame(&s->t, tick),
+				s->out, &sat);
+		for (i = 0; i < s->sys.nout; i++)
+			dg_put(d, (uint64_t)s->out[i]);
+	}
+	dg_put(d, sat);
+	free(s->block);
+	free(s->ckpt);
+	free(s->out);
+}
+
+/* Curve c: n keys every 100 frames with random values in +-lim. */
+static void dg_sys_curve(struct dg *d, struct dg_sys *s, int c, enum mot_interp kind,
+			 int64_t lim)
+{
+	uint32_t k, sat = 0;
+
+	for (k = 0; k < 4; k++)
+		s->keys[c][k] = (struct mot_key){ MOT_Q32_INT(250 * (int)k), dg_range(d, -lim, lim),
+						  0, 0 };
+	dg_put(d, (uint64_t)mot_curve_init(&s->curves[c], kind, s->keys[c], 4, NULL, s->seg[c], 8,
+					   &sat));
+}
+
+static void wl_sys_surface(struct dg *d)
+{
+	static struct mot_surface_w wu[40], wv[40];
+	static int32_t curve[10 * 7 * 3];
+	static mot_q32 rest[10 * 7 * 3], fixed[40 * 40 * 3];
+	int basis;
+
+	for (basis = 0; basis < 2; basis++) {
+		struct dg_sys s;
+		struct mot_surface sf;
+		uint32_t i;
+
+		memset(&s, 0, sizeof(s));
+		mot_timing_init(&s.t, 25, 1, 1000);
+		memset(&sf, 0, sizeof(sf));
+		sf.basis = (uint32_t)basis;
+		sf.ncu = basis ? 9 : 10;
+		sf.ncv = 7;
+		sf.nsu = 19;
+		sf.nsv = 13;
+		sf.curve = curve;
+		sf.rest = rest;
+		sf.wu = wu;
+		sf.wv = wv;
+		sf.fixed = fixed;
+		dg_sys_curve(d, &s, 0, MOT_INTERP_HERMITE, MOT_Q32_INT(2));
+		dg_sys_curve(d, &s, 1, MOT_INTERP_BSPLINE, MOT_Q32_INT(2));
+		dg_sys_curve(d, &s, 2, MOT_INTERP_BETA, MOT_Q32_INT(2));
+		dg_sys_curve(d, &s, 3, MOT_INTERP_LINEAR, MOT_Q32_INT(2));
+		for (i = 0; i < sf.ncu * sf.ncv * 3; i++) {
+			rest[i] = dg_range(d, -MOT_Q32_INT(10), MOT_Q32_INT(10));
+			curve[i] = i % 3 == 1 ? (int32_t)(i % 4) : -1;
+		}
+		s.sys.kind = MOT_SYS_SURFACE;
+		s.sys.surface = &sf;
+		dg_sys_run(d, &s, NULL, 0);
+	}
+}
+
+static void wl_sys_particles(struct dg *d)
+{
+	static const mot_q32 lattice[16][3] = {
+		{ 0, 0, 0 }, { 1LL << 31, 0, 0 }, { 2LL << 31, 0, 0 }, { 3LL << 31, 0, 0 },
+		{ 0, 0, 1LL << 31 }, { 1LL << 31, 0, 1LL << 31 }, { 2LL << 31, 0, 1LL << 31 },
+		{ 3LL << 31, 0, 1LL << 31 }, { 0, 0, 2LL << 31 }, { 1LL << 31, 0, 2LL << 31 },
+		{ 2LL << 31, 0, 2LL << 31 }, { 3LL << 31, 0, 2LL << 31 }, { 0, 0, 3LL << 31 },
+		{ 1LL << 31, 0, 3LL << 31 }, { 2LL << 31, 0, 3LL << 31 }, { 3LL << 31, 0, 3LL << 31 },
+	};
+	struct mot_spring springs[24];
+	struct mot_pin pins[2] = { { 0, { -1, 0, -1 } }, { 3, { -1, -1, -1 } } };
+	int variant;
+
+	for (variant = 0; variant < 3; variant++) {
+		struct dg_sys s;
+		struct mot_particles ps;
+		uint32_t i, ns = 0;
+		int k;
+
+		memset(&s, 0, sizeof(s));
+		mot_timing_init(&s.t, 25, 1, 1000);
+		memset(&ps, 0, sizeof(ps));
+		for (k = 0; k < MOT_PC_COUNT; k++) {
+			ps.curve[k] = -1;
+			ps.value[k] = dg_range(d, -MOT_Q32_INT(2), MOT_Q32_INT(2));
+		}
+		dg_sys_curve(d, &s, 0, MOT_INTERP_HERMITE, MOT_Q32_ONE / 4);
+		dg_sys_curve(d, &s, 1, MOT_INTERP_LINEAR, MOT_Q32_INT(1));
+		dg_sys_curve(d, &s, 2, MOT_INTERP_STEP, MOT_Q32_INT(200));
+		dg_sys_curve(d, &s, 3, MOT_INTERP_BSPLINE, MOT_Q32_ONE);
+		ps.seed = dg_u64(d);
+		ps.gravity[1] = -dg_range(d, MOT_Q32_INT(5), MOT_Q32_INT(10));
+		if (variant < 2) {
+			/* a fountain: scripted, then Newtonian with every force */
+			ps.motion = variant ? MOT_PARTICLES_NEWTON : MOT_PARTICLES_SCRIPTED;
+			ps.npool = 48;
+			ps.emit = true;
+			ps.curve[MOT_PC_RATE] = 2;
+			ps.value[MOT_PC_SPREAD] = MOT_Q32_INT(30);
+			ps.value[MOT_PC_LIFE_LO] = MOT_Q32_ONE / 2;
+			ps.value[MOT_PC_LIFE_HI] = MOT_Q32_INT(2);
+			ps.value[MOT_PC_VEL_LO + 1] = MOT_Q32_INT(3);
+			ps.value[MOT_PC_VEL_HI + 1] = MOT_Q32_INT(6);
+			ps.curve[MOT_PC_AGE_ALPHA] = 3;
+			ps.drag = variant ? MOT_Q32_ONE / 5 : 0;
+			ps.ground = variant;
+			ps.restitution = MOT_Q32_ONE / 2;
+			ps.pair_radius = variant ? MOT_Q32_ONE / 3 : 0;
+			ps.pair_strength = MOT_Q32_INT(3);
+		} else {
+			/* a 4 x 4 cloth, two corners pinned, one waved */
+			ps.motion = MOT_PARTICLES_NEWTON;
+			ps.npool = 16;
+			ps.rest = lattice;
+			for (i = 0; i < 16; i++) {
+				if (i % 4 < 3)
+					springs[ns++] = (struct mot_spring){ i, i + 1, MOT_Q32_ONE / 2 };
+				if (i < 12)
+					springs[ns++] = (struct mot_spring){ i, i + 4, MOT_Q32_ONE / 2 };
+			}
+			ps.springs = springs;
+			ps.nsprings = ns;
+			ps.pins = pins;
+			ps.npins = 2;
+			ps.spring_k = MOT_Q32_INT(300);
+			ps.spring_c = MOT_Q32_ONE;
+			ps.drag = MOT_Q32_ONE / 10;
+		}
+		s.sys.kind = MOT_SYS_PARTICLES;
+		s.sys.particles = &ps;
+		dg_sys_run(d, &s, &ps.steps, mot_particles_state_bytes(ps.npool));
+		dg_put(d, (uint64_t)ps.dropped);
+		dg_put(d, (uint64_t)ps.first_drop);
+		dg_put(d, (uint64_t)ps.peak);
+	}
+}
+
+static void wl_sys_flock(struct dg *d)
+{
+	struct mot_obstacle obst[2];
+	struct dg_sys s;
+	struct mot_flock f;
+	int k;
+
+	memset(&s, 0, sizeof(s));
+	mot_timing_init(&s.t, 25, 1, 1000);
+	memset(&f, 0, sizeof(f));
+	dg_sys_curve(d, &s, 0, MOT_INTERP_HERMITE, MOT_Q32_INT(8));
+	dg_sys_curve(d, &s, 1, MOT_INTERP_LINEAR, MOT_Q32_INT(3));
+	dg_sys_curve(d, &s, 2, MOT_INTERP_BEZIER, MOT_Q32_INT(8));
+	f.n = 60;
+	f.seed = dg_u64(d);
+	f.start_r = MOT_Q32_INT(4);
+	f.start_v[0] = MOT_Q32_ONE;
+	f.start_dv = MOT_Q32_ONE / 2;
+	f.radius = MOT_Q32_INT(2);
+	f.sep = MOT_Q32_ONE * 3 / 4;
+	f.max_neighbours = 8;
+	f.w_sep = MOT_Q32_INT(6);
+	f.w_coh = MOT_Q32_INT(1);
+	f.w_ali = MOT_Q32_INT(2);
+	f.w_goal = MOT_Q32_INT(2);
+	f.w_obst = MOT_Q32_INT(10);
+	f.goal = MOT_FLOCK_GOAL_POINT;
+	for (k = 0; k < 3; k++) {
+		f.goal_ch[k] = k;
+		obst[0].c[k] = dg_range(d, -MOT_Q32_INT(3), MOT_Q32_INT(3));
+		obst[1].c[k] = dg_range(d, -MOT_Q32_INT(3), MOT_Q32_INT(3));
+	}
+	obst[0].r = MOT_Q32_ONE;
+	obst[1].r = MOT_Q32_ONE / 2;
+	f.obst = obst;
+	f.nobst = 2;
+	f.margin = MOT_Q32_ONE;
+	f.vmax = MOT_Q32_INT(3);
+	f.amax = MOT_Q32_INT(5);
+	s.sys.kind = MOT_SYS_FLOCK;
+	s.sys.flock = &f;
+	dg_sys_run(d, &s, &f.steps, mot_flock_state_bytes(f.n));
+}
+
+static void wl_rng(struct dg *d)
+{
+	struct mot_rng r;
+	long i;
+
+	mot_rng_seed(&r, dg_u64(d));
+	for (i = 0; i < 100000; i++) {
+		dg_put(d, mot_rng_u64(&r));
+		dg_put(d, (uint64_t)mot_rng_sym(&r));
+	}
+}
+
 /* ---- the list -------------------------------------------------------------- */
 
 struct workload {
@@ -725,6 +966,10 @@ static const struct workload workloads[] = {
 	{ "curve_keys", wl_curve_keys },
 	{ "scene_arm", wl_scene_arm },
 	{ "scene_random", wl_scene_random },
+	{ "rng", wl_rng },
+	{ "sys_surface", wl_sys_surface },
+	{ "sys_particles", wl_sys_particles },
+	{ "sys_flock", wl_sys_flock },
 };
 
 int main(int argc, char **argv)

@@ -6,6 +6,7 @@
  * sanitizer report (`make fuzz`, and a short pass in `make test`).
  */
 #include <errno.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,6 +37,31 @@ static void evaluate(const struct scene_file *sf, const struct scene_built *b)
 	scene_eval_free(&ev);
 }
 
+/*
+ * The work a build of the scene's systems and aims takes: item-steps over
+ * the span, and the aims' march. A valid scene of a billion item-steps
+ * builds in minutes, which is a long computation, not a bug; past a
+ * budget the fuzzer leaves such a scene unbuilt so that one input stays
+ * within its time limit (-timeout=10, under the sanitizers).
+ */
+static bool too_long(const struct scene_desc *d)
+{
+	double secs = (d->frame_last - d->frame_first) * d->rate_den / (double)d->rate_num, work = 0;
+	uint32_t i;
+
+	for (i = 0; i < d->nsys; i++) {
+		const struct sd_system *s = &d->sys[i];
+		double hz = s->kind == SD_PARTICLES ? (double)s->particles->rate_num / s->particles->rate_den :
+			    s->kind == SD_FLOCK ? (double)s->flock->rate_num / s->flock->rate_den : 0;
+
+		work += sd_sys_items(s) * (hz * secs + 1) * (s->kind == SD_FLOCK ? 8 : 1);
+	}
+	for (i = 0; i < d->naims; i++)
+		work += (d->frame_last - d->frame_first + 1) * 4.0 * d->aims[i].sub * (d->nsys + 1) *
+			64;
+	return work > 2e6;
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
 	struct scene_file sf;
@@ -47,6 +73,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		if ((e.code == -EINVAL || e.code == -ERANGE || e.code == -EBADMSG) &&
 		    (e.line == 0 || !e.msg[0]))
 			abort();
+		return 0;
+	}
+	if (too_long(&sf.desc)) {
+		scene_file_free(&sf);
 		return 0;
 	}
 	if (!scene_file_build(&sf, &b, &e)) {

@@ -222,6 +222,8 @@ static void play(struct run *r, const struct setup *s, const char *opts)
 
 /* Virtual clock: the loop waits for each update's answer, so the drive gets
  * every tick's setpoint, and each is export's. */
+/* The runs below are not about timeouts: 500 ms to answer (not the 20 ms
+ * default) keeps a loaded test machine's scheduling from failing them. */
 static void test_tcp_lockstep(void **state)
 {
 	struct setup s;
@@ -229,7 +231,8 @@ static void test_tcp_lockstep(void **state)
 	int64_t gaps;
 
 	tcp_setup(&s, "mb-tcp");
-	mbp_scene(s.scene, 1000, s.conn, "read_every: 10\nanswer_ms: 0.2\n",
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "read_every: 10\nanswer_ms: 0.2\n",
 		  ", ferror: 1, min_ferror: 0.2");
 	start_peer(&s, NULL);
 	play(&r, &s, "--clock virtual");
@@ -251,7 +254,8 @@ static void test_tcp_wall(void **state)
 	int64_t gaps, n;
 
 	tcp_setup(&s, "mb-wall");
-	mbp_scene(s.scene, 1000, s.conn, "update_hz: 250\nread_every: 20\nanswer_ms: 0.2\n", NULL);
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "update_hz: 250\nread_every: 20\nanswer_ms: 0.2\n", NULL);
 	start_peer(&s, NULL);
 	play(&r, &s, "--clock real");
 	assert_int_equal(r.rc, STRAND_EXIT_OK);
@@ -275,7 +279,8 @@ static void test_rtu_lockstep(void **state)
 	int64_t gaps;
 
 	rtu_setup(&s, "mb-rtu");
-	mbp_scene(s.scene, 1000, s.conn, "update_hz: 50\nread_every: 20\n", NULL);
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "update_hz: 50\nread_every: 20\n", NULL);
 	start_peer(&s, NULL);
 	play(&r, &s, "--clock virtual");
 	assert_int_equal(r.rc, STRAND_EXIT_OK);
@@ -295,7 +300,8 @@ static void test_lockstep_repeats(void **state)
 	int k;
 
 	tcp_setup(&s, "mb-twice");
-	mbp_scene(s.scene, 1000, s.conn, "update_hz: 500\nread_every: 10\nanswer_ms: 0.2\n", NULL);
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "update_hz: 500\nread_every: 10\nanswer_ms: 0.2\n", NULL);
 	for (k = 0; k < 2; k++) {
 		start_peer(&s, NULL);
 		play(&r, &s, "--clock virtual");
@@ -431,7 +437,8 @@ static void test_reconnect_at_rest(void **state)
 	struct mbp_write *w;
 
 	tcp_setup(&s, "mb-drop");
-	mbp_scene(s.scene, 1000, s.conn, "update_hz: 100\nanswer_ms: 0.2\n", NULL);
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "update_hz: 100\nanswer_ms: 0.2\n", NULL);
 	start_peer(&s, "--drop-after 30");
 	play(&r, &s, "--clock real --mode step --frames 0x5 --settle 100 --exposure 100");
 	assert_int_equal(r.rc, STRAND_EXIT_OK);
@@ -573,7 +580,8 @@ static void test_mbpoll(void **state)
 	FILE *p;
 
 	tcp_setup(&s, "mb-poll");
-	mbp_scene(s.scene, 1000, s.conn, "update_hz: 500\nread_every: 10\nanswer_ms: 0.2\n", NULL);
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "update_hz: 500\nread_every: 10\nanswer_ms: 0.2\n", NULL);
 	start_peer(&s, NULL);
 	play(&r, &s, "--clock virtual --to 36");
 	assert_int_equal(r.rc, STRAND_EXIT_OK);
@@ -617,7 +625,8 @@ static void test_check(void **state)
 	char args[300];
 
 	rtu_setup(&s, "mb-check");
-	mbp_scene(s.scene, 1000, s.conn, "update_hz: 50\nread_every: 20\n", NULL);
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "update_hz: 50\nread_every: 20\n", NULL);
 	snprintf(args, sizeof(args), "check %s", s.scene);
 	strand(&r, args);
 	printf("%s%s", r.out, r.err);
@@ -629,7 +638,8 @@ static void test_check(void **state)
 				      "frames at 115200 baud 8N1, 1 ms answers assumed); reachable "
 				      "52.24 updates/s, the scene asks 50/s (every 20 ticks)"));
 	run_free(&r);
-	mbp_scene(s.scene, 1000, s.conn, "update_hz: 100\nread_every: 20\n", NULL);
+	mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 500\n"
+		  "update_hz: 100\nread_every: 20\n", NULL);
 	strand(&r, args);
 	assert_int_equal(r.rc, STRAND_EXIT_SCENE);
 	assert_non_null(strstr(r.err, "device 'drives': an update with its reads takes 19.1 ms on "
