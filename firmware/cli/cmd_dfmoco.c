@@ -16,11 +16,12 @@
 #include "dfmoco/dfm_run.h"
 #include "dfmoco/dfm_session.h"
 #include "exitcode.h"
+#include "live_opts.h"
 #include "live/live.h"
 
 enum {
 	OPT_SIM = 256, OPT_SERIAL, OPT_BAUD, OPT_PTY, OPT_LISTEN, OPT_PEER, OPT_JOURNAL,
-	OPT_NO_JOURNAL, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK, OPT_DEADMAN,
+	OPT_NO_JOURNAL,
 };
 
 static const struct option dfmoco_options[] = {
@@ -32,11 +33,7 @@ static const struct option dfmoco_options[] = {
 	{ "peer", required_argument, NULL, OPT_PEER },
 	{ "journal", required_argument, NULL, OPT_JOURNAL },
 	{ "no-journal", no_argument, NULL, OPT_NO_JOURNAL },
-	{ "clock", required_argument, NULL, OPT_CLOCK },
-	{ "priority", required_argument, NULL, OPT_PRIORITY },
-	{ "cpu", required_argument, NULL, OPT_CPU },
-	{ "no-mlock", no_argument, NULL, OPT_NO_MLOCK },
-	{ "deadman", required_argument, NULL, OPT_DEADMAN },
+	CLI_LIVE_OPTIONS,
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -55,16 +52,18 @@ struct cli {
 static int on_opt(void *ctx, int opt, const char *arg)
 {
 	struct cli *c = ctx;
-	const char *colon;
 	long long v;
-	double d;
+	int rc = cli_live_opt(c->cmd, c->err, opt, arg, &c->o);
 
+	if (rc != -2)
+		return rc;
 	switch (opt) {
 	case OPT_SIM:
 		c->o.sim = true;
 		return -1;
 	case OPT_SERIAL:
-		c->serial = arg;
+	case OPT_PTY:
+		*(opt == OPT_SERIAL ? &c->serial : &c->pty) = arg;
 		c->ports++;
 		return -1;
 	case OPT_BAUD:
@@ -72,22 +71,9 @@ static int on_opt(void *ctx, int opt, const char *arg)
 			return cli_usage(c->cmd, c->err, "--baud %s: a serial line's speed", arg);
 		c->baud = (unsigned)v;
 		return -1;
-	case OPT_PTY:
-		c->pty = arg;
-		c->ports++;
-		return -1;
 	case OPT_LISTEN:
-		colon = strrchr(arg, ':');
-		if (!colon || colon == arg || (size_t)(colon - arg) >= sizeof(c->addr) ||
-		    !opt_long(colon + 1, 1, 65535, &v))
-			return cli_usage(c->cmd, c->err, "--listen %s: ADDRESS:PORT", arg);
-		if (arg[0] == '[' && colon[-1] == ']')
-			snprintf(c->addr, sizeof(c->addr), "%.*s", (int)(colon - arg - 2), arg + 1);
-		else
-			snprintf(c->addr, sizeof(c->addr), "%.*s", (int)(colon - arg), arg);
-		c->port = (unsigned)v;
 		c->ports++;
-		return -1;
+		return cli_listen_arg(c->cmd, c->err, arg, c->addr, sizeof(c->addr), &c->port);
 	case OPT_PEER:
 		c->peer = arg;
 		return -1;
@@ -96,30 +82,6 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		return -1;
 	case OPT_NO_JOURNAL:
 		c->no_journal = true;
-		return -1;
-	case OPT_CLOCK:
-		if (strcmp(arg, "real") && strcmp(arg, "virtual"))
-			return cli_usage(c->cmd, c->err, "--clock %s: real or virtual", arg);
-		/* Dragonframe waits in real time: virtual ticks at the wall's pace */
-		c->o.virtual_clock = c->o.pace_all = !strcmp(arg, "virtual");
-		return -1;
-	case OPT_PRIORITY:
-		if (!opt_long(arg, 0, 99, &v))
-			return cli_usage(c->cmd, c->err, "--priority %s: 0 to 99", arg);
-		c->o.rt.priority = (int)v;
-		return -1;
-	case OPT_CPU:
-		if (!opt_long(arg, 0, 1023, &v))
-			return cli_usage(c->cmd, c->err, "--cpu %s: a CPU number", arg);
-		c->o.rt.cpu = (int)v;
-		return -1;
-	case OPT_NO_MLOCK:
-		c->o.rt.lock_memory = false;
-		return -1;
-	case OPT_DEADMAN:
-		if (!opt_double(arg, 10, 10000, &d))
-			return cli_usage(c->cmd, c->err, "--deadman %s: 10 to 10000 ms", arg);
-		c->o.deadman_ms = d;
 		return -1;
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
@@ -168,11 +130,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	memset(&c, 0, sizeof(c));
 	c.cmd = cmd;
 	c.err = err;
-	c.o.rt.priority = 80;
-	c.o.rt.cpu = -1;
-	c.o.rt.lock_memory = true;
-	c.o.rt.pm_qos = true;
-	c.o.rt.name = "strand-rt";
+	cli_live_defaults(&c.o);
 	c.o.deadman_ms = 500;
 	c.baud = 57600;
 	rc = cli_options(cmd, argc, argv, out, err, "h", dfmoco_options, on_opt, &c, &first);
