@@ -221,6 +221,31 @@ static void want(struct dfm_session *s, uint32_t i, int64_t dev)
 	s->report_ns = 0;
 }
 
+/* A go-motion armed and not run (bf without its go) gives way to the next
+ * motion Dragonframe asks for, as the sketch's does: stopped, and the rig
+ * at rest again (200 ms at most; it stands still already). */
+static void disarm(struct dfm_session *s)
+{
+	char msg[LIVE_MSG];
+	int k;
+
+	if (!s->gomo_ready)
+		return;
+	s->gomo_ready = false;
+	if (s->gomo_still)
+		return;
+	if (live_stop(s->lv, msg, sizeof(msg)))
+		why(s, "%s", msg);
+	for (k = 0; k < 200; k++) {
+		live_service(s->lv);
+		live_snapshot(s->lv, &s->snap);
+		if (s->snap.state == LIVE_ENABLED && s->snap.cmd_seen >= s->snap.cmd_sent)
+			break;
+		nanosleep(&(struct timespec){ .tv_nsec = 1000000 }, NULL);
+	}
+	memset(s->involved, 0, sizeof(s->involved));
+}
+
 /* ---- the commands ---- */
 
 static void hi(struct dfm_session *s)
@@ -282,6 +307,7 @@ static void mm(struct dfm_session *s, const struct dfm_cmd *c, bool inch)
 		say_mp(s, i);
 		return;
 	}
+	disarm(s);
 	want(s, i, dev);
 	s->gather_ns = now_ns();
 	if (inch)
@@ -377,6 +403,7 @@ static void jm(struct dfm_session *s, const struct dfm_cmd *c)
 	here = at(s, i);
 	speed = c->arg[1] > here ? s->jog[i] : c->arg[1] < here ? -s->jog[i] : 0;
 	s->has_want[i] = false;
+	disarm(s);
 	if (live_jog(s->lv, DFM_CLIENT, i, speed, ++s->jog_seq, msg, sizeof(msg))) {
 		why(s, "%s", msg);
 		say_mp(s, i);
@@ -429,7 +456,7 @@ static void bf(struct dfm_session *s, const struct dfm_cmd *c)
 		say(s, "bf -1");
 		return;
 	}
-	s->gomo_ready = false;
+	disarm(s);
 	if (c->arg[1] == 0) {
 		/* no blur: a still frame at this pose, nothing moves at go */
 		for (i = 0; i < s->n; i++)
@@ -454,7 +481,6 @@ static void bf(struct dfm_session *s, const struct dfm_cmd *c)
 		say(s, rc == -EDOM ? "bf -1" : "parse error");
 		return;
 	}
-	s->shots++;
 	memset(s->has_want, 0, sizeof(s->has_want));
 	for (i = 0; i < s->n; i++)
 		s->involved[i] = true;
@@ -480,6 +506,8 @@ static void go(struct dfm_session *s)
 		return;
 	}
 	if (!s->gomo_still) {
+		/* a frame shot: the next bf's number is the next */
+		s->shots++;
 		for (uint32_t i = 0; i < s->n; i++)
 			s->involved[i] = true;
 		busy(s);

@@ -70,7 +70,7 @@ struct dfm_session {
 	bool was_moving[LOOP_LIVE_OUT_MAX];
 	double jog[LOOP_LIVE_OUT_MAX];     /* jm's speed, a fraction of vmax (pr) */
 	uint64_t jog_seq;
-	int64_t shots;          /* go-motion frames: the journal's frame numbers */
+	int64_t shots;          /* go-motion frames run: the next bf's is shots + 1 */
 	bool gomo_ready;        /* a bf accepted, its go awaited */
 	bool gomo_still;        /* ... with blur 0: nothing moves */
 	bool move_sent;         /* a move for the wants was sent */

@@ -506,6 +506,43 @@ static void test_estop(void **state)
 	stop(&f);
 }
 
+/* A bf without its go gives way to the next bf, or to a move, as the
+ * sketch's does; a still frame (blur 0) moves to its positions and go
+ * moves nothing; only frames run are journaled. */
+static void test_gomo_replaced(void **state)
+{
+	struct fixture f;
+	struct pu_csv c;
+
+	start(&f, false, 0);
+	exchange(&f, "hi", "hi 1 3 1.3.1", NULL);
+	exchange(&f, "bf 100 500 1 -20000 0 20000", "bf ", NULL);
+	until_still(&f);
+	exchange(&f, "bf 100 250 1 0 20000 40000", "bf ", NULL);
+	until_still(&f);
+	exchange(&f, "mm 1 50000", "mm 1 50000", NULL);
+	until_still(&f);
+	exchange(&f, "mp 1", "mp 1 50000", NULL);
+	exchange(&f, "bf 100 0 1 40000 60000 80000", "bf 0", NULL);
+	until_still(&f);
+	exchange(&f, "go", "go", NULL);
+	exchange(&f, "mp 1", "mp 1 60000", NULL);
+	exchange(&f, "bf 100 250 1 50000 60000 70000", "bf ", NULL);
+	until_still(&f);
+	exchange(&f, "go", "go", NULL);
+	until_still(&f);
+	settle();
+	assert_int_equal(pu_csv_read(&c, f.journal), 0);
+	assert_int_equal(c.nrows, 2);
+	/* the first frame run: the frames bf prepared and never ran have no number */
+	assert_int_equal(atoll(c.cell[1][pu_csv_col(&c, "frame")]), 1);
+	/* an eighth of a frame either side of 60000 */
+	assert_true(fabs(atof(c.cell[1][pu_csv_col(&c, "pan.angle@open")]) - 5.875) < 1e-6);
+	assert_true(fabs(atof(c.cell[1][pu_csv_col(&c, "pan.angle@close")]) - 6.125) < 1e-6);
+	pu_csv_free(&c);
+	stop(&f);
+}
+
 /* TCP: a client says hi; a second one is turned away while it stays. */
 static void test_tcp(void **state)
 {
@@ -543,6 +580,7 @@ int main(void)
 		cmocka_unit_test(test_session),
 		cmocka_unit_test(test_errors),
 		cmocka_unit_test(test_estop),
+		cmocka_unit_test(test_gomo_replaced),
 		cmocka_unit_test(test_tcp),
 	};
 
