@@ -128,9 +128,10 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		goto out;
 	rig = &sf.rig;
 	if (o.sim && !rig->noutputs && !rig->ntriggers) {
-		/* the rig strand play --sim makes for a scene without one */
+		/* the rig strand play --sim makes for a scene without one,
+		 * standing at the first frame asked for, as play's does */
 		rc = STRAND_EXIT_INTERNAL;
-		if (rig_auto_build(&ra, &sf.desc, &ss.s, o.run.from)) {
+		if (rig_auto_build(&ra, &sf.desc, &ss.s, o.run.expose_first)) {
 			fprintf(err, "strand check: out of memory\n");
 			goto out;
 		}
