@@ -129,8 +129,8 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	rc = cli_options(cmd, argc, argv, out, err, "h", serve_options, on_opt, &c, &first);
 	if (rc >= 0)
 		return rc;
-	if (argc - first != 1)
-		return cli_usage(cmd, err, "one scene file, please");
+	if (argc - first > 1)
+		return cli_usage(cmd, err, "one scene file at most (or none: load one later)");
 	memset(&so, 0, sizeof(so));
 	so.addr = c.addr;
 	so.port = c.port;
@@ -146,7 +146,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			return rc;
 		so.token = token;
 	}
-	rc = live_open(&lv, argv[first], &c.o, msg, sizeof(msg));
+	rc = live_open(&lv, argc > first ? argv[first] : NULL, &c.o, msg, sizeof(msg));
 	if (rc) {
 		fprintf(err, "%s\n", msg);
 		return rc == -EINVAL || rc == -ERANGE || rc == -EBADMSG ? STRAND_EXIT_SCENE :
@@ -173,18 +173,20 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 const struct cli_cmd cmd_serve = {
 	.name = "serve",
 	.summary = "control the rig live from a browser or a JSON-RPC client",
-	.help = "usage: strand serve SCENE.yaml [options]\n"
+	.help = "usage: strand serve [SCENE.yaml] [options]\n"
 		"\n"
 		"Opens the scene's rig (the drives disabled), runs the real-time loop while they\n"
 		"are enabled, and serves the console page at http://ADDRESS:PORT/, JSON-RPC 2.0\n"
 		"over a WebSocket at /websocket and as POST /rpc (README \"strand serve\").\n"
+		"Without SCENE it waits for a client to load one of the data folder.\n"
 		"\n"
 		"  --sim                 every device by its simulated twin\n"
 		"  --listen ADDR:PORT    where to listen (127.0.0.1:7125); an address other than\n"
 		"                        loopback needs --token-file\n"
 		"  --token-file FILE     every request must present this token (Authorization:\n"
 		"                        Bearer TOKEN, or Basic with any user name)\n"
-		"  --data DIR            where load and save find scene files (the scene's folder)\n"
+		"  --data DIR            where load and save find scene files (the scene's folder,\n"
+		"                        or the working directory without one)\n"
 		"  --clock real|virtual  the wall clock (default) or virtual time (tests)\n"
 		"  --deadman MS          a jog stops without a refresh for MS (250)\n"
 		"  --priority N, --cpu N, --no-mlock, --force   as for strand play\n"

@@ -218,7 +218,7 @@ static int data_dir_of(struct live *lv, const char *scene)
 		snprintf(lv->data_dir, sizeof(lv->data_dir), "%s", lv->o.data_dir);
 		return 0;
 	}
-	slash = strrchr(scene, '/');
+	slash = scene ? strrchr(scene, '/') : NULL;
 	if (!slash)
 		snprintf(lv->data_dir, sizeof(lv->data_dir), ".");
 	else
@@ -271,6 +271,7 @@ int live_rig_up(struct live *lv, char *err, size_t errsize)
 	ro.events = lv->plan.events;
 	ro.io = lv->plan.io;
 	ro.warn = stderr;
+	ro.cancel = &lv->cancel;
 	rc = rig_build(&lv->rig, lv->rd, &lv->sc->src.s, &lv->clk, &ro, err, errsize);
 	if (rc)
 		return rc;
@@ -336,8 +337,11 @@ int live_open(struct live **out, const char *scene, const struct live_opts *o, c
 	lv->o = *o;
 	if (!(lv->o.deadman_ms > 0))
 		lv->o.deadman_ms = 250;
+	/* samples at 250 Hz: the clients get at most 50 a second, but a jog
+	 * of the camera or a node turns its direction from where the rig is,
+	 * and a sample is as old as its period */
 	if (!lv->o.status_hz)
-		lv->o.status_hz = 50;
+		lv->o.status_hz = 250;
 	if (lv->o.virtual_clock) {
 		lv->o.rt.priority = 0;
 		lv->o.rt.pm_qos = false;
@@ -345,15 +349,18 @@ int live_open(struct live **out, const char *scene, const struct live_opts *o, c
 	pthread_mutex_init(&lv->mu, NULL);
 	pthread_mutex_init(&lv->snap_mu, NULL);
 	hal_clock_init(&lv->clk, lv->o.virtual_clock);
+	hal_cancel_init(&lv->cancel);
 	rt_plan_make(&lv->plan, &lv->o.rt);
 	lv->at_frame = -1;
+	atomic_init(&lv->last_frame, -1);
 	lv->goto_frame = -1;
 	lv->state = LIVE_DISABLED;
 	data_dir_of(lv, scene);
-	rc = live_scene_open(&lv->sc, scene, err, errsize);
-	if (!rc)
+	/* without a scene the session waits for a load */
+	rc = scene ? live_scene_open(&lv->sc, scene, err, errsize) : 0;
+	if (!rc && scene)
 		rc = live_rig_up(lv, err, errsize);
-	if (!rc && lv->o.journal)
+	if (!rc && lv->o.journal && lv->sc)
 		rc = journal_up(lv, err, errsize);
 	if (rc) {
 		live_close(lv);
@@ -363,7 +370,7 @@ int live_open(struct live **out, const char *scene, const struct live_opts *o, c
 	lv->snap.loop_state = "disabled";
 	lv->snap.frame = -1;
 	lv->snap.journal_frames = -1;
-	lv->snap.nout = lv->rig.nout;
+	live_publish_scene(lv);
 	*out = lv;
 	return 0;
 }
@@ -431,6 +438,8 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 	s->lat_avg_ns = st->lat_n ? st->lat_sum_ns / st->lat_n : 0;
 	s->overruns = st->s.overruns;
 	lv->at_frame = st->at_frame;
+	if (st->at_frame >= 0)
+		atomic_store(&lv->last_frame, st->at_frame);
 	s->frame = st->at_frame;
 	if (st->rep.end != LOOP_END_NONE)
 		play_report_describe(&lv->rig, &lv->sc->src.s.timing, &(struct loop_result){
@@ -446,6 +455,7 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 	/* a run's loop counts from the commands it took itself */
 	s->cmd_seen = st->cmd_seq > lv->seq_run ? st->cmd_seq : lv->seq_run;
 	s->journal_frames = lv->has_journal ? atomic_load(&lv->jr.written) : -1;
+	s->taken_ns = hal_mono_ns();
 	s->serial = ++lv->serial;
 }
 
@@ -457,14 +467,22 @@ int live_service(struct live *lv)
 	 * run at the next shot, which the report then names */
 	if (lv->has_journal)
 		journal_service(&lv->jr, hal_mono_ns());
+	/* the status ring's consumer is this thread alone; a run's start
+	 * sets the ring up before it sets running */
 	while (lv->running && hal_ring_pop(&lv->status, lv->st)) {
 		pthread_mutex_lock(&lv->snap_mu);
 		take_sample(lv, lv->st);
 		pthread_mutex_unlock(&lv->snap_mu);
 		any = true;
 	}
+	/* what needs the session's lock waits for no command: a command
+	 * under way (an enable starting the drives) has it, and the next
+	 * round comes in milliseconds */
+	if (pthread_mutex_trylock(&lv->mu))
+		return 2;
+	if (lv->running && !atomic_load(&lv->done))
+		live_space_follow(lv);
 	if (lv->running && atomic_load(&lv->done)) {
-		pthread_mutex_lock(&lv->mu);
 		/* the last samples first */
 		while (hal_ring_pop(&lv->status, lv->st)) {
 			pthread_mutex_lock(&lv->snap_mu);
@@ -472,10 +490,8 @@ int live_service(struct live *lv)
 			pthread_mutex_unlock(&lv->snap_mu);
 		}
 		live_run_end(lv);
-		pthread_mutex_unlock(&lv->mu);
 	}
 	if (!lv->running) {
-		pthread_mutex_lock(&lv->mu);
 		if (atomic_load(&lv->estop_req) && lv->state != LIVE_ESTOPPED) {
 			lv->state = LIVE_ESTOPPED;
 			snprintf(lv->reason, sizeof(lv->reason), "e-stop (command) while the drives "
@@ -493,9 +509,25 @@ int live_service(struct live *lv)
 		for (uint32_t i = 0; i < lv->snap.nout; i++)
 			lv->snap.out[i].off = 1;
 		pthread_mutex_unlock(&lv->snap_mu);
-		pthread_mutex_unlock(&lv->mu);
 	}
+	pthread_mutex_unlock(&lv->mu);
 	return any ? 2 : 5;
+}
+
+int live_no_scene(char *msg, size_t size)
+{
+	snprintf(msg, size, "no scene loaded: load one of the data folder (load {file})");
+	return -ENOENT;
+}
+
+void live_publish_scene(struct live *lv)
+{
+	pthread_mutex_lock(&lv->snap_mu);
+	lv->generation++;
+	lv->snap.nout = lv->sc ? lv->rig.nout : 0;
+	lv->snap.fps_num = lv->sc ? lv->sc->src.s.timing.num : 0;
+	lv->snap.fps_den = lv->sc ? lv->sc->src.s.timing.den : 0;
+	pthread_mutex_unlock(&lv->snap_mu);
 }
 
 void live_snapshot(struct live *lv, struct live_snap *s)
@@ -549,8 +581,14 @@ uint32_t live_outputs(struct live *lv, struct live_out_info *out, uint32_t max)
 void live_span(struct live *lv, int64_t *first, int64_t *last, uint32_t *num, uint32_t *den,
 	       uint32_t *tick_hz, const char **name, const char **path)
 {
-	const struct play_source *s = &lv->sc->src.s;
+	const struct play_source *s = lv->sc ? &lv->sc->src.s : NULL;
 
+	if (!s) {
+		*first = *last = 0;
+		*num = *den = *tick_hz = 0;
+		*name = *path = "";
+		return;
+	}
 	*first = s->frame_first;
 	*last = s->frame_last;
 	*num = s->timing.num;
@@ -591,6 +629,7 @@ const char *live_state_name(enum live_state s)
 void live_signal(struct live *lv, int level)
 {
 	atomic_store(&lv->signal_req, level);
+	hal_cancel_request(&lv->cancel);
 	if (level >= 2)
 		atomic_store(&lv->estop_req, true);
 }

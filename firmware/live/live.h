@@ -25,9 +25,12 @@
  * Threads. Any number of threads may call the commands; they take turns on
  * the session's lock, which the loop never takes. live_estop() takes no
  * lock at all: it reaches the loop through an atomic store, ahead of any
- * command queued or under way. live_service() is the owner's to call
- * every few milliseconds: it takes the loop's status samples in, services
- * the journal and notices the end of a run.
+ * command queued or under way, and gives up a start of the drives under
+ * way. live_service() and live_snapshot() never wait for a command either
+ * (a front end calls them from the thread that must stay responsive):
+ * live_service() is the owner's to call every few milliseconds: it takes
+ * the loop's status samples in, services the journal and notices the end
+ * of a run (at its next round, when a command holds the lock).
  */
 #ifndef STRAND_LIVE_H
 #define STRAND_LIVE_H
@@ -58,7 +61,7 @@ struct live_opts {
 	bool journal_gomo;    /* its records hold go-motion's exposures (JOURNAL_MODE_GOMO) */
 	const char *data_dir; /* where load and save find scene files */
 	double deadman_ms;    /* a jog lapses without a refresh (250) */
-	uint32_t status_hz;   /* status samples a second (50) */
+	uint32_t status_hz;   /* status samples a second (250) */
 };
 
 /* A step-mode or continuous segment, as strand play's options say it. */
@@ -131,11 +134,14 @@ struct live_snap {
 	uint64_t cmd_sent;      /* the last command sent to the loop ... */
 	uint64_t cmd_seen;      /* ... and the last the sample's tick had taken */
 	uint64_t generation;    /* counts scene loads and teaches */
+	uint32_t fps_num, fps_den; /* the scene's frame rate (0: no scene) */
+	int64_t taken_ns;       /* hal_mono_ns() when the sample came in */
 };
 
 /* [init] Open SCENE (a path) for live control: load, check, build the rig,
  * start the devices, disable the drives. 0, or a negative errno with the
- * message in err (a scene's file:line:column: message). */
+ * message in err (a scene's file:line:column: message). SCENE NULL: no
+ * scene until live_load; the data folder is then o->data_dir or ".". */
 int live_open(struct live **out, const char *scene, const struct live_opts *o, char *err,
 	      size_t errsize);
 void live_close(struct live *lv);
@@ -173,6 +179,14 @@ int live_disable(struct live *lv, char *msg, size_t size);
  * 0 returned); client: who sends it (a new client restarts the count). */
 int live_jog(struct live *lv, uint64_t client, uint32_t out, double speed, uint64_t seq,
 	     char *msg, size_t size);
+/* Jog the camera ("camera") or a free node in its own space ("local") or
+ * the world's ("world") about its pivot (live_space.c): axis x, y, z
+ * (translate) or rx, ry, rz (rotate), or the camera's names for them:
+ * truck (x), boom (y), dolly (-z, where it looks), tilt (rx), pan (ry),
+ * roll (rz). Every output the motion carries follows, the fastest at speed
+ * (-1..1) of its velocity limit; seq as for live_jog. */
+int live_jog_space(struct live *lv, uint64_t client, const char *node, const char *space,
+		   const char *axis, double speed, uint64_t seq, char *msg, size_t size);
 /* A client went away: its jogs end at once. */
 void live_client_gone(struct live *lv, uint64_t client);
 int live_goto(struct live *lv, int64_t frame, char *msg, size_t size);

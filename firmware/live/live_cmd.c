@@ -24,6 +24,9 @@ static int unlocked(struct live *lv, int rc)
 }
 
 #define LOCKED(lv, expr) (pthread_mutex_lock(&(lv)->mu), unlocked((lv), (expr)))
+/* The same for a command that needs a scene (msg and size are the
+ * caller's). */
+#define SCENE_LOCKED(lv, expr) LOCKED(lv, (lv)->sc ? (expr) : live_no_scene(msg, size))
 
 static int enable(struct live *lv, char *msg, size_t size)
 {
@@ -48,7 +51,7 @@ static int enable(struct live *lv, char *msg, size_t size)
 
 int live_enable(struct live *lv, char *msg, size_t size)
 {
-	return LOCKED(lv, enable(lv, msg, size));
+	return SCENE_LOCKED(lv, enable(lv, msg, size));
 }
 
 static int disable(struct live *lv, char *msg, size_t size)
@@ -98,7 +101,7 @@ static int jog(struct live *lv, uint64_t client, uint32_t out, double speed, uin
 int live_jog(struct live *lv, uint64_t client, uint32_t out, double speed, uint64_t seq,
 	     char *msg, size_t size)
 {
-	return LOCKED(lv, jog(lv, client, out, speed, seq, msg, size));
+	return SCENE_LOCKED(lv, jog(lv, client, out, speed, seq, msg, size));
 }
 
 void live_client_gone(struct live *lv, uint64_t client)
@@ -161,7 +164,7 @@ static int go_to(struct live *lv, int64_t frame, char *msg, size_t size)
 
 int live_goto(struct live *lv, int64_t frame, char *msg, size_t size)
 {
-	return LOCKED(lv, go_to(lv, frame, msg, size));
+	return SCENE_LOCKED(lv, go_to(lv, frame, msg, size));
 }
 
 static int step(struct live *lv, int dir, char *msg, size_t size)
@@ -181,7 +184,7 @@ static int step(struct live *lv, int dir, char *msg, size_t size)
 
 int live_step(struct live *lv, int dir, char *msg, size_t size)
 {
-	return LOCKED(lv, step(lv, dir, msg, size));
+	return SCENE_LOCKED(lv, step(lv, dir, msg, size));
 }
 
 static int move(struct live *lv, const double *pose, uint32_t n, char *msg, size_t size)
@@ -209,7 +212,7 @@ static int move(struct live *lv, const double *pose, uint32_t n, char *msg, size
 
 int live_move(struct live *lv, const double *pose, uint32_t n, char *msg, size_t size)
 {
-	return LOCKED(lv, move(lv, pose, n, msg, size));
+	return SCENE_LOCKED(lv, move(lv, pose, n, msg, size));
 }
 
 static int ticks(double v, bool ms, uint32_t hz, int64_t min, int64_t *out, const char *name,
@@ -344,7 +347,7 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 
 int live_play(struct live *lv, const struct live_play *p, char *msg, size_t size)
 {
-	return LOCKED(lv, play(lv, p, msg, size));
+	return SCENE_LOCKED(lv, play(lv, p, msg, size));
 }
 
 /* ---- go-motion through a front end's poses ---- */
@@ -576,6 +579,8 @@ int live_stop(struct live *lv, char *msg, size_t size)
 void live_estop(struct live *lv)
 {
 	atomic_store(&lv->estop_req, true);
+	/* a start of the drives under way (an enable) gives up */
+	hal_cancel_request(&lv->cancel);
 }
 
 static int reset(struct live *lv, char *msg, size_t size)
@@ -588,6 +593,7 @@ static int reset(struct live *lv, char *msg, size_t size)
 	if (live_estop_input(lv, msg, size))
 		return -EPERM;
 	atomic_store(&lv->estop_req, false);
+	hal_cancel_init(&lv->cancel);
 	lv->state = LIVE_DISABLED;
 	lv->reason[0] = 0;
 	return 0;
@@ -610,5 +616,5 @@ static int ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
 
 int live_ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
 {
-	return LOCKED(lv, ping(lv, latency_ns, msg, size));
+	return SCENE_LOCKED(lv, ping(lv, latency_ns, msg, size));
 }

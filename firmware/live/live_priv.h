@@ -6,6 +6,7 @@
  *     live_run.c    [init] a run of the loop: enable, its end, disable
  *     live_cmd.c    the commands that reach the loop
  *     live_teach.c  teach: keys from the rig's pose into the scene file
+ *     live_space.c  jog the camera or a free node in its space or the world's
  */
 #ifndef STRAND_LIVE_PRIV_H
 #define STRAND_LIVE_PRIV_H
@@ -15,11 +16,13 @@
 #include <stdatomic.h>
 
 #include "live.h"
+#include "hal/cancel.h"
 #include "hal/clock.h"
 #include "hal/ring.h"
 #include "hal/thread.h"
 #include "check/limit_check.h"
 #include "load/load.h"
+#include "motion/mat.h"
 #include "play/loop.h"
 #include "rig/rig.h"
 #include "rig/rig_auto.h"
@@ -55,6 +58,7 @@ struct live {
 	struct rig rig;
 	bool rig_built, rig_started;
 	struct hal_clock clk;
+	struct hal_cancel cancel; /* an e-stop or a signal gives a start up */
 	struct rt_plan plan;
 	struct rt_result rt;
 	char data_dir[PATH_MAX];
@@ -62,7 +66,7 @@ struct live {
 	/* the run of the loop while the drives are enabled */
 	struct loop *L;
 	struct hal_thread thread;
-	bool running;
+	_Atomic bool running;     /* mu to change; any thread reads it */
 	_Atomic bool done;        /* the loop's thread has returned */
 	_Atomic bool estop_req;   /* live_estop: the loop halts, the state latches */
 	_Atomic int signal_req;   /* live_signal's level */
@@ -83,6 +87,30 @@ struct live {
 	int64_t goto_frame;      /* a move to this frame under way, -1 */
 	uint64_t jog_client;
 	uint64_t jog_seq[LOOP_LIVE_OUT_MAX];
+	uint64_t space_seq;      /* the jog client's last jog of the camera or a node */
+	/* a free node's world matrix as its jogs left it (no output says how
+	 * it is turned: live_space.c), while nothing else moved the rig */
+	struct live_space {
+		bool valid;
+		int32_t node;
+		struct mot_mat w;
+		int k;               /* the last jog's increment: axis, space */
+		bool local;
+		double rate[LOOP_LIVE_OUT_MAX]; /* its outputs' rates, core units */
+		double at[LOOP_LIVE_OUT_MAX];   /* the outputs then, core units */
+	} space;
+	/* the jog of the camera or a node under way: its direction made again
+	 * every few milliseconds (live_space_follow) until the dead-man's time
+	 * after the client's last refresh */
+	struct live_space_jog {
+		bool active;
+		int32_t node;
+		int k;
+		bool local;
+		double sign, speed;
+		int64_t last_ns, until_ns;
+	} space_jog;
+	_Atomic int64_t last_frame; /* the last frame the rig was at, -1: none yet */
 	uint64_t generation;
 	struct live_snap snap;   /* snap_mu */
 	uint64_t serial;
@@ -133,6 +161,17 @@ int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg
 void live_drain_inputs(struct live *lv);
 /* Where the e-stop inputs stand: true when one is asserted (named in msg). */
 bool live_estop_input(struct live *lv, char *msg, size_t size);
+
+/* The snapshot's facts of the scene (its frame rate), after a scene
+ * changed. */
+void live_publish_scene(struct live *lv);
+
+/* live_space.c (mu held): a jog of the camera or a node under way turns
+ * its direction as the rig turns. */
+void live_space_follow(struct live *lv);
+
+/* "no scene loaded: ..." into msg; -ENOENT. */
+int live_no_scene(char *msg, size_t size);
 
 /* file units of output i */
 double live_file_units(const struct live *lv, uint32_t i, double v);

@@ -178,6 +178,11 @@ int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg
 			 lv->state == LIVE_FAULTED ? "faulted, reset first" : "wait");
 		return -EPERM;
 	}
+	/* anything but a jog of the camera or a node moves the rig otherwise */
+	if (c->kind != LOOP_CMD_JOG_VEC && c->kind != LOOP_CMD_NOP) {
+		lv->space.valid = false;
+		lv->space_jog.active = false;
+	}
 	c->seq = ++lv->seq;
 	atomic_store(&lv->cmd_sent, c->seq);
 	c->arrival_ns = hal_mono_ns();

@@ -155,9 +155,7 @@ static int apply(struct live *lv, const char *text, size_t len, const char *path
 	}
 keep:
 	live_scene_swap(lv, ns);
-	pthread_mutex_lock(&lv->snap_mu);
-	lv->generation++;
-	pthread_mutex_unlock(&lv->snap_mu);
+	live_publish_scene(lv);
 	return rc;
 fail:
 	live_scene_free(ns);
@@ -257,7 +255,7 @@ int live_teach(struct live *lv, double frame, const char *const *nodes, uint32_t
 	int rc;
 
 	pthread_mutex_lock(&lv->mu);
-	rc = teach(lv, frame, nodes, n, msg, size);
+	rc = lv->sc ? teach(lv, frame, nodes, n, msg, size) : live_no_scene(msg, size);
 	pthread_mutex_unlock(&lv->mu);
 	return rc;
 }
@@ -269,7 +267,8 @@ int live_teach_delete(struct live *lv, const char *node, double frame, char *msg
 	int rc;
 
 	pthread_mutex_lock(&lv->mu);
-	rc = yedit_key_delete(lv->sc->text, lv->sc->len, node, frame, &text, &len, msg, size);
+	rc = lv->sc ? yedit_key_delete(lv->sc->text, lv->sc->len, node, frame, &text, &len, msg,
+				       size) : live_no_scene(msg, size);
 	if (!rc) {
 		rc = apply(lv, text, len, NULL, msg, size);
 		free(text);
@@ -286,7 +285,8 @@ int live_teach_move(struct live *lv, const char *node, double from, double to, c
 	int rc;
 
 	pthread_mutex_lock(&lv->mu);
-	rc = yedit_key_move(lv->sc->text, lv->sc->len, node, from, to, &text, &len, msg, size);
+	rc = lv->sc ? yedit_key_move(lv->sc->text, lv->sc->len, node, from, to, &text, &len, msg,
+				     size) : live_no_scene(msg, size);
 	if (!rc) {
 		rc = apply(lv, text, len, NULL, msg, size);
 		free(text);
@@ -301,7 +301,9 @@ int live_save(struct live *lv, const char *name, char *msg, size_t size)
 	int rc = 0;
 
 	pthread_mutex_lock(&lv->mu);
-	if (name)
+	if (!lv->sc)
+		rc = live_no_scene(msg, size);
+	else if (name)
 		rc = data_path(lv, name, path, sizeof(path), msg, size);
 	if (!rc)
 		rc = apply(lv, lv->sc->text, lv->sc->len, name ? path : NULL, msg, size);
@@ -330,6 +332,7 @@ int live_load(struct live *lv, const char *name, char *msg, size_t size)
 	loop_free(lv->L);
 	lv->L = NULL;
 	live_rig_down(lv);
+	lv->space.valid = false;
 	old = lv->sc;
 	lv->sc = ns;
 	rc = live_rig_up(lv, msg, size);
@@ -340,17 +343,16 @@ int live_load(struct live *lv, const char *name, char *msg, size_t size)
 		live_rig_down(lv);
 		lv->sc = old;
 		live_scene_free(ns);
-		if (live_rig_up(lv, err2, sizeof(err2)))
+		if (old && live_rig_up(lv, err2, sizeof(err2))) {
 			lv->state = LIVE_FAULTED;
+			snprintf(lv->reason, sizeof(lv->reason), "%s", err2);
+		}
 		goto out;
 	}
 	live_scene_free(old);
 	lv->at_frame = -1;
 	lv->goto_frame = -1;
-	pthread_mutex_lock(&lv->snap_mu);
-	lv->generation++;
-	lv->snap.nout = lv->rig.nout;
-	pthread_mutex_unlock(&lv->snap_mu);
+	live_publish_scene(lv);
 out:
 	pthread_mutex_unlock(&lv->mu);
 	return rc;

@@ -261,6 +261,45 @@ static int STRAND_RT take_play(struct loop *L, const struct loop_cmd *c, int32_t
 	return LOOP_CMD_OK;
 }
 
+/* Every output's fraction at once. */
+static int STRAND_RT take_jog_vec(struct loop *L, const struct loop_cmd *c)
+{
+	struct loop_live *lv = L->live;
+	bool any = false;
+	uint32_t i;
+
+	for (i = 0; i < L->n; i++)
+		if (!(fabs(c->vec[i]) <= 1) || (c->vec[i] != 0 && L->rig->out[i].vel_mode))
+			return LOOP_CMD_INVALID;
+	if (lv->quit || L->seq.state == LOOP_ENDED)
+		return LOOP_CMD_STOPPING;
+	for (i = 0; i < L->n; i++)
+		any |= c->vec[i] != 0;
+	if (c->keep) {
+		bool live = false;
+
+		for (i = 0; i < L->n; i++)
+			live |= lv->jog[i].f != 0;
+		if (L->seq.state != LOOP_JOG || !live)
+			return LOOP_CMD_OK; /* lapsed or stopped meanwhile */
+		for (i = 0; i < L->n; i++)
+			lv->jog[i].f = c->vec[i];
+		return LOOP_CMD_OK;
+	}
+	if (L->seq.state != LOOP_HOLD && L->seq.state != LOOP_JOG)
+		return any ? LOOP_CMD_BUSY : LOOP_CMD_OK;
+	for (i = 0; i < L->n; i++) {
+		lv->jog[i].f = c->vec[i];
+		lv->jog[i].refresh = L->tick;
+	}
+	if (L->seq.state == LOOP_HOLD && any) {
+		L->seq.state = LOOP_JOG;
+		lv->seg_first = -1;
+		lv->at_frame = -1;
+	}
+	return LOOP_CMD_OK;
+}
+
 static void STRAND_RT take(struct loop *L, const struct loop_cmd *c)
 {
 	struct loop_live *lv = L->live;
@@ -286,6 +325,9 @@ static void STRAND_RT take(struct loop *L, const struct loop_cmd *c)
 				lv->at_frame = -1;
 			}
 		}
+		break;
+	case LOOP_CMD_JOG_VEC:
+		code = take_jog_vec(L, c);
 		break;
 	case LOOP_CMD_MOVE:
 		if (!at_rest(L)) {
@@ -387,10 +429,45 @@ static double STRAND_RT jog_vmax(double d, double u, double dt)
 	return (d / (dt * (m + 1)) + u * m / 2) * (1 - 1e-12);
 }
 
+/* An output that takes part in the jog: not a speed, its device on. */
+static bool STRAND_RT jogs(const struct loop *L, uint32_t i)
+{
+	const struct rig_out *o = &L->rig->out[i];
+
+	return !o->vel_mode && !L->safety.dev_off[o->dev];
+}
+
+/*
+ * The ticks the slowest output needs to reach its commanded speed, each
+ * gaining at most amax dt a tick: every output's change is spread over as
+ * many, so that their speeds keep their proportions while they ramp (a
+ * camera dollied moves along its axis from the first tick), and none
+ * changes faster than its own limit allows.
+ */
+static double STRAND_RT ramp_ticks(struct loop *L, double dt)
+{
+	struct loop_live *lv = L->live;
+	double k = 1;
+	uint32_t i;
+
+	for (i = 0; i < L->n; i++) {
+		const struct rig_out *o = &L->rig->out[i];
+		struct live_jog *j = &lv->jog[i];
+
+		if (!jogs(L, i))
+			continue;
+		if (j->f != 0 && L->tick - j->refresh > lv->cfg.deadman_ticks)
+			j->f = 0; /* the dead-man: no refresh in time */
+		k = fmax(k, ceil(fabs(j->f * o->vmax - j->v) / (o->amax * dt) - 1e-9));
+	}
+	return k;
+}
+
 static void STRAND_RT jog_step(struct loop *L)
 {
 	struct loop_live *lv = L->live;
 	const double hz = L->tm->tick_hz, dt = 1.0 / hz;
+	double k = ramp_ticks(L, dt);
 	bool moving = false;
 	uint32_t i;
 
@@ -401,13 +478,11 @@ static void STRAND_RT jog_step(struct loop *L)
 		mot_q32 q;
 
 		L->val[i] = L->prev[i];
-		if (o->vel_mode || L->safety.dev_off[o->dev]) {
+		if (!jogs(L, i)) {
 			j->v = 0;
 			continue;
 		}
-		if (j->f != 0 && L->tick - j->refresh > lv->cfg.deadman_ticks)
-			j->f = 0; /* the dead-man: no refresh in time */
-		v = j->f * o->vmax;
+		v = j->v + (j->f * o->vmax - j->v) / k;
 		v = fmax(j->v - u, fmin(j->v + u, v));
 		if (v > 0) {
 			lim = jog_vmax(o->max - p, u, dt);

@@ -21,12 +21,16 @@
  * (once the others are at rest), a disable (once at rest), a signal. The
  * owner then stops the devices; a new run enables them again.
  *
- * Jog. Each output has its own commanded fraction f of its speed limit;
- * its speed follows f * vmax at no more than amax a second, and never
- * exceeds the speed from which it can stop on its position limit within
- * amax (the braking curve, in whole ticks: see jog_vmax in loop_live.c), so
- * it arrives on the limit and stays there. A jog lapses (f = 0) when no
- * refresh came for deadman_ticks.
+ * Jog. Each output has its own commanded fraction f of its speed limit
+ * (JOG sets one output's, JOG_VEC every output's at once: a jog of the
+ * camera or a node, whose outputs move together); its speed follows
+ * f * vmax at no more than amax a second, the outputs whose speeds change
+ * together reaching theirs in the same tick (a vector jog keeps its
+ * direction while it ramps), and never exceeds the speed from which it can
+ * stop on its position limit within amax (the braking curve, in whole
+ * ticks: see jog_vmax in loop_live.c), so it arrives on the limit and
+ * stays there. A jog lapses (f = 0) when no refresh came for
+ * deadman_ticks.
  */
 #ifndef STRAND_LOOP_LIVE_H
 #define STRAND_LOOP_LIVE_H
@@ -47,6 +51,7 @@
 
 enum loop_cmd_kind {
 	LOOP_CMD_JOG,     /* out, speed */
+	LOOP_CMD_JOG_VEC, /* vec: every output's fraction at once (a space jog) */
 	LOOP_CMD_MOVE,    /* pose (at rest only) */
 	LOOP_CMD_PLAY,    /* cfg and frames (at rest only) */
 	LOOP_CMD_STOP,    /* a controlled stop to HOLD */
@@ -72,6 +77,9 @@ struct loop_cmd {
 	uint32_t kind;       /* enum loop_cmd_kind */
 	uint32_t out;        /* JOG */
 	double speed;        /* JOG: fraction of vmax, -1..1 */
+	double vec[LOOP_LIVE_OUT_MAX]; /* JOG_VEC: each output's fraction, -1..1 */
+	bool keep;           /* JOG_VEC: a new direction for a jog under way, not a
+			      * refresh (its dead-man runs on); none under way: ignored */
 	mot_q32 pose[LOOP_LIVE_OUT_MAX]; /* MOVE */
 	int64_t frame;       /* MOVE: the frame whose pose it is, -1 */
 	struct loop_cfg cfg; /* PLAY: mode, from, to, loop, ping_pong, passes, times, and

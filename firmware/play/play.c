@@ -437,7 +437,9 @@ void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
 			 when);
 		break;
 	case LOOP_CAUSE_ESTOP:
-		if (r->has_edge)
+		if (!r->device) /* no input's: a live session's e-stop command */
+			snprintf(buf, size, "e-stop (commanded) %s; drives disabled, latched", when);
+		else if (r->has_edge)
 			snprintf(buf, size, "e-stop: input '%s' (line %d) %s, acted on %.1f us after "
 				 "the edge; drives disabled, latched", r->device ? r->device : "?",
 				 r->channel, when, (r->acted_ns - r->edge_ns) / 1000.0);

@@ -22,11 +22,6 @@ void dispatch_init(struct dispatch *d, struct live *lv, double lease_s)
 	d->http_ids = UINT64_C(1) << 62; /* apart from the connections' ids */
 }
 
-void dispatch_free(struct dispatch *d)
-{
-	(void)d;
-}
-
 static json_t *jnum(double v)
 {
 	return isfinite(v) ? json_real(v) : json_null();
@@ -36,16 +31,13 @@ static json_t *jnum(double v)
 
 static json_t *status_obj(struct dispatch *d, const struct live_snap *s)
 {
-	int64_t first, last;
-	uint32_t num, den, hz, i;
-	const char *name, *path;
 	char tc[24] = "--:--:--:--";
 	struct timecode t;
 	json_t *o, *outs;
+	uint32_t i;
 
-	live_span(d->lv, &first, &last, &num, &den, &hz, &name, &path);
-	if (s->frame >= 0) {
-		timecode_init(&t, num, den);
+	if (s->frame >= 0 && s->fps_num && s->fps_den) {
+		timecode_init(&t, s->fps_num, s->fps_den);
 		timecode_format(&t, s->frame, tc, sizeof(tc));
 	}
 	outs = json_array();
@@ -183,33 +175,131 @@ static int lease_take(struct dispatch *d, uint64_t client, bool ws, const struct
 
 void dispatch_gone(struct dispatch *d, uint64_t client)
 {
-	live_client_gone(d->lv, client);
 	if (d->holder == client && !d->holder_http)
 		d->holder = 0;
 }
 
-void dispatch_expire(struct dispatch *d, int64_t now)
+uint64_t dispatch_expire(struct dispatch *d, int64_t now)
 {
-	if (d->holder && d->holder_http && now > d->http_until) {
-		live_client_gone(d->lv, d->holder);
+	uint64_t who = d->holder;
+
+	if (!who || !d->holder_http || now <= d->http_until)
+		return 0;
+	d->holder = 0;
+	return who;
+}
+
+/* ---- the server's thread: admission ---- */
+
+static char *answer(const struct rpc_req *r, int code, const char *msg, json_t *res)
+{
+	char *txt, *rtxt;
+
+	if (!r->has_id) {
+		json_decref(res);
+		return NULL;
+	}
+	if (code) {
+		json_decref(res);
+		return rpc_error_text(r->id, code, msg[0] ? msg : "refused");
+	}
+	rtxt = res ? json_dumps(res, JSON_COMPACT | JSON_ENCODE_ANY | JSON_REAL_PRECISION(10)) :
+		     NULL;
+	json_decref(res);
+	txt = rpc_result_text(r->id, rtxt ? rtxt : "null");
+	free(rtxt);
+	return txt;
+}
+
+/* The methods answered on the server's thread: 0 with *res, an error code
+ * with msg, or 1: a command for the command thread. */
+static int admit(struct dispatch *d, uint64_t client, bool ws, struct rpc_req *r, json_t **res,
+		 char *msg, size_t size)
+{
+	struct live_snap snap;
+	char ticket[33];
+	int rc;
+
+	*res = NULL;
+	r->client = d->holder ? d->holder : client;
+	if (rpc_controls(r->method)) {
+		if (d->holder && !holds(d, client, r)) {
+			snprintf(msg, size, "another client controls the rig: watch, or wait until "
+				 "it gives the lease up");
+			return RPC_NOT_LEASED;
+		}
+		if (!d->holder && ws) { /* a connection's first command takes it */
+			d->holder = client;
+			d->holder_http = false;
+			r->client = client;
+		}
+		if (d->holder && d->holder_http)
+			d->http_until = hal_mono_ns() + d->lease_ns;
+	}
+	switch (r->method) {
+	case RPC_STATUS:
+		live_snapshot(d->lv, &snap);
+		*res = status_obj(d, &snap);
+		return 0;
+	case RPC_ESTOP:
+		/* here, at once: never behind a command under way */
+		live_estop(d->lv);
+		*res = json_pack("{s:s}", "state", "e-stopped");
+		return 0;
+	case RPC_TICKET:
+		if (!d->ticket || d->ticket(d->ticket_ctx, ticket)) {
+			snprintf(msg, size, "no ticket: no randomness");
+			return RPC_INTERNAL;
+		}
+		*res = json_pack("{s:s, s:i}", "ticket", ticket, "expires_s", 10);
+		return 0;
+	case RPC_LEASE_TAKE:
+		rc = lease_take(d, client, ws, r, res);
+		if (rc == RPC_NOT_LEASED)
+			snprintf(msg, size, "another client controls the rig");
+		return rc;
+	case RPC_LEASE_RELEASE:
+		*res = json_true();
+		if (!d->holder || !holds(d, client, r))
+			return 0;
+		/* its jogs end: a command, as a client's going is */
+		r->client = d->holder;
 		d->holder = 0;
+		return 1;
+	default:
+		return 1;
 	}
 }
 
-bool dispatch_is_ticket(const char *buf, size_t len)
+char *dispatch_admit(struct dispatch *d, uint64_t client, bool ws, const char *buf, size_t len,
+		     struct rpc_req **job)
 {
 	struct rpc_req *r = malloc(sizeof(*r));
 	struct rpc_err e;
-	bool t;
+	json_t *res = NULL;
+	char msg[LIVE_MSG], *txt;
+	int code;
 
+	*job = NULL;
 	if (!r)
-		return false;
-	t = !rpc_decode(buf, len, r, &e) && r->method == RPC_TICKET;
+		return rpc_error_text("null", RPC_INTERNAL, "out of memory");
+	if (rpc_decode(buf, len, r, &e)) {
+		free(r);
+		return rpc_error_text(e.id, e.code, e.msg);
+	}
+	msg[0] = 0;
+	code = admit(d, client, ws, r, &res, msg, sizeof(msg));
+	if (code == 1) {
+		json_decref(res);
+		*job = r;
+		return NULL;
+	}
+	txt = answer(r, code, msg, res);
 	free(r);
-	return t;
+	return txt;
 }
 
-/* ---- commands ---- */
+/* ---- the command thread ---- */
 
 static int jog_output(struct dispatch *d, const struct rpc_req *r, uint32_t *out, char *msg,
 		      size_t size)
@@ -230,38 +320,18 @@ static int jog_output(struct dispatch *d, const struct rpc_req *r, uint32_t *out
 	return -ENOENT;
 }
 
-/* Run a decoded command: 0 with *res, or an error code with msg. */
-static int run(struct dispatch *d, uint64_t client, bool ws, const struct rpc_req *r,
-	       const char *ticket, json_t **res, char *msg, size_t size)
+/* Run a command: 0 with *res, or an error code with msg. */
+static int run(struct dispatch *d, const struct rpc_req *r, json_t **res, char *msg, size_t size)
 {
 	struct live *lv = d->lv;
 	struct live_snap snap;
 	const char *nodes[RPC_NODES_MAX];
-	uint64_t who = d->holder ? d->holder : client;
 	int64_t lat;
 	uint32_t out, i;
 	int rc = 0;
 
 	*res = NULL;
-	if (rpc_controls(r->method)) {
-		if (d->holder && !holds(d, client, r)) {
-			snprintf(msg, size, "another client controls the rig: watch, or wait until "
-				 "it gives the lease up");
-			return RPC_NOT_LEASED;
-		}
-		if (!d->holder && ws) { /* a connection's first command takes it */
-			d->holder = client;
-			d->holder_http = false;
-			who = client;
-		}
-		if (d->holder && d->holder_http)
-			d->http_until = hal_mono_ns() + d->lease_ns;
-	}
 	switch (r->method) {
-	case RPC_STATUS:
-		live_snapshot(lv, &snap);
-		*res = status_obj(d, &snap);
-		return 0;
 	case RPC_INFO:
 		*res = info_obj(d);
 		return 0;
@@ -270,27 +340,12 @@ static int run(struct dispatch *d, uint64_t client, bool ws, const struct rpc_re
 		if (!rc)
 			*res = json_pack("{s:f}", "latency_us", lat / 1e3);
 		break;
-	case RPC_LEASE_TAKE:
-		rc = lease_take(d, client, ws, r, res);
-		if (rc == RPC_NOT_LEASED)
-			snprintf(msg, size, "another client controls the rig");
-		if (rc)
-			return rc;
-		return 0;
 	case RPC_LEASE_RELEASE:
-		if (holds(d, client, r)) {
-			live_client_gone(lv, d->holder);
-			d->holder = 0;
-		}
+		live_client_gone(lv, r->client);
 		*res = json_true();
-		return 0;
-	case RPC_TICKET:
-		*res = json_pack("{s:s, s:i}", "ticket", ticket, "expires_s", 10);
 		return 0;
 	case RPC_ENABLE:
 		rc = live_enable(lv, msg, size);
-		if (!rc)
-			*res = json_pack("{s:s}", "state", "enabled");
 		break;
 	case RPC_DISABLE:
 		rc = live_disable(lv, msg, size);
@@ -298,16 +353,18 @@ static int run(struct dispatch *d, uint64_t client, bool ws, const struct rpc_re
 	case RPC_STOP:
 		rc = live_stop(lv, msg, size);
 		break;
-	case RPC_ESTOP:
-		live_estop(lv);
-		break;
 	case RPC_RESET:
 		rc = live_reset(lv, msg, size);
 		break;
 	case RPC_JOG:
+		if (r->space[0]) {
+			rc = live_jog_space(lv, r->client, r->name, r->space, r->axis, r->speed,
+					    r->seq, msg, size);
+			break;
+		}
 		rc = jog_output(d, r, &out, msg, size);
 		if (!rc)
-			rc = live_jog(lv, who, out, r->speed, r->seq, msg, size);
+			rc = live_jog(lv, r->client, out, r->speed, r->seq, msg, size);
 		break;
 	case RPC_GOTO:
 		rc = live_goto(lv, r->frame, msg, size);
@@ -341,7 +398,7 @@ static int run(struct dispatch *d, uint64_t client, bool ws, const struct rpc_re
 		rc = live_teach_move(lv, r->name, r->fframe, r->fto, msg, size);
 		break;
 	default:
-		snprintf(msg, size, "not implemented");
+		snprintf(msg, size, "%s: not a command", rpc_method_name(r->method));
 		return RPC_INTERNAL;
 	}
 	if (rc)
@@ -353,37 +410,13 @@ static int run(struct dispatch *d, uint64_t client, bool ws, const struct rpc_re
 	return 0;
 }
 
-char *dispatch(struct dispatch *d, uint64_t client, bool ws, const char *buf, size_t len,
-	       const char *ticket)
+char *dispatch_run(struct dispatch *d, const struct rpc_req *r)
 {
-	struct rpc_req *r = malloc(sizeof(*r));
-	struct rpc_err e;
 	json_t *res = NULL;
-	char msg[LIVE_MSG], *txt = NULL, *rtxt;
+	char msg[LIVE_MSG];
 	int code;
 
-	if (!r)
-		return rpc_error_text("null", RPC_INTERNAL, "out of memory");
-	if (rpc_decode(buf, len, r, &e)) {
-		free(r);
-		return rpc_error_text(e.id, e.code, e.msg);
-	}
 	msg[0] = 0;
-	code = run(d, client, ws, r, ticket, &res, msg, sizeof(msg));
-	if (!r->has_id) {
-		json_decref(res);
-		free(r);
-		return NULL;
-	}
-	if (code) {
-		txt = rpc_error_text(r->id, code, msg[0] ? msg : "refused");
-	} else {
-		rtxt = res ? json_dumps(res, JSON_COMPACT | JSON_ENCODE_ANY |
-						     JSON_REAL_PRECISION(10)) : NULL;
-		txt = rpc_result_text(r->id, rtxt ? rtxt : "null");
-		free(rtxt);
-	}
-	json_decref(res);
-	free(r);
-	return txt;
+	code = run(d, r, &res, msg, sizeof(msg));
+	return answer(r, code, msg, res);
 }

@@ -25,7 +25,7 @@ static const char *const method_names[RPC_NMETHODS] = {
 
 /* The parameters each method takes (besides "lease"). */
 static const char *const method_params[RPC_NMETHODS] = {
-	[RPC_JOG] = "output speed seq",
+	[RPC_JOG] = "output node space axis speed seq",
 	[RPC_GOTO] = "frame",
 	[RPC_STEP] = "dir",
 	[RPC_MOVE] = "pose",
@@ -199,7 +199,20 @@ static int params(struct rpc_err *e, json_t *p, struct rpc_req *r)
 	switch (r->method) {
 	case RPC_JOG:
 		v = json_object_get(p, "output");
-		if (json_is_integer(v)) {
+		if (json_object_get(p, "node")) {
+			if (v)
+				return fail(e, RPC_INVALID_PARAMS, "'output' or 'node', not both");
+			if (str(e, p, "node", true, r->name, sizeof(r->name)) ||
+			    str(e, p, "space", true, r->space, sizeof(r->space)) ||
+			    str(e, p, "axis", true, r->axis, sizeof(r->axis)))
+				return -1;
+			if (strcmp(r->space, "local") && strcmp(r->space, "world"))
+				return fail(e, RPC_INVALID_PARAMS, "'space' %s: local or world",
+					    r->space);
+			if (!listed("x y z rx ry rz truck boom dolly tilt pan roll", r->axis))
+				return fail(e, RPC_INVALID_PARAMS, "'axis' %s: x, y, z, rx, ry, rz, "
+					    "truck, boom, dolly, tilt, pan or roll", r->axis);
+		} else if (json_is_integer(v)) {
 			if (json_integer_value(v) < 0 || json_integer_value(v) >= LOOP_LIVE_OUT_MAX)
 				return fail(e, RPC_INVALID_PARAMS, "'output' %lld: 0 to %d",
 					    (long long)json_integer_value(v), LOOP_LIVE_OUT_MAX - 1);
@@ -208,8 +221,10 @@ static int params(struct rpc_err *e, json_t *p, struct rpc_req *r)
 			if (text(e, v, "output", r->name, sizeof(r->name)))
 				return -1;
 		} else {
-			return fail(e, RPC_INVALID_PARAMS, "missing parameter 'output'");
+			return fail(e, RPC_INVALID_PARAMS, "missing parameter 'output' (or 'node')");
 		}
+		if (!r->space[0] && (json_object_get(p, "space") || json_object_get(p, "axis")))
+			return fail(e, RPC_INVALID_PARAMS, "'space' and 'axis' go with 'node'");
 		{
 			int64_t seq = 0;
 

@@ -12,6 +12,8 @@
  *   status, info, ping, lease.take, lease.release, ticket
  *   enable, disable, stop, estop, reset
  *   jog       {output: index or channel name, speed: -1..1, seq: 1..2^53}
+ *             or {node: "camera" or a free node's name, space: local|world,
+ *              axis: x|y|z|rx|ry|rz|truck|boom|dolly|tilt|pan|roll, speed, seq}
  *   goto      {frame: 0..2^31-1}
  *   step      {dir: 1 or -1}
  *   move      {pose: [values, file units; null: where it stands]}
@@ -63,11 +65,14 @@ struct rpc_req {
 	bool has_id;          /* a notification has none: no answer */
 	char id[80];          /* the id as JSON text ("1", "\"a\"", "null") */
 	char lease[40];       /* "" when not given */
+	uint64_t client;      /* who sends it: the lease holder's id (dispatch) */
 	/* jog */
 	int32_t out;          /* -1: by name */
 	char name[RPC_NAME_MAX]; /* jog's channel, load/save's file, teach's node */
 	double speed;
 	uint64_t seq;
+	char space[8];        /* jog of a node or the camera: "local" or "world", else "" */
+	char axis[8];         /* ... x y z rx ry rz, or truck boom dolly tilt pan roll */
 	/* goto, step, teach, teach.delete, teach.move */
 	int64_t frame;
 	double fframe, fto;

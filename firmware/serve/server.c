@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <libwebsockets.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,7 @@
 #include "dispatch.h"
 
 #define OUTQ 32           /* answers and events waiting for one client */
+#define JOBS_MAX 64       /* commands waiting for the command thread */
 #define TICKETS 16
 #define TICKET_NS 10000000000LL
 #define PUSH_NS 20000000LL /* status to each client at most 50 times a second */
@@ -37,7 +39,27 @@ struct client {
 	unsigned qhead, qn;
 	uint64_t sent_serial;
 	int64_t sent_ns;
+	bool listed;        /* in the server's list: a WebSocket, or HTTP waiting */
 	struct client *next;
+};
+
+/* A command for the command thread, and its answer coming back. */
+struct job {
+	struct job *next;
+	uint64_t client;      /* whose answer it is */
+	struct rpc_req *r;    /* NULL: client `gone`'s jogs end */
+	uint64_t gone;
+	char *answer;         /* NULL: none (a notification) */
+};
+
+struct jobs {
+	pthread_mutex_t mu;   /* held only to link and unlink */
+	pthread_cond_t cv;
+	struct job *head, *tail, *done;
+	unsigned n;
+	bool quit;
+	pthread_t thread;
+	bool started;
 };
 
 struct ticket {
@@ -57,7 +79,8 @@ struct server {
 	struct ticket tickets[TICKETS];
 	enum live_state last_state;
 	char last_reason[LIVE_MSG];
-	bool quitting;
+	bool quitting, exit;
+	struct jobs jobs;
 };
 
 /* ---- security ---- */
@@ -120,9 +143,10 @@ static bool ticket_ok(struct server *s, struct lws *wsi)
 	return false;
 }
 
-/* A new ticket into out (32 hex digits and a NUL). */
-static int ticket_new(struct server *s, char out[33])
+/* A new ticket into out (32 hex digits and a NUL): dispatch's callback. */
+static int ticket_new(void *ctx, char out[33])
 {
+	struct server *s = ctx;
 	unsigned char r[16];
 	int i, slot = 0;
 
@@ -239,13 +263,17 @@ static int ws_send(struct lws *wsi, const char *msg, size_t n)
 
 static int ws_writable(struct server *s, struct client *c)
 {
+	struct live_snap snap;
+	char *msg;
+	int64_t now;
+	int rc;
+
 	if (lws_send_pipe_choked(c->wsi)) {
 		lws_callback_on_writable(c->wsi);
 		return 0;
 	}
 	if (c->qn) {
 		char *m = c->outq[c->qhead];
-		int rc;
 
 		c->qhead = (c->qhead + 1) % OUTQ;
 		c->qn--;
@@ -255,23 +283,171 @@ static int ws_writable(struct server *s, struct client *c)
 			lws_callback_on_writable(c->wsi);
 		return rc;
 	}
-	{
-		struct live_snap snap;
-		char *msg;
-		int rc;
+	/* the newest status, at most every PUSH_NS: the timer asks again */
+	now = hal_mono_ns();
+	if (c->sent_serial && now - c->sent_ns < PUSH_NS)
+		return 0;
+	live_snapshot(s->lv, &snap);
+	if (snap.serial == c->sent_serial && c->sent_serial)
+		return 0;
+	msg = dispatch_status_text(&s->d, &snap, true);
+	if (!msg)
+		return -1;
+	rc = ws_send(c->wsi, msg, strlen(msg));
+	free(msg);
+	c->sent_serial = snap.serial;
+	c->sent_ns = now;
+	return rc;
+}
 
-		live_snapshot(s->lv, &snap);
-		if (snap.serial == c->sent_serial && c->sent_serial)
-			return 0;
-		msg = dispatch_status_text(&s->d, &snap, true);
-		if (!msg)
-			return -1;
-		rc = ws_send(c->wsi, msg, strlen(msg));
-		free(msg);
-		c->sent_serial = snap.serial;
-		c->sent_ns = hal_mono_ns();
-		return rc;
+/* ---- the command thread ---- */
+
+static void *jobs_main(void *arg)
+{
+	struct server *s = arg;
+	struct jobs *q = &s->jobs;
+	struct job *j;
+
+	for (;;) {
+		pthread_mutex_lock(&q->mu);
+		while (!q->head && !q->quit)
+			pthread_cond_wait(&q->cv, &q->mu);
+		j = q->head;
+		if (!j) {
+			pthread_mutex_unlock(&q->mu);
+			return NULL;
+		}
+		q->head = j->next;
+		if (!q->head)
+			q->tail = NULL;
+		pthread_mutex_unlock(&q->mu);
+		if (j->r)
+			j->answer = dispatch_run(&s->d, j->r);
+		else
+			live_client_gone(s->lv, j->gone);
+		free(j->r);
+		j->r = NULL;
+		pthread_mutex_lock(&q->mu);
+		q->n--;
+		j->next = q->done;
+		q->done = j;
+		pthread_mutex_unlock(&q->mu);
+		/* the server's thread delivers it (LWS_CALLBACK_EVENT_WAIT_CANCELLED) */
+		lws_cancel_service(s->ctx);
 	}
+}
+
+/* A job for the command thread: false when too many wait already. */
+static bool jobs_push(struct server *s, uint64_t client, struct rpc_req *r, uint64_t gone)
+{
+	struct jobs *q = &s->jobs;
+	struct job *j = calloc(1, sizeof(*j));
+
+	if (!j)
+		return false;
+	j->client = client;
+	j->r = r;
+	j->gone = gone;
+	pthread_mutex_lock(&q->mu);
+	if (q->n >= JOBS_MAX && r) {
+		pthread_mutex_unlock(&q->mu);
+		free(j);
+		return false;
+	}
+	q->n++;
+	if (q->tail)
+		q->tail->next = j;
+	else
+		q->head = j;
+	q->tail = j;
+	pthread_cond_signal(&q->cv);
+	pthread_mutex_unlock(&q->mu);
+	return true;
+}
+
+static struct client *find(struct server *s, uint64_t id)
+{
+	struct client *c;
+
+	for (c = s->clients; c; c = c->next)
+		if (c->id == id)
+			return c;
+	return NULL;
+}
+
+static void unlist(struct server *s, struct client *c)
+{
+	struct client **pp;
+
+	if (!c->listed)
+		return;
+	for (pp = &s->clients; *pp; pp = &(*pp)->next)
+		if (*pp == c) {
+			*pp = c->next;
+			break;
+		}
+	c->listed = false;
+}
+
+static void list_client(struct server *s, struct client *c)
+{
+	if (c->listed)
+		return;
+	c->next = s->clients;
+	s->clients = c;
+	c->listed = true;
+}
+
+/* The answers the command thread left, to their clients (gone: dropped). */
+static void jobs_deliver(struct server *s)
+{
+	struct jobs *q = &s->jobs;
+	struct job *j, *next;
+	struct client *c;
+
+	pthread_mutex_lock(&q->mu);
+	j = q->done;
+	q->done = NULL;
+	pthread_mutex_unlock(&q->mu);
+	for (; j; j = next) {
+		next = j->next;
+		c = j->answer ? find(s, j->client) : NULL;
+		if (c && c->ws) {
+			ws_queue(c, j->answer);
+		} else if (c) {
+			unlist(s, c);
+			http_answer(c, 200, "application/json", j->answer);
+		} else {
+			free(j->answer);
+		}
+		free(j);
+	}
+}
+
+static void jobs_stop(struct server *s)
+{
+	struct jobs *q = &s->jobs;
+	struct job *j, *next;
+
+	if (q->started) {
+		pthread_mutex_lock(&q->mu);
+		q->quit = true;
+		pthread_cond_signal(&q->cv);
+		pthread_mutex_unlock(&q->mu);
+		pthread_join(q->thread, NULL);
+	}
+	for (j = q->head; j; j = next) {
+		next = j->next;
+		free(j->r);
+		free(j);
+	}
+	for (j = q->done; j; j = next) {
+		next = j->next;
+		free(j->answer);
+		free(j);
+	}
+	pthread_cond_destroy(&q->cv);
+	pthread_mutex_destroy(&q->mu);
 }
 
 /* ---- the timer: the session's round, status, events ---- */
@@ -293,6 +469,7 @@ static void tick(lws_sorted_usec_list_t *sul)
 	struct client *c;
 	int64_t now = hal_mono_ns();
 	int ms = live_service(s->lv);
+	uint64_t lapsed;
 
 	live_snapshot(s->lv, &snap);
 	if (snap.state != s->last_state || strcmp(snap.reason, s->last_reason)) {
@@ -303,12 +480,15 @@ static void tick(lws_sorted_usec_list_t *sul)
 	for (c = s->clients; c; c = c->next)
 		if (c->ws && snap.serial != c->sent_serial && now - c->sent_ns >= PUSH_NS)
 			lws_callback_on_writable(c->wsi);
-	dispatch_expire(&s->d, now);
+	lapsed = dispatch_expire(&s->d, now);
+	if (lapsed)
+		jobs_push(s, 0, NULL, lapsed);
 	if (*s->stop && !s->quitting) {
 		s->quitting = true;
 		live_signal(s->lv, 1);
 	}
 	if (live_finished(s->lv) || (*s->stop >= 2)) {
+		s->exit = true;
 		lws_cancel_service(s->ctx);
 		return;
 	}
@@ -317,30 +497,43 @@ static void tick(lws_sorted_usec_list_t *sul)
 
 /* ---- requests ---- */
 
-static char *handle(struct server *s, struct client *c, const char *buf, size_t len)
+/* A message: its answer now, or NULL when the command thread answers
+ * (*queued) or nobody does (a notification). */
+static char *handle(struct server *s, struct client *c, const char *buf, size_t len,
+		    bool *queued)
 {
-	char t[40];
+	struct rpc_req *job;
+	char *txt = dispatch_admit(&s->d, c->id, c->ws, buf, len, &job);
 
-	if (dispatch_is_ticket(buf, len)) {
-		/* a ticket for a WebSocket: only to a client that showed the token */
-		if (ticket_new(s, t))
-			return rpc_error_text("null", RPC_INTERNAL, "no randomness");
-	} else {
-		t[0] = 0;
+	*queued = false;
+	if (!job)
+		return txt;
+	if (jobs_push(s, c->id, job, 0)) {
+		*queued = job->has_id;
+		return NULL;
 	}
-	return dispatch(&s->d, c->id, c->ws, buf, len, t);
+	txt = job->has_id ? rpc_error_text(job->id, RPC_REFUSED, "the server is busy: too many "
+					   "commands wait for one that takes long (an enable, "
+					   "a load); try again") : NULL;
+	free(job);
+	return txt;
 }
 
 static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *user, void *in,
 		    size_t len)
 {
 	struct server *s = lws_context_user(lws_get_context(wsi));
-	struct client *c = user, **pp;
+	struct client *c = user;
 	const char *why;
-	char uri[128], ctype[64];
+	char uri[128], ctype[64], *txt;
+	bool queued;
 
 	switch (reason) {
 	case LWS_CALLBACK_PROTOCOL_INIT:
+		return 0;
+	case LWS_CALLBACK_EVENT_WAIT_CANCELLED:
+		if (s)
+			jobs_deliver(s);
 		return 0;
 	case LWS_CALLBACK_HTTP:
 		memset(c, 0, sizeof(*c));
@@ -400,18 +593,28 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
 	case LWS_CALLBACK_HTTP_BODY_COMPLETION:
 		if (!c->rpc)
 			return 0;
-		if (c->oversized)
+		if (c->oversized) {
 			http_answer(c, 413, "application/json",
 				    rpc_error_text("null", RPC_OVERSIZED, "message too large"));
-		else
-			http_answer(c, 200, "application/json",
-				    handle(s, c, c->body ? c->body : "", c->blen));
+			return 0;
+		}
+		txt = handle(s, c, c->body ? c->body : "", c->blen, &queued);
+		if (queued) {
+			/* the answer comes from the command thread: an enable may
+			 * take seconds (a CANopen bus), more than lws's timeout */
+			list_client(s, c);
+			lws_set_timeout(wsi, PENDING_TIMEOUT_USER_OK, 120);
+			return 0;
+		}
+		http_answer(c, 200, "application/json",
+			    txt ? txt : strdup("")); /* a notification: nothing to say */
 		return 0;
 	case LWS_CALLBACK_HTTP_WRITEABLE:
 		return http_write(c);
 	case LWS_CALLBACK_CLOSED_HTTP:
 	case LWS_CALLBACK_HTTP_DROP_PROTOCOL:
 		if (c && !c->ws) {
+			unlist(s, c);
 			free(c->body);
 			free(c->resp);
 			c->body = c->resp = NULL;
@@ -436,8 +639,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
 		c->wsi = wsi;
 		c->ws = true;
 		c->id = ++s->next_id;
-		c->next = s->clients;
-		s->clients = c;
+		list_client(s, c);
 		lws_callback_on_writable(wsi);
 		return 0;
 	case LWS_CALLBACK_RECEIVE:
@@ -461,17 +663,15 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
 		if (c->oversized)
 			ws_queue(c, rpc_error_text("null", RPC_OVERSIZED, "message too large"));
 		else
-			ws_queue(c, handle(s, c, c->body ? c->body : "", c->blen));
+			ws_queue(c, handle(s, c, c->body ? c->body : "", c->blen, &queued));
 		return 0;
 	case LWS_CALLBACK_SERVER_WRITEABLE:
 		return ws_writable(s, c);
 	case LWS_CALLBACK_CLOSED:
-		for (pp = &s->clients; *pp; pp = &(*pp)->next)
-			if (*pp == c) {
-				*pp = c->next;
-				break;
-			}
+		unlist(s, c);
 		dispatch_gone(&s->d, c->id);
+		/* its jogs end on the command thread, after what it sent */
+		jobs_push(s, 0, NULL, c->id);
 		while (c->qn) {
 			free(c->outq[c->qhead]);
 			c->qhead = (c->qhead + 1) % OUTQ;
@@ -511,6 +711,10 @@ int server_run(struct live *lv, const struct server_opts *o, volatile sig_atomic
 	s->stop = stop;
 	s->last_state = LIVE_DISABLED;
 	dispatch_init(&s->d, lv, s->o.lease_s);
+	s->d.ticket = ticket_new;
+	s->d.ticket_ctx = s;
+	pthread_mutex_init(&s->jobs.mu, NULL);
+	pthread_cond_init(&s->jobs.cv, NULL);
 	lws_set_log_level(LLL_ERR, lws_log);
 	memset(&info, 0, sizeof(info));
 	info.port = o->port;
@@ -526,20 +730,34 @@ int server_run(struct live *lv, const struct server_opts *o, volatile sig_atomic
 	if (!s->ctx) {
 		fprintf(err, "strand serve: cannot listen on %s:%d (in use, or not an address of "
 			"this machine)\n", o->addr, o->port);
+		jobs_stop(s);
 		free(s);
 		return -EADDRNOTAVAIL;
 	}
+	/* the command thread: created here, by a thread of normal priority
+	 * (a thread inherits its creator's scheduling) */
+	rc = pthread_create(&s->jobs.thread, NULL, jobs_main, s);
+	if (rc) {
+		fprintf(err, "strand serve: cannot start the command thread: %s\n", strerror(rc));
+		lws_context_destroy(s->ctx);
+		jobs_stop(s);
+		free(s);
+		return -rc;
+	}
+	s->jobs.started = true;
 	fprintf(err, "strand serve: listening on http://%s%s%s:%d/\n",
 		strchr(o->addr, ':') ? "[" : "", o->addr, strchr(o->addr, ':') ? "]" : "",
 		o->port);
 	fflush(err);
 	lws_sul_schedule(s->ctx, 0, &s->sul, tick, 5 * LWS_US_PER_MS);
-	while (!live_finished(lv) && *stop < 2)
+	while (!s->exit && !live_finished(lv) && *stop < 2)
 		if (lws_service(s->ctx, 0) < 0)
 			break;
 	lws_sul_cancel(&s->sul);
+	/* the command under way finishes (an enable, a load) before the
+	 * session is closed under it */
+	jobs_stop(s);
 	lws_context_destroy(s->ctx);
-	dispatch_free(&s->d);
 	free(s);
-	return rc;
+	return 0;
 }

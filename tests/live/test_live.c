@@ -522,12 +522,201 @@ static void test_restart_modbus(void **state)
 	peer.pid = -1;
 }
 
+/* The camera on a six-axis rig (slider x, y, z; a pan/tilt/roll head) and
+ * a free node, a crane turned 30 degrees about y, whose tip's pivot three
+ * more outputs follow. */
+static const char space_scene[] =
+	"scene: space\n"
+	"timing: {tick_hz: 1000, frame_rate: 24, frames: [0, 48]}\n"
+	"nodes:\n"
+	"  - {name: crane, pivot: [0, 1, 0]}\n"
+	"  - {name: tip, parent: crane, pivot: [0.5, 1, 0]}\n"
+	"strands:\n"
+	"  - {node: crane, keys: [{frame: 0, rotate: [0, 30, 0]}, {frame: 48, rotate: [0, 30, 0]}]}\n"
+	"camera:\n"
+	"  keys:\n"
+	"    - {frame: 0, eye: [1, 1.5, 3], look_at: [0, 0.5, 0], twist: 10}\n"
+	"    - {frame: 48, eye: [1, 1.5, 3], look_at: [0, 0.5, 0], twist: 10}\n"
+	"devices:\n"
+	"  - {name: drives, driver: sim}\n"
+	"  - {name: io, driver: sim}\n"
+	"outputs:\n"
+	"  - {channel: camera.x, device: drives, axis: 0, counts_per_unit: 10000,\n"
+	"     limits: {min: -5, max: 5, velocity: 0.5, acceleration: 2}}\n"
+	"  - {channel: camera.y, device: drives, axis: 1, counts_per_unit: 10000,\n"
+	"     limits: {min: -5, max: 5, velocity: 0.4, acceleration: 2}}\n"
+	"  - {channel: camera.z, device: drives, axis: 2, counts_per_unit: 10000,\n"
+	"     limits: {min: -5, max: 5, velocity: 0.5, acceleration: 1}}\n"
+	"  - {channel: camera.pan, device: drives, axis: 3, counts_per_unit: 100,\n"
+	"     limits: {velocity: 30, acceleration: 120}}\n"
+	"  - {channel: camera.tilt, device: drives, axis: 4, counts_per_unit: 100,\n"
+	"     limits: {min: -80, max: 80, velocity: 30, acceleration: 120}}\n"
+	"  - {channel: camera.roll, device: drives, axis: 5, counts_per_unit: 100,\n"
+	"     limits: {min: -90, max: 90, velocity: 30, acceleration: 120}}\n"
+	"  - {channel: tip.x, device: drives, axis: 6, counts_per_unit: 10000,\n"
+	"     limits: {min: -5, max: 5, velocity: 0.5, acceleration: 2}}\n"
+	"  - {channel: tip.y, device: drives, axis: 7, counts_per_unit: 10000,\n"
+	"     limits: {min: -5, max: 5, velocity: 0.5, acceleration: 2}}\n"
+	"  - {channel: tip.z, device: drives, axis: 8, counts_per_unit: 10000,\n"
+	"     limits: {min: -5, max: 5, velocity: 0.5, acceleration: 2}}\n"
+	"triggers:\n"
+	"  - {name: camera, device: io, line: 0, pulse_ms: 2}\n";
+
+/* Jog for about ms of wall time (refreshed every 50 ms), then let the
+ * dead-man end it; the rig at rest again into *s. */
+static void space_jog(struct fixture *f, const char *node, const char *space, const char *axis,
+		      double speed, int ms, uint64_t *seq, struct live_snap *s)
+{
+	char msg[512];
+	int t;
+
+	for (t = 0; t < ms; t += 50) {
+		ok(live_jog_space(f->lv, 9, node, space, axis, speed, ++*seq, msg, sizeof(msg)),
+		   msg);
+		nanosleep(&(struct timespec){ .tv_nsec = 50000000 }, NULL);
+	}
+	rest(f, s);
+}
+
+/* The camera's axes in the world, from pan, tilt and roll (degrees): rows
+ * of Rz(roll) . Rx(tilt) . Ry(pan) (motion/camera.h). */
+static void cam_axes(const struct live_snap *s, double r[3][3])
+{
+	double p = s->out[3].sp * M_PI / 180, t = s->out[4].sp * M_PI / 180;
+	double o = s->out[5].sp * M_PI / 180;
+	double a0[3] = { cos(p), 0, -sin(p) }, a1[3] = { sin(t) * sin(p), cos(t), sin(t) * cos(p) };
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		r[0][k] = cos(o) * a0[k] + sin(o) * a1[k];
+		r[1][k] = -sin(o) * a0[k] + cos(o) * a1[k];
+	}
+	r[2][0] = cos(t) * sin(p);
+	r[2][1] = -sin(t);
+	r[2][2] = cos(t) * cos(p);
+}
+
+static double moved(const struct live_snap *a, const struct live_snap *b, uint32_t i)
+{
+	return b->out[i].sp - a->out[i].sp;
+}
+
+/*
+ * Jog the camera and a free node in their own space and the world's
+ * (live_space.c): what the motion must keep, it keeps. Bounds: directions
+ * within 1e-6 (a cosine), what must not move within 1e-6 units or degrees
+ * (the outputs run at rates a finite difference gave, each tick's step
+ * rounded to the core's 2^-32).
+ */
+static void test_space_jog(void **state)
+{
+	struct fixture f;
+	struct live_snap a, b;
+	char path[160], msg[512];
+	double r0[3][3], r1[3][3], d[3], n = 0, c = 0, tip0, tip1;
+	uint64_t seq = 0;
+	uint32_t i;
+	FILE *fp;
+
+	snprintf(path, sizeof(path), "/tmp/strand-live-space-%d.yaml", (int)getpid());
+	fp = fopen(path, "w");
+	fputs(space_scene, fp);
+	fclose(fp);
+	open_scene(&f, path, false, 250);
+	unlink(path);
+	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_ENABLED, &a);
+	ok(live_goto(f.lv, 0, msg, sizeof(msg)), msg);
+	rest(&f, &a);
+
+	/* dolly: along where the camera looks (its -z), nothing turns */
+	space_jog(&f, "camera", "local", "dolly", 0.5, 300, &seq, &b);
+	cam_axes(&a, r0);
+	for (i = 0; i < 3; i++) {
+		d[i] = moved(&a, &b, i);
+		n += d[i] * d[i];
+		c -= d[i] * r0[2][i];
+	}
+	c /= sqrt(n);
+	printf("BOUND dolly %.4f units: along the view, cos %.12f >= 1 - 1e-6; pan, tilt, roll "
+	       "moved %.1e %.1e %.1e deg <= 1e-6\n", sqrt(n), c, moved(&a, &b, 3), moved(&a, &b, 4),
+	       moved(&a, &b, 5));
+	assert_true(sqrt(n) > 0.05 && c >= 1 - 1e-6);
+	for (i = 3; i < 9; i++)
+		assert_true(fabs(moved(&a, &b, i)) <= 1e-6);
+
+	/* tilt in the camera's space, rolled 10 degrees: about its own x,
+	 * which stays where it points; the eye stays. The channels' rates are
+	 * made again every few milliseconds and held between: the axis
+	 * wanders by the second-order term, about (w T)^2 / 2 each (w the rate,
+	 * 0.26 rad/s here, T 10 ms: live_space_follow): 1e-5 a turn of the
+	 * direction; 2e-3 in all, what a braking along its last tangent
+	 * adds included */
+	a = b;
+	space_jog(&f, "camera", "local", "tilt", 0.5, 300, &seq, &b);
+	cam_axes(&a, r0);
+	cam_axes(&b, r1);
+	for (i = 0, n = 0; i < 3; i++)
+		n = fmax(n, fabs(r1[0][i] - r0[0][i]));
+	printf("BOUND local tilt %.3f deg (tilt channel %.3f, pan %.3f): the camera's x axis "
+	       "moved %.1e <= 2e-3, the eye %.1e <= 1e-6\n",
+	       acos(fmin(1, r0[2][0] * r1[2][0] + r0[2][1] * r1[2][1] + r0[2][2] * r1[2][2])) *
+		       180 / M_PI, moved(&a, &b, 4), moved(&a, &b, 3), n,
+	       fmax(fabs(moved(&a, &b, 0)), fmax(fabs(moved(&a, &b, 1)), fabs(moved(&a, &b, 2)))));
+	assert_true(fabs(moved(&a, &b, 3)) > 0.01); /* rolled: pan moves too */
+	assert_true(n <= 2e-3);
+	for (i = 0; i < 3; i++)
+		assert_true(fabs(moved(&a, &b, i)) <= 1e-6);
+
+	/* pan about the world's vertical through the eye: pan alone */
+	a = b;
+	space_jog(&f, "camera", "world", "pan", -0.5, 300, &seq, &b);
+	printf("BOUND world pan %.3f deg; tilt, roll moved %.1e %.1e deg <= 1e-6\n",
+	       moved(&a, &b, 3), moved(&a, &b, 4), moved(&a, &b, 5));
+	assert_true(moved(&a, &b, 3) < -1);
+	for (i = 0; i < 9; i++)
+		if (i != 3)
+			assert_true(fabs(moved(&a, &b, i)) <= 1e-6);
+
+	/* the crane about its own y through its pivot (0, 1, 0): its tip
+	 * keeps its height exactly and its distance from the pivot within
+	 * 3e-3 units: its outputs go along the tangent of the circle that a
+	 * direction made every 10 ms gives, from samples up to 4 ms old, and
+	 * brake along the last (s^2 / 2r: 2.4e-4 from 0.25 units/s at 2) */
+	a = b;
+	space_jog(&f, "crane", "local", "ry", 0.5, 300, &seq, &b);
+	tip0 = hypot(a.out[6].sp, a.out[8].sp);
+	tip1 = hypot(b.out[6].sp, b.out[8].sp);
+	printf("BOUND crane local ry: tip (%.4f %.4f %.4f) -> (%.4f %.4f %.4f), radius %.9f -> "
+	       "%.9f (3e-3), height moved %.1e <= 1e-6\n", a.out[6].sp, a.out[7].sp, a.out[8].sp,
+	       b.out[6].sp, b.out[7].sp, b.out[8].sp, tip0, tip1, moved(&a, &b, 7));
+	assert_true(fabs(moved(&a, &b, 6)) > 0.01);
+	assert_true(fabs(tip1 - tip0) <= 3e-3 && fabs(moved(&a, &b, 7)) <= 1e-6);
+	for (i = 0; i < 6; i++)
+		assert_true(moved(&a, &b, i) == 0);
+
+	/* and along the world's z: the tip alone, along z */
+	a = b;
+	space_jog(&f, "crane", "world", "z", -0.5, 300, &seq, &b);
+	printf("BOUND crane world z: tip moved %.4f along z, %.1e %.1e across <= 1e-6\n",
+	       moved(&a, &b, 8), moved(&a, &b, 6), moved(&a, &b, 7));
+	assert_true(moved(&a, &b, 8) < -0.05);
+	assert_true(fabs(moved(&a, &b, 6)) <= 1e-6 && fabs(moved(&a, &b, 7)) <= 1e-6);
+
+	/* what is not the camera or a free node is refused, by name */
+	assert_int_equal(live_jog_space(f.lv, 9, "nothing", "local", "x", 0.5, ++seq, msg,
+					sizeof(msg)), -ENOENT);
+	ok(live_disable(f.lv, msg, sizeof(msg)), msg);
+	close_fixture(&f);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_states_jog_goto_play),
 		cmocka_unit_test(test_jog_limit),
 		cmocka_unit_test(test_teach),
+		cmocka_unit_test(test_space_jog),
 		cmocka_unit_test(test_restart_sim),
 		cmocka_unit_test(test_restart_canopen),
 		cmocka_unit_test_teardown(test_restart_modbus, stop_peer),
