@@ -335,13 +335,20 @@ void dbl_scene_free(struct dbl_scene *sc)
 int dbl_eval_new(struct dbl_eval *ev, const struct dbl_scene *sc)
 {
 	ev->cursors = calloc(sc->ncurves + sc->nrot + 1, sizeof(*ev->cursors));
-	return ev->cursors ? 0 : -1;
+	ev->memo = calloc(sc->nnodes + 1, sizeof(*ev->memo));
+	ev->memo_world = NULL;
+	if (ev->cursors && ev->memo)
+		return 0;
+	dbl_eval_free(ev);
+	return -1;
 }
 
 void dbl_eval_free(struct dbl_eval *ev)
 {
 	free(ev->cursors);
+	free(ev->memo);
 	ev->cursors = NULL;
+	ev->memo = NULL;
 }
 
 int dbl_pose_new(struct dbl_pose *p, const struct dbl_scene *sc)
@@ -448,13 +455,11 @@ static bool free_linear(struct dbl_mat *m, double t[3], const struct dbl_scene *
 }
 
 /* scene.c's tilted_rot(): Rodrigues on the prepared squares and products */
-static void tilted_rot(struct dbl_mat *r, const struct dbl_node *n, double turns)
+static void tilted_rot(struct dbl_mat *r, const struct dbl_node *n, double s, double c)
 {
 	const double *a = n->axis, *sq = n->rot_sq, *pr = n->rot_pr;
-	double s, c, omc;
+	double omc = 1 - c;
 
-	sincos(2 * M_PI * turns, &s, &c);
-	omc = 1 - c;
 	*r = (struct dbl_mat){ {
 		{ 1 - omc * sq[0], omc * pr[2] + s * a[2], omc * pr[1] - s * a[1] },
 		{ omc * pr[2] - s * a[2], 1 - omc * sq[1], omc * pr[0] + s * a[0] },
@@ -502,14 +507,12 @@ static void translate_world(struct dbl_mat *w, double pos[3], const struct dbl_m
 /* scene.c's revolute_world(): R mixes rows a and b of the parent; with
  * U = P_t + p_a P_a + p_b P_b, pos = U + p_o P_o and W_t = U - p_a W_a - p_b W_b */
 static void revolute_world(struct dbl_mat *w, double pos[3], const struct dbl_mat *par,
-			   unsigned o, const double p[3], double turns)
+			   unsigned o, const double p[3], double s, double c)
 {
 	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
 	const unsigned a = ab[o][0], b = ab[o][1];
-	double s, c;
 	unsigned j;
 
-	sincos(2 * M_PI * turns, &s, &c);
 	for (j = 0; j < 3; j++) {
 		double pa = par->m[a][j], pb = par->m[b][j];
 		double wa = c * pa + s * pb, wb = c * pb - s * pa;
@@ -523,45 +526,67 @@ static void revolute_world(struct dbl_mat *w, double pos[3], const struct dbl_ma
 	}
 }
 
+/* scene.c's mot_scene_eval(), memo and all */
 void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double frame,
 		    struct dbl_pose *out)
 {
 	static const struct dbl_mat id = { { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0, 0, 0 } } };
 	static const double zero[3] = { 0, 0, 0 };
+	const bool warm = ev->memo_world == out->world;
 	uint32_t i, k;
 
 	for (i = 0; i < sc->nnodes; i++) {
 		const struct dbl_node *n = &sc->nodes[i];
 		const struct dbl_mat *par = n->parent >= 0 ? &out->world[n->parent] : &id;
+		const bool still = warm && (n->parent < 0 || !ev->memo[n->parent].moved);
+		struct dbl_memo *m = &ev->memo[i];
 		struct dbl_mat *w = &out->world[i], local;
 		double *pos = out->pos[i], v = 0, r = 0, t[3];
 
+		m->moved = true;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
 			v = joint_value(sc, ev, n, frame, &r);
+			if (!warm || v != m->value) {
+				m->value = v;
+				sincos(2 * M_PI * v, &m->s, &m->c);
+			} else if (still) {
+				m->moved = false;
+				break;
+			}
 			if (n->axis_id != MOT_AXIS_VEC) {
-				revolute_world(w, pos, par, n->axis_id, n->pivot, v);
+				revolute_world(w, pos, par, n->axis_id, n->pivot, m->s, m->c);
 			} else {
-				tilted_rot(&local, n, v);
+				tilted_rot(&local, n, m->s, m->c);
 				node_world(w, pos, par, &local, n->pivot, zero);
 			}
 			break;
 		case MOT_NODE_PRISMATIC:
 			v = joint_value(sc, ev, n, frame, &r);
+			if (still && v == m->value) {
+				m->moved = false;
+				break;
+			}
+			m->value = v;
 			for (k = 0; k < 3; k++)
 				t[k] = v * n->axis[k];
 			translate_world(w, pos, par, n->pivot, t);
 			break;
 		default:
-			if (n->strand < 0)
-				translate_world(w, pos, par, n->pivot, zero);
-			else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
+			if (n->strand < 0) {
+				if (still)
+					m->moved = false;
+				else
+					translate_world(w, pos, par, n->pivot, zero);
+			} else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame)) {
 				translate_world(w, pos, par, n->pivot, t);
-			else
+			} else {
 				node_world(w, pos, par, &local, n->pivot, t);
+			}
 			break;
 		}
 		out->value[i] = v;
 		out->rpm[i] = r;
 	}
+	ev->memo_world = out->world;
 }

@@ -12,6 +12,8 @@
  *   - rotation tracks: slerp prepared per key interval (and squad's inner
  *     slerp), one sincos per in-between, squad's outer slerp per tick as in
  *     strand.c;
+ *   - scene.c's memo: a joint whose value did not change keeps its sine and
+ *     cosine, and with its parent unmoved its matrix and position;
  *   - the hierarchy in one pass in index order, as scene.c: the pivot's
  *     world position (p + t) . P_lin + P_t and the world translation
  *     pos - p . W_lin from it; revolute joints about x, y or z mixing two
@@ -77,8 +79,15 @@ struct dbl_scene {
 	void *block; /* everything above points into it */
 };
 
+struct dbl_memo {
+	double value, s, c;
+	bool moved;
+};
+
 struct dbl_eval {
 	struct dbl_cursor *cursors; /* curves, then rotation tracks */
+	struct dbl_memo *memo;      /* one per node */
+	const struct dbl_mat *memo_world; /* the pose it describes, or NULL */
 };
 
 struct dbl_pose {

@@ -255,12 +255,13 @@ static int bench_curve(enum mot_interp kind, const char *name)
 	uint32_t i;
 
 	for (i = 0; i < CURVE_KEYS; i++) {
-		keys[i] = (struct sd_key){ f, tu_uniform(&r, -100, 100), 0, 0 };
+		keys[i] = (struct sd_key){ .frame = f, .value = tu_uniform(&r, -100, 100) };
 		f += tu_uniform(&r, 6, 40);
 	}
 	node = (struct sd_node){ .name = "c", .parent = -1, .kind = MOT_NODE_PRISMATIC,
 				 .axis_id = MOT_AXIS_X, .axis = { 1, 0, 0 } };
-	node.value = (struct sd_curve){ kind, CURVE_KEYS, keys, 1.5, 2, 0, 0 };
+	node.value = (struct sd_curve){ .interp = kind, .nkeys = CURVE_KEYS, .keys = keys,
+					.beta1 = 1.5, .beta2 = 2 };
 	d = (struct scene_desc){ .name = name, .rate_num = 24, .rate_den = 1, .tick_hz = 1000,
 				 .nnodes = 1, .nodes = &node };
 	c.dmem = malloc(dbl_curve_size(&node.value));

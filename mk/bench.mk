@@ -14,16 +14,25 @@
 .PHONY: bench-fixmath bench-motion bench-play bench-count bench-systems
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench $(BUILD)/bench/sys_bench
+# What the timed programs run under. On a shared machine
+#   make bench-motion BENCH_PREFIX='chrt -f 50 taskset -c 1'
+# keeps the other processes off their CPU while they time (root or rtprio):
+# the README's figures, with run-to-run spreads of a few percent instead of
+# tens.
+BENCH_PREFIX ?=
 
-bench: $(BENCH_PROGS) $(BUILD)/strand | $(BUILD)/.deps-bench-play
-	$(Q)for p in $(BENCH_PROGS); do $$p || exit 1; done
-	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play
+bench: $(BENCH_PROGS) $(BUILD)/bench/scene_count $(BUILD)/strand $(BUILD)/bench/sleep_tick | \
+		$(BUILD)/.deps-bench-play $(BUILD)/.deps-bench-count
+	$(Q)for p in $(BENCH_PROGS); do $(BENCH_PREFIX) $$p || exit 1; done
+	$(Q)sh mk/bench-count.sh $(BUILD)/bench/scene_count $(COUNT_SCENES)
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play \
+		$(BUILD)/bench/sleep_tick
 
 bench-fixmath: $(BUILD)/bench/fixmath_chain
-	$(Q)$<
+	$(Q)$(BENCH_PREFIX) $<
 
 bench-motion: $(BUILD)/bench/motion_bench
-	$(Q)$<
+	$(Q)$(BENCH_PREFIX) $<
 
 BENCH_CFLAGS := -std=c11 -O2 $(WARN) -Werror
 
@@ -72,19 +81,25 @@ bench-systems: $(BUILD)/bench/sys_bench
 
 # ---- the play loop ------------------------------------------------------------------
 # Its wake-up latency on the wall clock against cyclictest (Debian's
-# rt-tests), taking turns in 3 s rounds for 30 s each at 1 kHz and the same
-# priority, and the CPU time per tick of the robot arm on the simulated rig.
-DEB_BENCH_PLAY := rt-tests
-$(BUILD)/.deps-bench-play: mk/deps.sh $(BUILD)/.deps-build
+# rt-tests), taking turns in 1 s rounds for 30 s each at 1 kHz and the same
+# priority, and the CPU time per tick of the robot arm on the simulated rig
+# beside that of a thread that only sleeps (bench/sleep_tick.c).
+# BENCH_PLAY_STRESS=2 runs it all again under stress-ng (Debian's).
+DEB_BENCH_PLAY := rt-tests stress-ng
+$(BUILD)/.deps-bench-play: mk/deps.sh mk/bench.mk $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_BENCH_PLAY) && touch $@
-bench-play: $(BUILD)/strand | $(BUILD)/.deps-bench-play
-	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play
+$(BUILD)/bench/sleep_tick: bench/sleep_tick.c | $(BUILD)/.deps-build
+	@mkdir -p $(@D)
+	$(Q)$(CC) -std=gnu11 -O2 $(WARN) -Werror $< -o $@
+bench-play: $(BUILD)/strand $(BUILD)/bench/sleep_tick | $(BUILD)/.deps-bench-play
+	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play \
+		$(BUILD)/bench/sleep_tick
 
 # ---- instruction counts ------------------------------------------------------------
 # The scenes of scene_bench.c played once under callgrind, which counts only
 # scene_count_play(): instructions per node per tick, steadier than any
-# timing on a shared machine. Needs valgrind (not installed by mk/deps.sh:
-# a developer's tool, not part of the build).
+# timing on a shared machine (mk/bench-count.sh). Needs Debian's valgrind,
+# which mk/deps.sh installs for these targets only.
 SC_SRC := bench/scene_count.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c tests/synth.c
 SC_OBJ := $(SC_SRC:%.c=$(BUILD)/bench/%.o)
 COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_hermite1000 \
@@ -93,12 +108,9 @@ COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_her
 $(BUILD)/bench/scene_count: $(SC_OBJ) $(MB_LINK)
 	$(Q)$(CC) $^ -lm -o $@
 
-bench-count: $(BUILD)/bench/scene_count
-	$(Q)for s in $(COUNT_SCENES); do for side in fixed double; do \
-		out=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
-			--toggle-collect=scene_count_play $< $$s $$side 2>&1) || exit 1; \
-		units=$$(echo "$$out" | awk '/^COUNT/ { print $$5 }'); \
-		ir=$$(echo "$$out" | awk '/Collected :/ { print $$4 }'); \
-		echo "$$s $$side $$ir $$units" | \
-			awk '{ printf "COUNT %s_%s %.0f instructions/node/tick\n", $$1, $$2, $$3 / $$4 }'; \
-	done; done
+DEB_BENCH_COUNT := valgrind
+$(BUILD)/.deps-bench-count: mk/deps.sh mk/bench.mk $(BUILD)/.deps-build
+	$(Q)sh mk/deps.sh $(DEB_BENCH_COUNT) && touch $@
+
+bench-count: $(BUILD)/bench/scene_count | $(BUILD)/.deps-bench-count
+	$(Q)sh mk/bench-count.sh $< $(COUNT_SCENES)

@@ -26,6 +26,26 @@ static mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
 }
 
+/* The value of an interpolating curve's piece s at a frame inside it: one
+ * copy, called from every path but mot_curve_eval()'s plainest. */
+static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,
+						     const struct mot_curve_seg *s, mot_q32 f,
+						     uint32_t *sat)
+{
+	int64_t u;
+
+	if (c->kind == MOT_INTERP_STEP)
+		return s->vref;
+	if (s->ush >= 0) /* a hermite piece in s', without ease (curve.h) */
+		return value_of(s->vref, poly_eval(s->c, (f - s->f0) << s->ush), s->vsh, sat);
+	u = frac62(f - s->f0, &s->inv_w);
+	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
+		u = mot_ease_apply62(&s->ease, u);
+	if (c->kind == MOT_INTERP_LINEAR)
+		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
+	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+}
+
 /* A compact curve (keys only) strictly inside its span: step holds key i,
  * linear is v(i) + (f - f(i)) dv / h with one exact product and division
  * (|f - f(i)| < 2^63, |dv| < 2^63, the quotient within dv). */
@@ -89,23 +109,89 @@ eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iter
 		}
 		return mot_cv_approx_eval(c, cur, frame, iters, sat);
 	}
-	s = &c->seg[locate_seg(c, cur, frame)];
-	if (c->kind == MOT_INTERP_STEP)
-		return s->vref;
-	u = frac62(frame - s->f0, &s->inv_w);
-	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
-		u = mot_ease_apply62(&s->ease, u);
-	if (c->kind == MOT_INTERP_LINEAR)
-		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
-	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+	return piece_value(c, &c->seg[locate_seg(c, cur, frame)], frame, sat);
 }
 
-mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
-		       uint32_t *sat)
+static __attribute__((noinline)) mot_q32 eval_any(const struct mot_curve *c,
+						  struct mot_cursor *cur, mot_q32 frame,
+						  uint32_t *sat)
 {
 	int iters;
 
 	return eval(c, cur, frame, &iters, sat);
+}
+
+/* The piece of f that the cursor holds, or the next one (moving the
+ * cursor), for an interpolating curve and span_f0 < f < span_f1; NULL for
+ * any other: the way through eval() finds it. */
+static inline __attribute__((always_inline)) const struct mot_curve_seg *
+held_piece(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
+{
+	uint32_t j = cur->seg;
+
+	if (j >= c->nseg || f < c->seg[j].f0)
+		return NULL;
+	if (f >= c->seg[j].f1) {
+		/* f < span_f1, the last piece's f1: j + 1 exists */
+		if (f >= c->seg[j + 1].f1)
+			return NULL;
+		cur->seg = ++j;
+	}
+	return &c->seg[j];
+}
+
+/* mot_curve_eval() for a curve with a strand-wide ease: out of the plain
+ * path's way, so that it needs no saved register (the calls below would
+ * make it save some). */
+static __attribute__((noinline)) mot_q32 eval_warped(const struct mot_curve *c,
+						     struct mot_cursor *cur, mot_q32 frame,
+						     uint32_t *sat)
+{
+	const struct mot_curve_seg *s;
+	mot_q32 f = span_warp(c, frame);
+
+	if (f <= c->span_f0)
+		return c->keys[0].value;
+	if (f >= c->span_f1)
+		return c->keys[c->nkeys - 1].value;
+	s = held_piece(c, cur, f);
+	/* the way back is with the frame as given: eval() warps it again */
+	return s ? piece_value(c, s, f, sat) : eval_any(c, cur, frame, sat);
+}
+
+/*
+ * Playback's common case first, kept small: the held ends, or a piece of an
+ * interpolating curve that the cursor holds, or the next one. It is
+ * eval()'s own path for that case, step for step, so the bits are the
+ * same; everything else goes the whole way.
+ */
+mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+		       uint32_t *sat)
+{
+	const struct mot_curve_seg *s;
+	int64_t u;
+
+	if (!c || !c->plain || !cur)
+		return eval_any(c, cur, frame, sat);
+	if (frame <= c->span_f0)
+		return c->keys[0].value;
+	if (frame >= c->span_f1)
+		return c->keys[c->nkeys - 1].value;
+	if (c->span_ease)
+		return eval_warped(c, cur, frame, sat);
+	s = held_piece(c, cur, frame);
+	if (!s)
+		return eval_any(c, cur, frame, sat);
+	if (c->kind == MOT_INTERP_STEP)
+		return s->vref;
+	if (s->ush >= 0)
+		return value_of(s->vref, poly_eval(s->c, (frame - s->f0) << s->ush), s->vsh, sat);
+	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
+		return piece_value(c, s, frame, sat);
+	u = frac62(frame - s->f0, &s->inv_w);
+	if (c->kind == MOT_INTERP_LINEAR)
+		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
+	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 }
 
 int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)
@@ -114,6 +200,73 @@ int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)
 
 	eval(c, NULL, frame, &iters, NULL);
 	return iters;
+}
+
+/* ---- bounds ------------------------------------------------------------------------ */
+
+static uint64_t add_sat(uint64_t a, uint64_t b)
+{
+	return a + b < a ? UINT64_MAX : a + b;
+}
+
+static uint64_t mag(int64_t x)
+{
+	return x < 0 ? 0 - (uint64_t)x : (uint64_t)x;
+}
+
+/* |ref + round(P(u) / 2^sh)| for u in [0, 1] and P with coefficients c[0..n)
+ * evaluated with `rounds` roundings (Horner's rule, curve_priv.h: the
+ * partial sums stay within sum |c| + rounds). */
+static uint64_t poly_bound(mot_q32 ref, const int64_t *c, uint32_t n, uint32_t rounds, int sh)
+{
+	uint64_t s = rounds;
+	uint32_t p;
+
+	for (p = 0; p < n; p++)
+		s = add_sat(s, mag(c[p]));
+	if (sh > 0)
+		s = sh >= 64 ? 1 : (s >> sh) + 1;
+	else if (sh < 0)
+		s = -sh >= 64 || s > UINT64_MAX >> -sh ? UINT64_MAX : s << -sh;
+	return add_sat(add_sat(mag(ref), s), 1);
+}
+
+uint64_t mot_curve_bound(const struct mot_curve *c)
+{
+	uint64_t b = 0, off = 0;
+	uint32_t i, m;
+
+	if (!c || c->nkeys == 0)
+		return 0;
+	for (i = 0; i < c->nkeys; i++) {
+		uint64_t v = mag(c->keys[i].value), d = mag(c->keys[i].value - c->keys[0].value);
+
+		b = v > b ? v : b;
+		off = d > off ? d : off;
+	}
+	if (c->nkeys == 1)
+		return b;
+	if (c->compact) /* between two keys, rounded once */
+		return add_sat(b, 1);
+	if (c->kind != MOT_INTERP_BEZIER) {
+		for (i = 0; i < c->nseg; i++) {
+			uint64_t p = poly_bound(c->seg[i].vref, c->seg[i].c, 4, 4, c->seg[i].vsh);
+
+			b = p > b ? p : b;
+		}
+		return b;
+	}
+	m = c->nkeys - 1;
+	if (c->power) {
+		/* the value's coefficients, slots m .. 2m - 1 (power_value) */
+		int64_t a[MOT_BEZIER_MAX_KEYS];
+
+		for (i = 0; i < m; i++)
+			a[i] = *power_slot(c, m + i);
+		return add_sat(b, poly_bound(c->seg[0].vref, a, m, m, c->seg[0].vsh));
+	}
+	/* de Casteljau: convex combinations of the offsets, a rounding a level */
+	return add_sat(add_sat(b, off), poly_bound(0, NULL, 0, c->nkeys, c->seg[0].vsh));
 }
 
 /* ---- preparation ------------------------------------------------------------------- */
@@ -235,7 +388,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	c->kind = (uint32_t)kind;
 	c->keys = keys;
 	c->seg = seg;
-	c->seg_ease = c->span_ease = c->integral = c->power = c->compact = false;
+	c->seg_ease = c->span_ease = c->integral = c->power = c->plain = c->compact = false;
 	if (!opts)
 		opts = &defaults;
 	if (mot_curve_seg_count(kind, 1) == 0 || (nkeys > 0 && !keys))
@@ -265,6 +418,8 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 		s->fc[0] = s->fc[1] = s->fc[2] = s->fc[3] = 0;
 		s->vsh = s->fsh = 0;
 		s->start = START_CHORD;
+		s->ush = -1;
+		s->plain = 0;
 		s->inv_w.m = s->inv_h.m = 0;
 		s->inv_w.shift = s->inv_h.shift = 32;
 		s->area = mot_acc_zero();
@@ -299,9 +454,16 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 		if (err)
 			goto fail;
 	}
+	c->plain = kind <= MOT_INTERP_HERMITE && nkeys > 1 && !c->compact;
+	for (i = 0; c->plain && !c->span_ease && i + 1 < nkeys; i++) {
+		struct mot_curve_seg *s = &c->seg[i];
+
+		s->plain = mot_ease_is_identity(&s->ease) && s->vsh >= 1 && s->vsh <= 62 &&
+			   (kind != MOT_INTERP_HERMITE || s->ush >= 0);
+	}
 	return MOT_OK;
 fail:
 	c->nkeys = 0;
-	c->integral = false;
+	c->integral = c->plain = false;
 	return err;
 }

@@ -11,7 +11,10 @@
  * and a few products.
  *
  * Interpolating kinds (step, linear, hermite) have one segment per pair of
- * keys, parameter s = (f - f(i)) / h. The approximating kinds (bspline,
+ * keys, parameter s = (f - f(i)) / h; a hermite piece without ease is kept
+ * in s' = (f - f(i)) / 2^e instead, 2^e the power of two above h, whose
+ * Q2.62 value is a shift of the frame (its coefficients prepared for it,
+ * exactly): no product to find the parameter. The approximating kinds (bspline,
  * beta, bezier) are curves on the 2-D control points (frame, value): the
  * value at frame f is taken where the curve's frame coordinate equals f,
  * found by a safeguarded Newton iteration whose starting point depends only
@@ -134,6 +137,10 @@ struct mot_curve_seg {
 	struct mot_recip inv_w;  /* 1 / (f1 - f0) */
 	int16_t vsh, fsh;        /* scales of c[] and of fc[] or ic[] (may be negative) */
 	uint8_t start;           /* Newton start rule (curve_solve.c) */
+	int8_t ush;              /* hermite without ease: c[], ic[] in u' = (f - f0) 2^ush
+				  * (Q2.62), a shift; -1: in u = (f - f0) / (f1 - f0) */
+	uint8_t plain;           /* step, linear or hermite without any ease, vsh in
+				  * [1, 62]: scene.c's inline path may take it */
 	union {
 		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
@@ -151,6 +158,7 @@ struct mot_curve {
 	bool power;             /* bezier evaluated in power form (curve_bezier.c) */
 	bool span_ease;         /* strand-wide ease present */
 	bool integral;
+	bool plain;             /* step, linear or hermite with 2 keys or more, prepared */
 	bool compact;           /* keys only (opts->compact) */
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
@@ -219,6 +227,15 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
  */
 int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_cursor *cur,
 		       mot_q32 frame, uint32_t *sat);
+
+/*
+ * A bound on |mot_curve_eval(c, ..)| at any frame, in raw Q32.32 units
+ * (UINT64_MAX when it would not fit; 0 for a curve that failed init): the
+ * keys' values, and for every piece its reference value and the sum of its
+ * coefficients' magnitudes, with a unit for each rounding. The curve stays
+ * inside it whatever its ease or overshoot. Init only.
+ */
+uint64_t mot_curve_bound(const struct mot_curve *c);
 
 /* Diagnostics for tests and benchmarks: the Newton iterations that
  * mot_curve_eval() takes at this frame (0 where it solves nothing: the

@@ -19,12 +19,17 @@
  *   linear:   e v0 + dv e^2 / (2h)                  exact but for one rounding:
  *             e^2 / h = q + r / h and dv r / h = q2 + r2 / h, two exact divisions
  *   hermite:  e (v0 + sum c_p s^p / (p + 1))        the mean value in the block
- *             scale of c (~2^-59 of sum |c_p|), times e in 128 bits
+ *             scale of c (~2^-59 of sum |c_p|), times e in 128 bits; in s'
+ *             = e / 2^e' with its own c_p where the piece is kept in s'
+ *             (curve.h), the same sum
  */
 static mot_acc seg_integral(const struct mot_curve *c, uint32_t i, int64_t e, int64_t s62)
 {
 	const struct mot_curve_seg *s = &c->seg[i];
 	mot_acc a = mot_acc_mul(e, s->vref);
+
+	if (s->ush >= 0) /* ic[] in s' (curve.h) */
+		s62 = e << s->ush;
 
 	if (c->kind == MOT_INTERP_LINEAR) {
 		/* |dv| < 2^63 and 0 <= e <= h < 2^63 (curve.h limits), so every

@@ -74,6 +74,8 @@ int mot_cv_prep_interp(struct mot_curve *c, const struct mot_tangent *tan)
 	int err = MOT_OK;
 
 	for (j = 0; j < n - 1 && !err; j++) {
+		unsigned e;
+		bool pow;
 		struct mot_curve_seg *s = &c->seg[j];
 		mot_acc num[4];
 		uint64_t den = 1;
@@ -88,7 +90,15 @@ int mot_cv_prep_interp(struct mot_curve *c, const struct mot_tangent *tan)
 			num[1] = mot_acc_from(k[j + 1].value - k[j].value, 0);
 		else if (c->kind == MOT_INTERP_HERMITE)
 			prep_hermite(c, tan, j, num, &den);
-		err = err ? err : mot_cv_poly_prep(s->c, &s->vsh, num, den);
+		/* a hermite piece without ease in s' (curve.h): the polynomials
+		 * of s at s = s' 2^e / h, each coefficient exact and rounded once */
+		e = bitlen64((uint64_t)(s->f1 - s->f0));
+		pow = c->kind == MOT_INTERP_HERMITE && mot_ease_is_identity(&s->ease) && e <= 62;
+		s->ush = pow ? (int8_t)(62 - e) : -1;
+		if (!err)
+			err = pow ? mot_cv_poly_prep_pow(s->c, &s->vsh, num, den, e,
+							 (uint64_t)(s->f1 - s->f0)) :
+				    mot_cv_poly_prep(s->c, &s->vsh, num, den);
 		if (!err && c->kind == MOT_INTERP_HERMITE) {
 			/* the mean value, c[p] / (p + 1), in its own block scale
 			 * (curve_integral.c): numerators 12 / (p + 1) times c's
@@ -98,7 +108,9 @@ int mot_cv_prep_interp(struct mot_curve *c, const struct mot_tangent *tan)
 			im[0] = mot_acc_zero();
 			for (p = 1; p < 4; p++)
 				im[p] = acc_times(num[p], 12 / (p + 1));
-			err = mot_cv_poly_prep(s->ic, &s->fsh, im, 12 * den);
+			err = pow ? mot_cv_poly_prep_pow(s->ic, &s->fsh, im, 12 * den, e,
+							 (uint64_t)(s->f1 - s->f0)) :
+				    mot_cv_poly_prep(s->ic, &s->fsh, im, 12 * den);
 		}
 	}
 	return err;

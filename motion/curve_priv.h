@@ -39,6 +39,9 @@
  *
  * The rest lives in the files above, named mot_cv_* (the core exports only
  * mot_ names; these are not curve.h's).
+ *
+ * scene.c includes this header too, for a joint's plainest case inline
+ * (its curve_at()): one piece's arithmetic, below.
  */
 #ifndef MOT_CURVE_PRIV_H
 #define MOT_CURVE_PRIV_H
@@ -94,6 +97,17 @@ bool mot_cv_acc_div_round(int64_t *out, mot_acc num, int sh, uint64_t den);
 /* Block floating point for one cubic: c[p] = round(num[p] / den * 2^sh),
  * sum |c[p]| <= 2^60 + 2; MOT_E_RANGE when a coefficient does not fit. */
 int mot_cv_poly_prep(int64_t c[4], int16_t *sh, const mot_acc num[4], uint64_t den);
+
+/* round(num 2^k / (den w^p)) for den, w > 0, p <= 3, any k, exact (numbers
+ * of up to 384 bits), as int64 in *out; false when its magnitude does not
+ * fit below 2^63. */
+bool mot_cv_div_pow_round(int64_t *out, mot_acc num, int k, uint64_t den, uint64_t w,
+			  unsigned p);
+
+/* mot_cv_poly_prep() for the polynomial in u' = u w / 2^e (2^(e-1) <= w <
+ * 2^e) instead of u: every |c[p]| below 2^58; MOT_E_RANGE when none fits. */
+int mot_cv_poly_prep_pow(int64_t c[4], int16_t *sh, const mot_acc num[4], uint64_t den,
+			 unsigned e, uint64_t w);
 
 /* round(x / 2^sh) for an int64 x and any sh, saturating. */
 static inline int64_t round_shift(int64_t x, int sh, uint32_t *sat)

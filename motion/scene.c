@@ -1,10 +1,18 @@
 /* SPDX-License-Identifier: MIT */
 /* scene.c - validating and evaluating a scene (see scene.h). */
+#include "curve_priv.h"
 #include "decomp.h"
 #include "scene.h"
 #include "trig.h"
 
 #define ONE MOT_Q32_ONE
+
+/* The inline paths below (a joint's curve, the kernels of the small case)
+ * only where 128-bit integers are the compiler's: on the portable two-word
+ * path their copies cost more code than they save time (a Cortex-M4), and
+ * it is the one fix.h path the other builds check them against (make
+ * check-cross). */
+static const bool small_kernels = MOT_HAVE_INT128;
 
 static const struct mot_mat mat_id = {
 	{ { ONE, 0, 0 }, { 0, ONE, 0 }, { 0, 0, ONE }, { 0, 0, 0 } },
@@ -126,38 +134,157 @@ int mot_scene_validate(const struct mot_scene *sc)
 	return MOT_OK;
 }
 
+/* The small case (see node_world below): the longest chain its bounds
+ * hold for (2^20 levels of rotations grow P_lin's norm by less than
+ * e^(2^20 2^-23) even with the least exact axis mot_scene_validate()
+ * passes), the largest offset (2^18 units) and parent translation (2^29
+ * units). */
+#define SMALL_DEPTH ((uint32_t)1 << 20)
+#define SMALL_OFFSET ((uint64_t)1 << 50)
+#define SMALL_TRANS ((uint64_t)1 << 61)
+#define SMALL_LIN_SHIFT 8 /* |P_lin| entries below 2^8 */
+
+static uint64_t add_sat(uint64_t a, uint64_t b)
+{
+	return a + b < a ? UINT64_MAX : a + b;
+}
+
+/* The largest |t| component of a node over its whole timeline (raw), 0 for
+ * a revolute joint; UINT64_MAX for a free node that scales or shears. */
+static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *n)
+{
+	uint64_t b = 0;
+	uint32_t k;
+
+	switch (n->kind) {
+	case MOT_NODE_REVOLUTE:
+		return 0;
+	case MOT_NODE_PRISMATIC:
+		/* |v a_k| rounded, |a_k| <= 1 + 2^-25: one unit more than 2 |v| */
+		b = n->curve >= 0 ? mot_curve_bound(&sc->curves[n->curve]) : (uint64_t)mot_abs(n->rest);
+		return add_sat(add_sat(b, b), 1);
+	default:
+		if (n->strand < 0)
+			return 0;
+		for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+			int32_t c = sc->free[n->strand].channel[k];
+			uint64_t v = c >= 0 ? mot_curve_bound(&sc->curves[c]) : 0;
+
+			if (k >= MOT_FREE_SX && c >= 0)
+				return UINT64_MAX;
+			b = k < MOT_FREE_SX && v > b ? v : b;
+		}
+		return b;
+	}
+}
+
+/*
+ * What the memo knows of a node before any evaluation: whether it is of the
+ * small case, and a bound on its translation for its children. Under a
+ * parent whose world translation is below B, with P_lin below 2^8: pos
+ * below B + (|p|_1 + |t|_1) 2^8, W_t below that + |p|_1 2^8, raw.
+ */
+static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
+			 const struct mot_node *n, const struct mot_node_memo *up)
+{
+	uint64_t t = offset_bound(sc, n), p1 = 0, bt;
+	uint32_t chain = up ? up->chain : 1;
+	bool off = t < SMALL_OFFSET;
+	uint32_t k;
+
+	for (k = 0; k < 3; k++) {
+		off = off && (uint64_t)mot_abs(n->pivot[k]) < SMALL_OFFSET;
+		p1 = add_sat(p1, (uint64_t)mot_abs(n->pivot[k]));
+	}
+	m->chain = chain && chain <= SMALL_DEPTH && t != UINT64_MAX ? chain + 1 : 0;
+	bt = up ? up->bound : 0;
+	m->small = m->chain && off && bt < SMALL_TRANS;
+	m->bound = UINT64_MAX;
+	if (m->small) /* p, t below 2^50: (2 |p|_1 + |t|_1) 2^8 < 2^62, no wrap */
+		m->bound = bt + ((2 * p1 + 3 * t) << SMALL_LIN_SHIFT) + 2;
+}
+
 int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc)
 {
 	uint32_t i, n = mot_eval_cursor_count(sc);
 
-	if (ev->ncursors < n)
+	if (ev->ncursors < n || ev->nmemo < mot_eval_memo_count(sc))
 		return MOT_E_CAPACITY;
 	for (i = 0; i < n; i++) {
 		ev->cursors[i].seg = 0;
 		ev->cursors[i].key = 0;
 	}
+	for (i = 0; i < sc->nnodes; i++) {
+		const struct mot_node *nd = &sc->nodes[i];
+		struct mot_node_memo *m = &ev->memo[i];
+
+		m->value = m->s = m->c = 0;
+		m->moved = 1;
+		memo_prepare(m, sc, nd, nd->parent >= 0 ? &ev->memo[nd->parent] : NULL);
+	}
 	for (i = 0; i < sc->nsys; i++)
 		mot_system_eval_reset(&ev->sys[i]);
 	ev->sat = 0;
+	ev->memo_world = NULL;
 	return MOT_OK;
 }
 
+/* The angle of a spin joint and its speed (kept out of the loop's way). */
+static __attribute__((noinline)) mot_q32 spin_value(const struct mot_scene *sc,
+						    struct mot_eval *ev,
+						    const struct mot_node *n, mot_q32 frame,
+						    mot_q32 *rpm)
+{
+	const struct mot_curve *c = &sc->curves[n->spin];
+	struct mot_cursor *cur = &ev->cursors[n->spin];
+
+	*rpm = mot_curve_eval(c, cur, frame, &ev->sat);
+	return mot_add_sat(n->rest, mot_spin_turns(c, cur, &sc->timing, frame, &ev->sat),
+			   &ev->sat);
+}
+
+/*
+ * A joint's curve at a frame: mot_curve_eval() with its plainest case
+ * inline (curve_priv.h's arithmetic): a plain piece (curve.h) that the
+ * cursor holds, step for step as curve.c's piece_value(). The rest, and a
+ * value that would take value_of()'s wide path, go through
+ * mot_curve_eval(): the same bits either way.
+ */
+static inline __attribute__((always_inline)) mot_q32
+curve_at(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f, uint32_t *sat)
+{
+	const uint32_t j = cur->seg;
+
+	if (small_kernels && j < c->nseg) {
+		const struct mot_curve_seg *s = &c->seg[j];
+		int64_t p, q;
+		mot_q32 r;
+
+		if (s->plain && f >= s->f0 && f < s->f1) {
+			if (c->kind == MOT_INTERP_STEP)
+				return s->vref;
+			if (c->kind == MOT_INTERP_LINEAR)
+				p = mul62(s->c[1], frac62(f - s->f0, &s->inv_w));
+			else
+				p = poly_eval(s->c, (f - s->f0) << s->ush);
+			if (!__builtin_add_overflow(p, (int64_t)1 << (s->vsh - 1), &q) &&
+			    !__builtin_add_overflow(s->vref, q >> s->vsh, &r))
+				return r;
+		}
+	}
+	return mot_curve_eval(c, cur, f, sat);
+}
+
 /* The joint value of a joint node, and its spin speed. */
-static mot_q32 joint_value(const struct mot_scene *sc, struct mot_eval *ev,
-			   const struct mot_node *n, mot_q32 frame, mot_q32 *rpm)
+static inline __attribute__((always_inline)) mot_q32
+joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_node *n,
+	    mot_q32 frame, mot_q32 *rpm)
 {
 	*rpm = 0;
 	if (n->curve >= 0)
-		return mot_curve_eval(&sc->curves[n->curve], &ev->cursors[n->curve], frame,
-				      &ev->sat);
-	if (n->spin >= 0) {
-		const struct mot_curve *c = &sc->curves[n->spin];
-		struct mot_cursor *cur = &ev->cursors[n->spin];
-
-		*rpm = mot_curve_eval(c, cur, frame, &ev->sat);
-		return mot_add_sat(n->rest, mot_spin_turns(c, cur, &sc->timing, frame, &ev->sat),
-				   &ev->sat);
-	}
+		return curve_at(&sc->curves[n->curve], &ev->cursors[n->curve], frame, &ev->sat);
+	if (n->spin >= 0)
+		return spin_value(sc, ev, n, frame, rpm);
 	return n->rest;
 }
 
@@ -257,26 +384,41 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
  * quaternion route costs a half-angle sincos, three roundings of the
  * quaternion and fifteen products.
  */
-static void tilted_rot(struct mot_mat *r, const struct mot_node *n, mot_q32 turns)
+/* Row k of tilted_rot()'s matrix and the entries (j, l), (l, j) that pair
+ * with it, (k, j, l) = (k, k+1, k+2) mod 3 as constants where inlined. */
+static inline __attribute__((always_inline)) void tilted_entries(struct mot_mat *r,
+								 const struct mot_node *n,
+								 mot_q32 s, mot_q32 omc,
+								 unsigned k, unsigned j,
+								 unsigned l)
 {
-	mot_q32 s, c, omc;
 	uint64_t ov = 0; /* terms below 2^96: never set */
+	/* a_k in Q2.62, exactly (|a_k| <= 1 + 2^-25, validated) */
+	int64_t ak = (int64_t)((uint64_t)n->axis[k] << 30);
+	mot_acc x = mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[k]);
+	mot_acc y = mot_acc_mul(s, ak);
+
+	r->m[k][k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
+						  mot_acc_mul(omc, n->rot_sq[k])),
+				      62, &ov);
+	r->m[j][l] = mot_acc_floor_ov(mot_acc_add(x, y), 62, &ov);
+	r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(x, y), 62, &ov);
+}
+
+static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
+							     const struct mot_node *n, mot_q32 s,
+							     mot_q32 c)
+{
+	mot_q32 omc = ONE - c; /* exact, in [0, 2] */
 	unsigned k;
 
-	mot_sincos(turns, &s, &c);
-	omc = ONE - c; /* exact, in [0, 2] */
-	for (k = 0; k < 3; k++) {
-		unsigned j = (k + 1) % 3, l = (k + 2) % 3;
-		/* a_k in Q2.62, exactly (|a_k| <= 1 + 2^-25, validated) */
-		int64_t ak = (int64_t)((uint64_t)n->axis[k] << 30);
-		mot_acc x = mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[k]);
-		mot_acc y = mot_acc_mul(s, ak);
-
-		r->m[k][k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
-							  mot_acc_mul(omc, n->rot_sq[k])),
-					      62, &ov);
-		r->m[j][l] = mot_acc_floor_ov(mot_acc_add(x, y), 62, &ov);
-		r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(x, y), 62, &ov);
+	if (small_kernels) {
+		tilted_entries(r, n, s, omc, 0, 1, 2);
+		tilted_entries(r, n, s, omc, 1, 2, 0);
+		tilted_entries(r, n, s, omc, 2, 0, 1);
+	} else {
+		for (k = 0; k < 3; k++) /* one copy: less code */
+			tilted_entries(r, n, s, omc, k, (k + 1) % 3, (k + 2) % 3);
 	}
 	r->m[3][0] = r->m[3][1] = r->m[3][2] = 0;
 }
@@ -316,7 +458,22 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  * distance from the origin. Each entry is one sum of exact products rounded
  * once (fix.h's kernel); when a sum does not fit, node_world_sat() redoes
  * the node with the saturating sums, which give the same bits otherwise.
+ *
+ * Known bounds (the small case). Most nodes are known before the products
+ * to need no overflow test at all. Under at most 2^20 parents that only
+ * rotate (no scale or shear channel up the chain) every entry of P_lin
+ * stays below 2^8 in magnitude: a rotation, rounded, grows P_lin's norm by a
+ * factor below 1 + 2^-23 a level, even with the least exact axis
+ * mot_scene_validate() lets through. With the node's pivot and translation
+ * below 2^18 units over the whole timeline (the curves' bounds) and P_t
+ * below 2^29 units (its parent's bound, summed down the chain), every sum
+ * stays below 2^94 and every result below 2^63. mot_eval_reset() works that
+ * out once per node (memo_prepare). The kernels below then drop the tests,
+ * and P_t, whose share of each sum is a whole number of units of the
+ * result, is added after the rounding instead of before: the same bits, a
+ * fifth fewer instructions.
  */
+
 static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,
 			   const struct mot_mat *m, const mot_q32 p[3], const mot_q32 t[3],
 			   uint32_t *sat)
@@ -348,62 +505,157 @@ static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_m
 	}
 }
 
-/* Any linear part M (free nodes, tilted joints); M must not alias W. */
-static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-		       const struct mot_mat *restrict par, const struct mot_mat *restrict m,
-		       const mot_q32 p[3], const mot_q32 t[3], uint32_t *sat)
+/*
+ * The sums of one translation entry: start(P_t) + products, rounded, with
+ * the overflow test; or, small, start(0) + products rounded and P_t added
+ * after. Constant `small` where inlined: one of the two remains.
+ */
+static inline __attribute__((always_inline)) mot_acc trans_start(mot_q32 yt, bool small)
 {
-	const mot_q32(*y)[3] = par->m;
+	return mot_acc_start(small ? 0 : yt, 32);
+}
+
+static inline __attribute__((always_inline)) mot_q32 trans_end(mot_acc x, mot_q32 yt, bool small,
+							       uint64_t *ov)
+{
+	uint64_t unused = 0;
+
+	if (small)
+		return mot_acc_floor_ov(x, 32, &unused) + yt;
+	return mot_acc_floor_ov(x, 32, ov);
+}
+
+/* Any linear part M (free nodes, tilted joints); M must not alias W. W's
+ * linear part first, row by row, then the translation sums column by
+ * column, which read it back: few values live at once. */
+static inline __attribute__((always_inline)) void
+node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
+	      const struct mot_mat *restrict m, const mot_q32 p[3], const mot_q32 t[3], bool small,
+	      uint32_t *sat)
+{
+	const mot_q32(*restrict y)[3] = par->m;
 	mot_q32 q[3];
-	uint64_t ov = 0;
+	uint64_t ov = 0, unused = 0;
 	unsigned i, j;
 
 	for (i = 0; i < 3; i++)
 		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
-	for (i = 0; i < 3; i++)
+	for (i = 0; i < 3; i++) {
+		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
+
 		for (j = 0; j < 3; j++)
-			w->m[i][j] = mot_sum3_ov(m->m[i][0], y[0][j], m->m[i][1], y[1][j],
-						 m->m[i][2], y[2][j], 0, 32, &ov);
+			w->m[i][j] = mot_sum3_ov(m0, y[0][j], m1, y[1][j], m2, y[2][j], 0, 32,
+						 small ? &unused : &ov);
+	}
 	for (j = 0; j < 3; j++) {
 		/* at most three products and an addend, then three more from a
 		 * sum that fits (else ov is set already): no wrap goes unseen */
-		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), q[0], y[0][j]);
+		mot_acc x = mot_acc_mac(trans_start(y[3][j], small), q[0], y[0][j]);
 
 		x = mot_acc_mac(mot_acc_mac(x, q[1], y[1][j]), q[2], y[2][j]);
-		pos[j] = mot_acc_floor_ov(x, 32, &ov);
+		pos[j] = trans_end(x, y[3][j], small, &ov);
 		x = mot_acc_sub(x, mot_acc_mul(p[0], w->m[0][j]));
 		x = mot_acc_sub(x, mot_acc_mul(p[1], w->m[1][j]));
 		x = mot_acc_sub(x, mot_acc_mul(p[2], w->m[2][j]));
-		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+		w->m[3][j] = trans_end(x, y[3][j], small, &ov);
 	}
-	if (ov)
+	if (!small && ov)
 		node_world_sat(w, pos, par, m, p, t, sat);
+}
+
+static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		       const struct mot_mat *restrict par, const struct mot_mat *restrict m,
+		       const mot_q32 p[3], const mot_q32 t[3], bool small, uint32_t *sat)
+{
+	if (small_kernels && small)
+		node_world_in(w, pos, par, m, p, t, true, sat);
+	else
+		node_world_in(w, pos, par, m, p, t, false, sat);
+}
+
+/* A revolute joint about a tilted axis: its rotation, then node_world()
+ * with t = 0. */
+static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			 const struct mot_mat *restrict par, const struct mot_node *n, mot_q32 s,
+			 mot_q32 c, bool small, uint32_t *sat)
+{
+	static const mot_q32 zero[3] = { 0, 0, 0 };
+	struct mot_mat r;
+
+	tilted_rot(&r, n, s, c);
+	if (small_kernels && small)
+		node_world_in(w, pos, par, &r, n->pivot, zero, true, sat);
+	else if (small_kernels)
+		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat);
+	else /* one copy: less code */
+		node_world(w, pos, par, &r, n->pivot, zero, false, sat);
 }
 
 /* M = I (prismatic joints, free nodes without rotation, scale or shear):
  * W = T(t) . P, P's linear part and translation t . P_lin + P_t, and
  * pos = W_t + p . P_lin. */
-static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-			    const struct mot_mat *restrict par, const mot_q32 p[3],
-			    const mot_q32 t[3], uint32_t *sat)
+static inline __attribute__((always_inline)) void
+translate_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		   const struct mot_mat *restrict par, const mot_q32 p[3], const mot_q32 t[3],
+		   bool small, uint32_t *sat)
 {
 	const mot_q32(*y)[3] = par->m;
 	uint64_t ov = 0;
 	unsigned j;
 
 	for (j = 0; j < 3; j++) {
-		mot_acc x = mot_acc_mac(mot_acc_start(y[3][j], 32), t[0], y[0][j]);
+		mot_acc x = mot_acc_mac(trans_start(y[3][j], small), t[0], y[0][j]);
 
 		x = mot_acc_mac(mot_acc_mac(x, t[1], y[1][j]), t[2], y[2][j]);
-		w->m[3][j] = mot_acc_floor_ov(x, 32, &ov);
+		w->m[3][j] = trans_end(x, y[3][j], small, &ov);
 		x = mot_acc_mac(mot_acc_mac(x, p[0], y[0][j]), p[1], y[1][j]);
-		pos[j] = mot_acc_floor_ov(mot_acc_mac(x, p[2], y[2][j]), 32, &ov);
+		pos[j] = trans_end(mot_acc_mac(x, p[2], y[2][j]), y[3][j], small, &ov);
 		w->m[0][j] = y[0][j];
 		w->m[1][j] = y[1][j];
 		w->m[2][j] = y[2][j];
 	}
-	if (ov)
+	if (!small && ov)
 		node_world_sat(w, pos, par, &mat_id, p, t, sat);
+}
+
+static void translate_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			    const struct mot_mat *restrict par, const mot_q32 p[3],
+			    const mot_q32 t[3], bool small, uint32_t *sat)
+{
+	if (small_kernels && small)
+		translate_world_in(w, pos, par, p, t, true, sat);
+	else
+		translate_world_in(w, pos, par, p, t, false, sat);
+}
+
+/* A prismatic joint along coordinate axis o by v: t = v e_o, and the two
+ * zero products of each column are left out where it is inlined: W_t =
+ * P_t + v P_o, a scaled row. */
+static inline __attribute__((always_inline)) void
+prismatic_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
+	     unsigned o, const mot_q32 p[3], mot_q32 v, bool small, uint32_t *sat)
+{
+	const mot_q32 tx[3] = { v, 0, 0 }, ty[3] = { 0, v, 0 }, tz[3] = { 0, 0, v };
+
+	if (!small_kernels) /* one copy: less code */
+		translate_world(w, pos, par, p, o == MOT_AXIS_X ? tx : o == MOT_AXIS_Y ? ty : tz, false,
+				sat);
+	else if (o == MOT_AXIS_X)
+		translate_world_in(w, pos, par, p, tx, small, sat);
+	else if (o == MOT_AXIS_Y)
+		translate_world_in(w, pos, par, p, ty, small, sat);
+	else
+		translate_world_in(w, pos, par, p, tz, small, sat);
+}
+
+static void prismatic_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			    const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
+			    mot_q32 v, bool small, uint32_t *sat)
+{
+	if (small_kernels && small)
+		prismatic_in(w, pos, par, o, p, v, true, sat);
+	else
+		prismatic_in(w, pos, par, o, p, v, false, sat);
 }
 
 /*
@@ -429,42 +681,68 @@ static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
 	m->m[b][b] = c;
 }
 
-static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
-			   mot_q32 turns, uint32_t *sat)
+/* revolute_world() for rows (a, b) and axis row o, constants where it is
+ * inlined (one copy per axis: the rows sit at fixed offsets). The rotated
+ * rows first, then the translation sums, which read them back: fewer values
+ * live at once than column by column, so none is spilled. */
+static inline __attribute__((always_inline)) void
+revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
+	      const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3], mot_q32 s,
+	      mot_q32 c, bool small, uint64_t *ov)
 {
 	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
-	const mot_q32 *restrict ya = par->m[a], *restrict yb = par->m[b];
-	const mot_q32 *restrict yo = par->m[o], *restrict yt = par->m[3];
-	mot_q32 *restrict wa = w->m[a], *restrict wb = w->m[b];
-	mot_q32 *restrict wo = w->m[o], *restrict wt = w->m[3];
-	const mot_q32 pa = p[a], pb = p[b], po = p[o];
-	mot_q32 s, c;
-	uint64_t ov = 0;
+	const mot_q32(*restrict y)[3] = par->m;
+	mot_q32(*restrict x)[3] = w->m;
+	uint64_t unused = 0;
 	unsigned j;
 
-	mot_sincos(turns, &s, &c);
 	for (j = 0; j < 3; j++) {
-		mot_q32 ra = mot_sum2_ov(c, ya[j], s, yb[j], 0, 32, &ov);
-		mot_q32 rb = mot_sum2_ov(-s, ya[j], c, yb[j], 0, 32, &ov);
-		mot_acc u = mot_acc_mac(mot_acc_start(yt[j], 32), pa, ya[j]);
-
-		u = mot_acc_mac(u, pb, yb[j]);
-		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
-		pos[j] = mot_acc_floor_ov(mot_acc_mac(u, po, yo[j]), 32, &ov);
-		u = mot_acc_sub(u, mot_acc_mul(pa, ra));
-		wt[j] = mot_acc_floor_ov(mot_acc_sub(u, mot_acc_mul(pb, rb)), 32, &ov);
-		wa[j] = ra;
-		wb[j] = rb;
-		wo[j] = yo[j];
+		x[a][j] = mot_sum2_ov(c, y[a][j], s, y[b][j], 0, 32, small ? &unused : ov);
+		x[b][j] = mot_sum2_ov(-s, y[a][j], c, y[b][j], 0, 32, small ? &unused : ov);
+		x[o][j] = y[o][j];
 	}
-	if (ov) {
+	for (j = 0; j < 3; j++) {
+		mot_acc u = mot_acc_mac(trans_start(y[3][j], small), p[a], y[a][j]);
+
+		u = mot_acc_mac(u, p[b], y[b][j]);
+		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
+		pos[j] = trans_end(mot_acc_mac(u, p[o], y[o][j]), y[3][j], small, ov);
+		u = mot_acc_sub(u, mot_acc_mul(p[a], x[a][j]));
+		x[3][j] = trans_end(mot_acc_sub(u, mot_acc_mul(p[b], x[b][j])), y[3][j], small, ov);
+	}
+}
+
+static inline __attribute__((always_inline)) void
+revolute_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
+	    unsigned o, const mot_q32 p[3], mot_q32 s, mot_q32 c, bool small, uint32_t *sat)
+{
+	uint64_t ov = 0;
+
+	if (!small_kernels)
+		revolute_cols(w, pos, par, o, p, s, c, small, &ov); /* one copy: less code */
+	else if (o == MOT_AXIS_X)
+		revolute_cols(w, pos, par, MOT_AXIS_X, p, s, c, small, &ov);
+	else if (o == MOT_AXIS_Y)
+		revolute_cols(w, pos, par, MOT_AXIS_Y, p, s, c, small, &ov);
+	else
+		revolute_cols(w, pos, par, MOT_AXIS_Z, p, s, c, small, &ov);
+	if (!small && ov) {
 		struct mot_mat m;
 		static const mot_q32 zero[3] = { 0, 0, 0 };
 
 		axis_rot(&m, o, s, c);
 		node_world_sat(w, pos, par, &m, p, zero, sat);
 	}
+}
+
+static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
+			   mot_q32 s, mot_q32 c, bool small, uint32_t *sat)
+{
+	if (small_kernels && small)
+		revolute_in(w, pos, par, o, p, s, c, true, sat);
+	else
+		revolute_in(w, pos, par, o, p, s, c, false, sat);
 }
 
 /* t = v . axis, the offset of a prismatic joint */
@@ -485,12 +763,11 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 	switch (n->kind) {
 	case MOT_NODE_REVOLUTE:
 		v = joint_value(sc, ev, n, frame, &r);
-		if (n->axis_id == MOT_AXIS_VEC) {
-			tilted_rot(out, n, v);
-		} else {
-			mot_sincos(v, &s, &c);
+		mot_sincos(v, &s, &c);
+		if (n->axis_id == MOT_AXIS_VEC)
+			tilted_rot(out, n, s, c);
+		else
 			axis_rot(out, n->axis_id, s, c);
-		}
 		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
@@ -508,45 +785,86 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 		*rpm = r;
 }
 
+/*
+ * Every node in index order, parents first. With a warm memo (scene.h) a
+ * joint first compares its value with the one its matrix was made with:
+ * equal, it keeps its sine and cosine, and, if its parent did not move
+ * either, its matrix and position in the pose. A free node without a strand
+ * follows its parent alone; one with a strand is made anew. A node of the
+ * small case (above) whose parent's translation and own offset are small
+ * takes the kernels without overflow tests.
+ */
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out)
 {
 	static const mot_q32 zero[3] = { 0, 0, 0 };
+	struct mot_node_memo *memo = ev->memo, *m = memo;
+	const bool warm = ev->memo_world == out->world && out->by == ev && !ev->sat;
+	const struct mot_node *n = sc->nodes, *end = n + sc->nnodes;
+	struct mot_mat *w = out->world;
+	mot_q32(*pos)[3] = out->pos, *val = out->value, *rpm = out->rpm;
 	uint32_t i;
 
-	for (i = 0; i < sc->nnodes; i++) {
-		const struct mot_node *n = &sc->nodes[i];
+	for (; n < end; n++, m++, w++, pos++, val++, rpm++) {
 		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
-		struct mot_mat *w = &out->world[i], local;
-		mot_q32 *pos = out->pos[i], v = 0, r = 0, t[3];
+		const bool still = warm && (n->parent < 0 || !memo[n->parent].moved);
+		struct mot_mat local;
+		mot_q32 v = 0, r = 0, t[3];
+		const bool small = m->small;
 
+		m->moved = 1;
 		switch (n->kind) {
 		case MOT_NODE_REVOLUTE:
 			v = joint_value(sc, ev, n, frame, &r);
-			if (n->axis_id != MOT_AXIS_VEC) {
-				revolute_world(w, pos, par, n->axis_id, n->pivot, v, &ev->sat);
-			} else {
-				tilted_rot(&local, n, v);
-				node_world(w, pos, par, &local, n->pivot, zero, &ev->sat);
+			if (!warm || v != m->value) {
+				struct mot_sc p = mot_sincos_pair(v);
+
+				m->value = v;
+				m->s = p.s;
+				m->c = p.c;
+			} else if (still) {
+				m->moved = 0;
+				break;
 			}
+			if (n->axis_id != MOT_AXIS_VEC)
+				revolute_world(w, *pos, par, n->axis_id, n->pivot, m->s, m->c, small,
+					       &ev->sat);
+			else
+				tilted_world(w, *pos, par, n, m->s, m->c, small, &ev->sat);
 			break;
 		case MOT_NODE_PRISMATIC:
 			v = joint_value(sc, ev, n, frame, &r);
-			joint_offset(t, v, n->axis, &ev->sat);
-			translate_world(w, pos, par, n->pivot, t, &ev->sat);
+			if (still && v == m->value) {
+				m->moved = 0;
+				break;
+			}
+			m->value = v;
+			if (n->axis_id != MOT_AXIS_VEC) {
+				prismatic_world(w, *pos, par, n->axis_id, n->pivot, v, small, &ev->sat);
+			} else {
+				joint_offset(t, v, n->axis, &ev->sat);
+				translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
+			}
 			break;
 		default:
-			if (n->strand < 0)
-				translate_world(w, pos, par, n->pivot, zero, &ev->sat);
-			else if (!free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
-				translate_world(w, pos, par, n->pivot, t, &ev->sat);
-			else
-				node_world(w, pos, par, &local, n->pivot, t, &ev->sat);
+			if (n->strand < 0) {
+				if (still)
+					m->moved = 0;
+				else
+					translate_world(w, *pos, par, n->pivot, zero, small, &ev->sat);
+			} else {
+				if (free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
+					node_world(w, *pos, par, &local, n->pivot, t, small, &ev->sat);
+				else
+					translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
+			}
 			break;
 		}
-		out->value[i] = v;
-		out->rpm[i] = r;
+		*val = v;
+		*rpm = r;
 	}
+	ev->memo_world = out->world;
+	out->by = ev;
 	if (sc->camera)
 		mot_camera_eval(&out->cam, sc->camera, sc->curves, ev->cursors, frame, &ev->sat);
 	if (sc->ncycles) {

@@ -99,11 +99,31 @@ enum mot_aim_src {
 	MOT_AIM_SRC_SYS,
 };
 
-/* Mutable evaluation state. cursors has mot_eval_cursor_count() entries. */
+/*
+ * What one evaluation leaves a node for the next: a joint whose value is
+ * the one its matrix was made with keeps its sine and cosine, and a node
+ * whose value and parent did not move keeps its matrix and position in the
+ * pose (mot_scene_eval). The results are the same bits either way.
+ */
+struct mot_node_memo {
+	mot_q32 value;  /* the joint value of the node's matrix */
+	mot_q32 s, c;   /* revolute joints: its sine and cosine */
+	uint32_t moved; /* the matrix was made anew in the last evaluation */
+	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
+	uint32_t small; /* every sum of the node's matrix is known to fit */
+	uint32_t chain; /* 1 + depth under parents that only rotate, 0 else */
+	uint64_t bound; /* bound on |W_t| (raw), UINT64_MAX: none */
+};
+
+/* Mutable evaluation state. cursors has mot_eval_cursor_count() entries,
+ * memo mot_eval_memo_count(). */
 struct mot_eval {
 	struct mot_cursor *cursors; /* curves first, then rotation tracks */
 	uint32_t ncursors;
 	uint32_t sat;               /* sticky MOT_SAT_* bits of every evaluation */
+	struct mot_node_memo *memo; /* one per node */
+	uint32_t nmemo;
+	const struct mot_mat *memo_world; /* the pose the memo describes, or NULL */
 	struct mot_sys_eval *sys;   /* nsys: each laid out by mot_system_eval_init() */
 };
 
@@ -117,6 +137,7 @@ struct mot_pose {
 	struct mot_cam_pose cam;
 	int32_t *cycle;        /* ncycles */
 	mot_q32 *attr;         /* nattrs */
+	const struct mot_eval *by; /* the evaluation that wrote it last (NULL: none) */
 	mot_q32 *sysout;       /* nsysout: the systems' values (system.h) */
 	mot_q32 (*aim)[2];     /* naims: pan and tilt, turns */
 };
@@ -141,8 +162,14 @@ static inline uint32_t mot_eval_cursor_count(const struct mot_scene *sc)
 	return sc->ncurves + sc->nrot;
 }
 
-/* Zero the cursors and the status. MOT_E_CAPACITY when ev->ncursors is
- * too small. */
+static inline uint32_t mot_eval_memo_count(const struct mot_scene *sc)
+{
+	return sc->nnodes;
+}
+
+/* Zero the cursors and the status, forget the memo and prepare it (what
+ * the scene's structure bounds). MOT_E_CAPACITY when ev->ncursors or
+ * ev->nmemo is too small. Init only (O(nodes)). */
 int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc);
 
 /*
@@ -150,6 +177,13 @@ int mot_eval_reset(struct mot_eval *ev, const struct mot_scene *sc);
  * (Q32.32 frames; the loop passes mot_timing_tick_frame of its tick).
  * Saturations are ORed into ev->sat. Real-time safe: no allocation, bounded
  * time, the scene untouched.
+ *
+ * The pose is the evaluation's: when out is the pose this ev wrote last
+ * (out->by, ev->memo_world) and nothing has saturated, a node whose joint
+ * value and parent did not move keeps what out holds, and a joint whose
+ * value did not move its sine and cosine (struct mot_node_memo): the same
+ * bits as evaluating it again. So write nothing into a pose between two
+ * evaluations into it (or mot_eval_reset() the evaluation).
  */
 void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 frame,
 		    struct mot_pose *out);

@@ -113,6 +113,14 @@ void mot_sincos(mot_q32 turns, mot_q32 *s, mot_q32 *c)
 	sincos_q32(turns, s, c);
 }
 
+struct mot_sc mot_sincos_pair(mot_q32 turns)
+{
+	struct mot_sc r;
+
+	sincos_q32(turns, &r.s, &r.c);
+	return r;
+}
+
 mot_q32 mot_sin(mot_q32 turns)
 {
 	mot_q32 s, c;

@@ -27,6 +27,13 @@
  * |sin|, |cos| <= 1 always. Worst error 0.52 LSB. *s and *c must not alias.
  * About 5 ns / 8 ns; mot_sin and mot_cos cost nearly the same. */
 void mot_sincos(mot_q32 turns, mot_q32 *s, mot_q32 *c);
+
+/* The same, returned as a pair (in registers where the ABI allows: the hot
+ * path of a scene's evaluation). */
+struct mot_sc {
+	mot_q32 s, c;
+};
+struct mot_sc mot_sincos_pair(mot_q32 turns);
 mot_q32 mot_sin(mot_q32 turns);
 mot_q32 mot_cos(mot_q32 turns);
 

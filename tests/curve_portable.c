@@ -16,12 +16,15 @@
 #define mot_curve_eval cvp_curve_eval_
 #define mot_curve_integral cvp_curve_integral_
 #define mot_curve_newton_iterations cvp_curve_newton_iterations_
+#define mot_curve_bound cvp_curve_bound_
 /* what the curve files share (motion/curve_priv.h) */
 #define mot_cv_acc_sar cvp_cv_acc_sar_
 #define mot_cv_acc_bitlen cvp_cv_acc_bitlen_
 #define mot_cv_acc_round_shift cvp_cv_acc_round_shift_
 #define mot_cv_acc_div_round cvp_cv_acc_div_round_
 #define mot_cv_poly_prep cvp_cv_poly_prep_
+#define mot_cv_poly_prep_pow cvp_cv_poly_prep_pow_
+#define mot_cv_div_pow_round cvp_cv_div_pow_round_
 #define mot_cv_locate cvp_cv_locate_
 #define mot_cv_prep_interp cvp_cv_prep_interp_
 #define mot_cv_prep_spline cvp_cv_prep_spline_

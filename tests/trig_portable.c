@@ -3,6 +3,7 @@
  * portable two-word path. */
 #define MOT_NO_INT128 1
 #define mot_sincos trigp_sincos
+#define mot_sincos_pair trigp_sincos_pair_
 #define mot_sin trigp_sin_
 #define mot_cos trigp_cos_
 #define mot_atan2 trigp_atan2

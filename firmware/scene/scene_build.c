@@ -470,19 +470,23 @@ int scene_eval_new(struct mot_eval *ev, const struct mot_scene *sc)
 
 	memset(ev, 0, sizeof(*ev));
 	ev->cursors = calloc(n ? n : 1, sizeof(*ev->cursors));
-	if (!ev->cursors || sys_eval_new(ev, sc)) {
+	ev->memo = calloc(sc->nnodes ? sc->nnodes : 1, sizeof(*ev->memo));
+	if (!ev->cursors || !ev->memo || sys_eval_new(ev, sc)) {
 		scene_eval_free(ev);
 		return -ENOMEM;
 	}
 	ev->ncursors = n;
+	ev->nmemo = mot_eval_memo_count(sc);
 	return mot_eval_reset(ev, sc);
 }
 
 void scene_eval_free(struct mot_eval *ev)
 {
 	free(ev->cursors);
+	free(ev->memo);
 	free(ev->sys);
 	ev->cursors = NULL;
+	ev->memo = NULL;
 	ev->sys = NULL;
 }
 

@@ -193,6 +193,97 @@ static void test_random_access(void **state)
 	synth_free(&sy);
 }
 
+static void assert_same_pose(const struct mot_scene *sc, const struct mot_pose *a,
+			     const struct mot_pose *b)
+{
+	uint32_t i;
+
+	for (i = 0; i < sc->nnodes; i++) {
+		assert_memory_equal(a->pos[i], b->pos[i], sizeof(a->pos[i]));
+		assert_memory_equal(&a->world[i], &b->world[i], sizeof(a->world[i]));
+		assert_int_equal(a->value[i], b->value[i]);
+		assert_int_equal(a->rpm[i], b->rpm[i]);
+	}
+}
+
+/*
+ * The evaluation's shortcuts give the bits of the long way (scene.c): a
+ * warm memo that keeps the matrices of nodes that did not move and the
+ * sines of joints whose value did not, and the kernels without overflow
+ * tests of the small case, against an evaluation reset before every tick
+ * (cold) with the small case switched off. Two evaluations taking turns at
+ * one pose must not trust each other's work. Every scene kind, every tick
+ * of a third; the shortcuts must be taken, or this tests nothing.
+ */
+static void test_shortcuts(void **state)
+{
+	struct synth sy;
+	uint32_t kind;
+
+	for (kind = 0; kind < 3; kind++) {
+		struct scene_built b;
+		struct scene_build_err e;
+		struct mot_eval warm, cold, one, other;
+		struct mot_pose pw, pc, shared;
+		const struct mot_timing *t;
+		uint32_t i, kept = 0, small = 0, total = 0;
+		int64_t k, n;
+
+		if (kind == 0)
+			synth_random(&sy, 3, 300, 96);
+		else if (kind == 1)
+			synth_joints(&sy, 5, 300, 96, 0);
+		else
+			synth_joints(&sy, 9, 300, 96, 1u << MOT_INTERP_STEP);
+		assert_int_equal(scene_build(&b, &sy.d, &e), 0);
+		t = &b.sc.timing;
+		assert_int_equal(scene_eval_new(&warm, &b.sc), 0);
+		assert_int_equal(scene_eval_new(&cold, &b.sc), 0);
+		assert_int_equal(scene_eval_new(&one, &b.sc), 0);
+		assert_int_equal(scene_eval_new(&other, &b.sc), 0);
+		assert_int_equal(scene_pose_new(&pw, &b.sc), 0);
+		assert_int_equal(scene_pose_new(&pc, &b.sc), 0);
+		assert_int_equal(scene_pose_new(&shared, &b.sc), 0);
+		for (i = 0; i < b.sc.nnodes; i++)
+			small += warm.memo[i].small;
+		n = mot_timing_trigger_tick(t, 100);
+		for (k = -5; k < n; k += 3) {
+			mot_q32 f = mot_timing_tick_frame(t, k);
+
+			mot_scene_eval(&b.sc, &warm, f, &pw);
+			for (i = 0; i < b.sc.nnodes; i++)
+				kept += !warm.memo[i].moved;
+			total += b.sc.nnodes;
+			assert_int_equal(mot_eval_reset(&cold, &b.sc), MOT_OK);
+			for (i = 0; i < b.sc.nnodes; i++)
+				cold.memo[i].small = 0;
+			mot_scene_eval(&b.sc, &cold, f, &pc);
+			assert_same_pose(&b.sc, &pw, &pc);
+			/* a memo follows its own pose: another evaluation
+			 * writing it in between (at another frame) is noticed */
+			mot_scene_eval(&b.sc, &one, f, &shared);
+			mot_scene_eval(&b.sc, &other, mot_timing_tick_frame(t, k / 2), &shared);
+			mot_scene_eval(&b.sc, &one, f, &shared);
+			assert_same_pose(&b.sc, &pw, &shared);
+		}
+		assert_int_equal(warm.sat, 0);
+		assert_int_equal(cold.sat, 0);
+		/* the small case covers most nodes; the memo keeps some */
+		assert_true(small > b.sc.nnodes / 2 || kind == 0);
+		assert_true(small > 0);
+		assert_true(kept > total / 50);
+		scene_pose_free(&pw);
+		scene_pose_free(&pc);
+		scene_pose_free(&shared);
+		scene_eval_free(&warm);
+		scene_eval_free(&cold);
+		scene_eval_free(&one);
+		scene_eval_free(&other);
+		scene_built_free(&b);
+		synth_free(&sy);
+	}
+}
+
 /* A propeller spun up to 1200 rpm over 48 frames and held for a day: the
  * angle is the exact value for the tick's Q32.32 frame time, rounded once,
  * to the last bit; nothing accumulates. */
@@ -530,6 +621,7 @@ int main(void)
 		cmocka_unit_test(test_random_access), cmocka_unit_test(test_spin_day),
 		cmocka_unit_test(test_camera_pan),  cmocka_unit_test(test_bad_input),
 		cmocka_unit_test(test_no_keys),     cmocka_unit_test(test_wide_sums),
+		cmocka_unit_test(test_shortcuts),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
