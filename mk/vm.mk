@@ -28,7 +28,7 @@ VM_TIMEOUT ?= 300
 
 # The kernel's kbuild tools are unpacked, not installed: their libraries
 # (libelf1, libssl3) and compiler (gcc-12) are listed here instead.
-DEB_VM := qemu-system-x86 busybox-static cpio xz-utils patch gcc-12 make libelf1 libssl3 \
+DEB_VM += qemu-system-x86 busybox-static cpio xz-utils patch gcc-12 make libelf1 libssl3 \
           can-utils gpiod libgpiod-dev
 
 # Modules from the kernel package, loaded with insmod in this order (the
@@ -36,13 +36,15 @@ DEB_VM := qemu-system-x86 busybox-static cpio xz-utils patch gcc-12 make libelf1
 # VM_MODULE_PARAMS: NAME.ko:PARAM=VALUE, given to insmod. gpio-sim wires
 # output 0 to input 8 and output 1 to input 9 of every chip (the trigger
 # and rig-ready lines of tests/vm/t_gpio_*.sh, watched by gpiomon).
-VM_MODULES := kernel/drivers/net/can/dev/can-dev.ko kernel/drivers/net/can/vcan.ko \
+VM_MODULES += kernel/drivers/net/can/dev/can-dev.ko kernel/drivers/net/can/vcan.ko \
               kernel/net/can/can.ko kernel/net/can/can-raw.ko kernel/fs/configfs/configfs.ko
 VM_MODULE_PARAMS += gpio-sim.ko:loopback=0,8,1,9
 
 # What goes into the guest. Other mk files add to these: VM_BINS are copied
 # to /bin with the shared libraries ldd names for them, VM_FILES are
-# DEST=SRC pairs copied as they are, VM_TESTS are the scripts run in order.
+# DEST=SRC pairs copied as they are, VM_TESTS are the scripts run in order,
+# VM_AGAIN NAME@VARIANT the tests run once more with /VARIANT/bin first on
+# PATH (mk/gpiod2.mk).
 VM_HOST_BINS += /usr/bin/gpiodetect /usr/bin/gpioinfo /usr/bin/gpioget /usr/bin/gpioset \
                 /usr/bin/gpiomon /usr/bin/gpiofind /usr/bin/candump /usr/bin/cansend
 VM_BINS      += $(BUILD)/strand
@@ -71,7 +73,8 @@ $(VM_SIMDIR)/gpio-sim.ko: $(VM_KDIR)/.done tests/vm/build-gpio-sim.sh $(VM_SIM_S
 	$(Q)sh tests/vm/build-gpio-sim.sh $(VM_KDIR) $(VM_SIMDIR) $(VM_SIM_SRC)
 
 # Rebuilt when any input or the lists change; cheap (a few MB of cpio).
-VM_LISTS := $(VM_MODULES) $(VM_MODULE_PARAMS) | $(VM_HOST_BINS) $(VM_BINS) | $(VM_FILES) | $(VM_TESTS)
+VM_LISTS := $(VM_MODULES) $(VM_MODULE_PARAMS) | $(VM_HOST_BINS) $(VM_BINS) | $(VM_FILES) | \
+            $(VM_TESTS) | $(VM_AGAIN)
 $(VM_DIR)/initrd.lists: FORCE
 	@mkdir -p $(@D)
 	$(Q)echo '$(VM_LISTS)' | cmp -s - $@ || echo '$(VM_LISTS)' >$@
@@ -81,6 +84,7 @@ $(VM_DIR)/initrd.cpio.gz: $(VM_DIR)/initrd.lists $(VM_KDIR)/.done $(VM_SIMDIR)/g
 	$(Q)VM_MODULES="$(addprefix $(VM_KDIR)/modules/,$(VM_MODULES)) \
 		$(VM_SIMDIR)/gpio-sim.ko" VM_MODULE_PARAMS="$(VM_MODULE_PARAMS)" \
 		VM_BINS="$(VM_HOST_BINS) $(VM_BINS)" VM_FILES="$(VM_FILES)" VM_TESTS="$(VM_TESTS)" \
+		VM_AGAIN="$(VM_AGAIN)" \
 		sh tests/vm/mkinitramfs.sh tests/vm/init.sh $@
 vm-initramfs: $(VM_DIR)/initrd.cpio.gz
 

@@ -39,8 +39,11 @@ enum {
 	OPT_PASSES, OPT_DURATION, OPT_SETTLE, OPT_EXPOSURE, OPT_TIMEOUT, OPT_JOURNAL,
 	OPT_NO_JOURNAL, OPT_TELEMETRY, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK,
 	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET, OPT_CHASE, OPT_TC_OFFSET,
-	OPT_FREEWHEEL, OPT_SHUTTER,
+	OPT_FREEWHEEL, OPT_NODE, OPT_PTP_SOCKET, OPT_PTP_FREE, OPT_SHUTTER,
 };
+
+/* ptp4l's management socket where linuxptp puts it by default. */
+#define PLAY_PTP_SOCKET "/var/run/ptp4l"
 
 static const struct option play_options[] = {
 	{ "sim", no_argument, NULL, OPT_SIM },
@@ -69,6 +72,9 @@ static const struct option play_options[] = {
 	{ "chase", required_argument, NULL, OPT_CHASE },
 	{ "tc-offset", required_argument, NULL, OPT_TC_OFFSET },
 	{ "freewheel", required_argument, NULL, OPT_FREEWHEEL },
+	{ "node", required_argument, NULL, OPT_NODE },
+	{ "ptp-socket", required_argument, NULL, OPT_PTP_SOCKET },
+	{ "ptp-free-running", no_argument, NULL, OPT_PTP_FREE },
 	{ "shutter", required_argument, NULL, OPT_SHUTTER },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
@@ -83,6 +89,8 @@ struct cli {
 	long long from, to;
 	double duration_s, settle_ms, exposure_ms, timeout_s;
 	const char *duration_arg, *timeout_arg; /* as given, for their messages */
+	const char *node, *ptp_socket;
+	bool ptp_free_running;
 	char journal[PATH_MAX];
 };
 
@@ -225,6 +233,15 @@ static int on_opt(void *ctx, int opt, const char *arg)
 			return cli_usage(c->cmd, c->err, "--freewheel %s: 0 to 3600000 ms", arg);
 		c->freewheel_given = true;
 		return -1;
+	case OPT_NODE:
+		c->node = arg;
+		return -1;
+	case OPT_PTP_SOCKET:
+		c->ptp_socket = arg;
+		return -1;
+	case OPT_PTP_FREE:
+		c->ptp_free_running = true;
+		return -1;
 	case OPT_SHUTTER:
 		return cli_shutter_arg(c->cmd, c->err, arg, &c->o.loop.shutter);
 	default:
@@ -251,6 +268,13 @@ static void on_signal(int sig)
 {
 	struct play *p;
 
+	if (sig == SIGUSR1) { /* the simulated e-stops, pressed */
+		p = atomic_load(&g_play);
+		if (p)
+			play_press_estop(p);
+		return;
+	}
+
 	if (sig == SIGINT)
 		g_sigints++;
 	g_signo = sig;
@@ -261,7 +285,7 @@ static void on_signal(int sig)
 }
 
 struct saved_signals {
-	struct sigaction sigint, sigterm, sigxfsz;
+	struct sigaction sigint, sigterm, sigxfsz, sigusr1;
 	bool installed;
 };
 
@@ -276,7 +300,8 @@ static void signals_install(struct saved_signals *s)
 	atomic_store(&g_play, NULL);
 	g_sigints = 0;
 	g_signo = 0;
-	s->installed = !sigaction(SIGINT, &sa, &s->sigint) && !sigaction(SIGTERM, &sa, &s->sigterm);
+	s->installed = !sigaction(SIGINT, &sa, &s->sigint) && !sigaction(SIGTERM, &sa, &s->sigterm) &&
+		       !sigaction(SIGUSR1, &sa, &s->sigusr1);
 	/* a file size limit (ulimit -f, LimitFSIZE=) reached by the journal's
 	 * growth is then EFBIG, a clean stop the service reports, not a kill
 	 * with the drives enabled */
@@ -293,6 +318,7 @@ static void signals_restore(struct saved_signals *s)
 	sigaction(SIGINT, &s->sigint, NULL);
 	sigaction(SIGTERM, &s->sigterm, NULL);
 	sigaction(SIGXFSZ, &s->sigxfsz, NULL);
+	sigaction(SIGUSR1, &s->sigusr1, NULL);
 	s->installed = false;
 }
 
@@ -428,6 +454,64 @@ static int prepare_exit(const struct play *p, int rc)
 	}
 }
 
+/* The boards' names, "a, b, c", into buf. */
+static const char *board_names(char *buf, size_t size, const struct rig_desc *r)
+{
+	size_t n = 0;
+	uint32_t i;
+
+	buf[0] = '\0';
+	for (i = 0; i < r->nboards && n < size; i++)
+		n += (size_t)snprintf(buf + n, size - n, "%s%s", i ? ", " : "", r->boards[i].name);
+	return buf;
+}
+
+/* --node: this board's part of the rig in brig, the lockstep's settings in
+ * ls. -1 when there is nothing to do or it is done, else the exit code. */
+static int board_part(struct cli *c, const char *path, const struct scene_file *sf,
+		      struct rig_desc *brig, struct play_lockstep *ls)
+{
+	const struct rig_desc *r = &sf->rig;
+	char names[256];
+	uint32_t b;
+
+	if (!c->node && (c->ptp_socket || c->ptp_free_running))
+		return cli_usage(c->cmd, c->err, "--ptp-socket and --ptp-free-running go with --node");
+	if (c->node && !r->nboards)
+		return cli_usage(c->cmd, c->err, "--node %s: the scene has no boards: section (one "
+				 "board plays it)", c->node);
+	if (!r->nboards)
+		return -1;
+	if (!c->node) {
+		if (c->o.rig.sim)
+			return -1; /* the whole rig, simulated, here */
+		fprintf(c->err, "%s: the scene shares its rig among boards (%s); say which this is "
+			"with --node NAME, or play the whole rig simulated here with --sim\n", path,
+			board_names(names, sizeof(names), r));
+		return STRAND_EXIT_USAGE;
+	}
+	for (b = 0; b < r->nboards && strcmp(r->boards[b].name, c->node); b++)
+		;
+	if (b == r->nboards)
+		return cli_usage(c->cmd, c->err, "--node %s: no such board (boards: %s)", c->node,
+				 board_names(names, sizeof(names), r));
+	if (c->o.virtual_clock || c->step || c->o.chase.spec || c->o.rig.sim)
+		return cli_usage(c->cmd, c->err, "--node plays on the PTP clock in continuous mode: "
+				 "not with --clock virtual, --mode step, --chase or --sim (a board's "
+				 "simulated devices are driver: sim)");
+	if (rig_desc_board(r, b, brig)) {
+		fprintf(c->err, "strand play: out of memory\n");
+		return STRAND_EXIT_INTERNAL;
+	}
+	ls->scene_rig = r;
+	ls->board = b;
+	ls->digest = sf->digest;
+	ls->ptp_socket = c->ptp_socket ? c->ptp_socket : PLAY_PTP_SOCKET;
+	ls->ptp_free_running = c->ptp_free_running;
+	c->o.lockstep = ls;
+	return -1;
+}
+
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
 	struct cli c;
@@ -438,6 +522,8 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	struct frame_list fl = { 0 };
 	const struct rig_desc *rig;
 	struct saved_signals sigs = { .installed = false };
+	struct rig_desc brig = { 0 };
+	struct play_lockstep ls = { 0 };
 	struct play p;
 	const char *path;
 	char msg[512];
@@ -497,7 +583,12 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			goto out;
 	}
 	rig = &sf.rig;
-	if (!rig->noutputs && !rig->ntriggers) {
+	rc = board_part(&c, path, &sf, &brig, &ls);
+	if (rc >= 0)
+		goto out;
+	if (c.o.lockstep)
+		rig = &brig;
+	if (!rig->noutputs && !rig->ntriggers && !c.o.lockstep) {
 		rc = STRAND_EXIT_SCENE;
 		if (!c.o.rig.sim) {
 			fprintf(err, "%s: the scene describes no rig (devices:, outputs:, triggers:); "
@@ -590,6 +681,8 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 out:
 	play_free(&p);
 	signals_restore(&sigs);
+	if (c.o.lockstep)
+		rig_desc_board_free(&brig);
 	frames_free(&fl);
 	rig_auto_free(&ra);
 	source_scene_free(&src);
@@ -643,10 +736,17 @@ const struct cli_cmd cmd_play = {
 		"  --tc-offset TC        the source's timecode of the scene's frame 0 (00:00:00:00)\n"
 		"  --freewheel MS        run on without the source this long, then a controlled\n"
 		"                        stop and a new cue when it is back (500)\n"
+		"  --node NAME           this is board NAME of the scene's boards: it drives its\n"
+		"                        devices, in lockstep with the others over UDP and PTP\n"
+		"                        (see README \"Several boards, one scene\")\n"
+		"  --ptp-socket PATH     ptp4l's management socket (" PLAY_PTP_SOCKET ")\n"
+		"  --ptp-free-running    ptp4l measures but does not steer this clock (boards\n"
+		"                        that share one clock): its offset alone says locked\n"
 		"\n"
 		"SIGINT or SIGTERM: every axis comes to rest within its limits (exit 5); a second\n"
 		"SIGINT disables the drives at once. During the devices' start-up it is given up\n"
-		"and every device started is stopped (exit 5).\n"
+		"and every device started is stopped (exit 5). SIGUSR1 presses the e-stops of the\n"
+		"simulated devices (exit 6).\n"
 		"\n"
 		"exit codes: 0 done, 1 strand check rejects the scene, 2 invalid scene or rig,\n"
 		"3 usage, 4 journal or file, 5 stopped by SIGINT/SIGTERM or a stop input, 6 e-stop,\n"

@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "exitcode.h"
+#include "rig/drv_gpio.h"
 
 /* Every subcommand, in the order `strand --help` lists them. */
 static const struct cli_cmd *const commands[] = {
@@ -45,7 +46,7 @@ int cli_main(int argc, char **argv, FILE *out, FILE *err)
 		return STRAND_EXIT_OK;
 	}
 	if (!strcmp(argv[1], "--version")) {
-		fprintf(out, "strand %s\n", STRAND_VERSION);
+		fprintf(out, "strand %s (libgpiod %s)\n", STRAND_VERSION, rig_gpio_lib_version());
 		return STRAND_EXIT_OK;
 	}
 	for (i = 0; commands[i]; i++)

@@ -4,6 +4,7 @@
  * its top-level sections, and the names they share (see load.h).
  */
 #include "load_priv.h"
+#include "scene/sha256.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -13,9 +14,11 @@
 static const char *const top_keys[] = { "scene",      "timing",  "nodes",   "strands",
 					"camera",     "cycles",  "attributes", "surfaces",
 					"particles",  "flocks",  "aims",    "devices",
-					"outputs",    "triggers", "inputs",  NULL };
+					"outputs",    "triggers", "inputs",  "boards",
+					"lockstep",   NULL };
 enum { T_SCENE, T_TIMING, T_NODES, T_STRANDS, T_CAMERA, T_CYCLES, T_ATTRS, T_SURFACES,
-       T_PARTICLES, T_FLOCKS, T_AIMS, T_DEVICES, T_OUTPUTS, T_TRIGGERS, T_INPUTS, T_COUNT };
+       T_PARTICLES, T_FLOCKS, T_AIMS, T_DEVICES, T_OUTPUTS, T_TRIGGERS, T_INPUTS, T_BOARDS,
+       T_LOCKSTEP, T_COUNT };
 
 static int yaml_error(struct ld *l, const yaml_parser_t *p)
 {
@@ -173,6 +176,8 @@ static int sections(struct ld *l, yaml_node_t *root)
 
 		err = ld_rig(l, &rs);
 	}
+	if (!err)
+		err = ld_boards(l, v[T_BOARDS], v[T_LOCKSTEP], v[T_DEVICES]);
 	return err;
 }
 
@@ -258,6 +263,7 @@ int scene_file_parse(struct scene_file *sf, const char *path, const char *buf, s
 		return rc;
 	}
 	sf->desc = d;
+	sha256(sf->digest, buf, len);
 	sf->path = pool_strndup(&sf->pool, path, strlen(path));
 	sf->strand = l.strand;
 	sf->marks = mk;

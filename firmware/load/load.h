@@ -63,6 +63,7 @@ struct scene_file {
 	struct scene_desc desc;
 	struct rig_desc rig;       /* devices:, outputs:, triggers:, inputs: (all 0 if none) */
 	const char *path;          /* as given to the loader */
+	uint8_t digest[32];        /* SHA-256 of the file's bytes (scene/sha256.h) */
 	const struct sf_strand *strand; /* desc.nnodes entries */
 	struct sf_marks *marks;    /* positions for the build's errors */
 	struct pool pool;          /* owns everything above */

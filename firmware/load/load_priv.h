@@ -235,5 +235,7 @@ struct ld_rig_sections {
 	yaml_node_t *devices, *outputs, *triggers, *inputs;
 };
 int ld_rig(struct ld *l, const struct ld_rig_sections *s);
+/* boards: and lockstep: (load_boards.c), after the rig's devices:. */
+int ld_boards(struct ld *l, yaml_node_t *boards, yaml_node_t *lockstep, yaml_node_t *devices);
 
 #endif /* STRAND_LOAD_PRIV_H */

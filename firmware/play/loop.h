@@ -185,6 +185,7 @@ enum loop_cause {
 	LOOP_CAUSE_SATURATION,  /* fixed-point arithmetic saturated */
 	LOOP_CAUSE_CHASE,       /* the chased source: detail is its enum chase_event */
 	LOOP_CAUSE_DISABLE,     /* live mode: the drives were disabled */
+	LOOP_CAUSE_BOARD,       /* another board of a lockstep run (play/lockstep) */
 };
 
 /* What ended the run, for the message at the edge. */
@@ -309,8 +310,21 @@ bool loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_ns);
  * immediate (level 2) stop. Async-signal-safe. */
 void loop_request_stop(struct loop *L, int level, enum loop_cause cause);
 
+/* [any thread] The same, ending the run as end (exit code) rather than
+ * LOOP_END_STOPPED: another board's e-stop (LOOP_END_ESTOP) or fault. */
+void loop_request_end(struct loop *L, int level, enum loop_end end, enum loop_cause cause);
+
 /* [any thread] The level of stop asked for so far: 0, 1 or 2. */
 int loop_stop_requested(const struct loop *L);
+
+/* [any thread] Why the run is ending, as the loop decided it (the report
+ * as it stands, copied whole): false while it plays on. For a thread that
+ * must act on the run's end as it happens (the lockstep's watch). */
+bool loop_report_now(const struct loop *L, struct loop_report *out);
+
+/* [init] The run tick at which play begins: the pre-roll and run-up's
+ * ticks (continuous mode, after loop_init). */
+int64_t loop_play_tick(const struct loop *L);
 
 /* The nanosecond tick k is due at. */
 int64_t loop_due(const struct loop *L, int64_t k);

@@ -128,7 +128,11 @@ struct loop_step {
  * -1 for a line no input has.
  */
 struct loop_safety {
-	_Atomic int stop_req;   /* level (0, 1 controlled, 2 immediate) | cause << 2 */
+	_Atomic int stop_req;   /* level (0, 1 controlled, 2 immediate) | cause << 2 | end << 10 */
+	/* the report published for other threads (loop_report_now): a
+	 * sequence count, odd while the loop writes the copy */
+	_Atomic uint32_t rep_seq;
+	struct loop_report rep_pub;
 	bool *dev_off;          /* rig->naxes: axis devices disabled */
 	uint32_t *in_first;     /* rig->ndins + 1 */
 	int32_t *in_of;         /* in_first[ndins] */

@@ -10,8 +10,23 @@
 #include "hal/rt.h"
 
 #include <math.h>
+#include <string.h>
 
 static const struct loop_where nowhere = { .channel = -1, .out = -1 };
+
+/* The report, copied where loop_report_now reads it: a sequence lock (the
+ * loop is the only writer; a reader retries while the count is odd or has
+ * moved). */
+static void STRAND_RT publish(struct loop *L)
+{
+	struct loop_safety *s = &L->safety;
+	uint32_t n = atomic_load_explicit(&s->rep_seq, memory_order_relaxed);
+
+	atomic_store_explicit(&s->rep_seq, n + 1, memory_order_relaxed);
+	atomic_thread_fence(memory_order_release);
+	memcpy(&s->rep_pub, &L->res->rep, sizeof(s->rep_pub));
+	atomic_store_explicit(&s->rep_seq, n + 2, memory_order_release);
+}
 
 void STRAND_RT loop_fail(struct loop *L, enum loop_end end, enum loop_cause cause,
 	       const struct loop_where *w)
@@ -37,6 +52,7 @@ void STRAND_RT loop_fail(struct loop *L, enum loop_end end, enum loop_cause caus
 	r->has_edge = w->has_edge;
 	r->edge_ns = w->edge_ns;
 	r->acted_ns = w->acted_ns;
+	publish(L);
 }
 
 void STRAND_RT loop_halt(struct loop *L, enum loop_end end, enum loop_cause cause,
@@ -302,14 +318,35 @@ void STRAND_RT loop_limits(struct loop *L)
 
 /* ---- stop requests ---- */
 
-void STRAND_RT loop_request_stop(struct loop *L, int level, enum loop_cause cause)
+void STRAND_RT loop_request_end(struct loop *L, int level, enum loop_end end,
+				enum loop_cause cause)
 {
 	int old = atomic_load(&L->safety.stop_req);
 
 	/* never downgrade: an immediate request stays immediate */
 	while ((old & 3) < level &&
-	       !atomic_compare_exchange_weak(&L->safety.stop_req, &old, level | (int)cause << 2))
+	       !atomic_compare_exchange_weak(&L->safety.stop_req, &old,
+					     level | (int)cause << 2 | (int)end << 10))
 		;
+}
+
+void STRAND_RT loop_request_stop(struct loop *L, int level, enum loop_cause cause)
+{
+	loop_request_end(L, level, LOOP_END_STOPPED, cause);
+}
+
+bool loop_report_now(const struct loop *L, struct loop_report *out)
+{
+	const struct loop_safety *s = &L->safety;
+	uint32_t a, b;
+
+	do {
+		a = atomic_load_explicit(&s->rep_seq, memory_order_acquire);
+		memcpy(out, &s->rep_pub, sizeof(*out));
+		atomic_thread_fence(memory_order_acquire);
+		b = atomic_load_explicit(&s->rep_seq, memory_order_relaxed);
+	} while ((a & 1) || a != b);
+	return out->end != LOOP_END_NONE;
 }
 
 int STRAND_RT loop_stop_requested(const struct loop *L)

@@ -49,6 +49,7 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
 	[LOOP_CAUSE_CHASE] = "chase",
 	[LOOP_CAUSE_DISABLE] = "drives disabled",
+	[LOOP_CAUSE_BOARD] = "another board",
 };
 
 const char *loop_state_name(enum loop_state s)
@@ -58,7 +59,7 @@ const char *loop_state_name(enum loop_state s)
 
 const char *loop_cause_name(enum loop_cause c)
 {
-	return c <= LOOP_CAUSE_DISABLE ? cause_names[c] : "?";
+	return c <= LOOP_CAUSE_BOARD ? cause_names[c] : "?";
 }
 
 /* ---- the block ---- */
@@ -419,4 +420,9 @@ void loop_free(struct loop *L)
 
 	loop_live_free(L);
 	free(L); /* the block */
+}
+
+int64_t loop_play_tick(const struct loop *L)
+{
+	return L->seq.mv.ticks + L->seq.ru_ticks;
 }

@@ -315,12 +315,12 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 	loop_chase_tick(L, now_ns);
 	req = atomic_load_explicit(&L->safety.stop_req, memory_order_relaxed);
 	if ((req & 3) == 2) {
-		loop_halt(L, LOOP_END_STOPPED, (enum loop_cause)(req >> 2), NULL);
+		loop_halt(L, (enum loop_end)(req >> 10), (enum loop_cause)(req >> 2 & 0xff), NULL);
 		goto out;
 	}
 	/* a stop already under way needs no second one */
 	if ((req & 3) == 1 && res->rep.end == LOOP_END_NONE)
-		loop_stop(L, LOOP_END_STOPPED, (enum loop_cause)(req >> 2), NULL);
+		loop_stop(L, (enum loop_end)(req >> 10), (enum loop_cause)(req >> 2 & 0xff), NULL);
 	if (L->cfg.max_ticks && k >= L->cfg.max_ticks && res->rep.end == LOOP_END_NONE)
 		loop_stop(L, LOOP_END_DONE, LOOP_CAUSE_DURATION, NULL);
 	loop_feedback(L, &fe, &fe_out);

@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "hal/rt.h"
+#include "rig/drv_sim.h"
 #include "rig/rig_chase.h"
 #include "scene/timecode.h"
 
@@ -100,7 +101,9 @@ static int prepare_chase(struct play *p, const struct play_source *src, char *er
 	const struct mot_timing *tm = &src->timing;
 	struct chase_cfg cc = { .num = tm->num, .den = tm->den, .tick_hz = tm->tick_hz,
 				.mult = 1 };
-	struct rig_chase_cfg rc = { .spec = o->spec, .clk = &p->clk, .sched = p->plan.events,
+	/* a frame pulse's edges are input events; LTC capture is I/O (rt.h) */
+	struct rig_chase_cfg rc = { .spec = o->spec, .clk = &p->clk,
+				    .sched = strncmp(o->spec, "ltc:", 4) ? p->plan.events : p->plan.io,
 				    .gpio_sysfs = p->o.rig.gpio_sysfs, .sim = o->sim,
 				    .sim_din = o->sim_din };
 	struct timecode tc;
@@ -137,6 +140,93 @@ static int prepare_chase(struct play *p, const struct play_source *src, char *er
 	return rc_;
 }
 
+/* ---- --node: the other boards (lockstep/lockstep.h) ---- */
+
+static int hook_local_end(void *ctx, int *level, char *text, size_t size)
+{
+	struct play *p = ctx;
+	struct loop_report r;
+
+	if (!loop_report_now(p->L, &r))
+		return -1;
+	if (r.cause == LOOP_CAUSE_BOARD)
+		return -2;
+	play_describe_report(p, &r, text, size);
+	*level = r.end == LOOP_END_ESTOP || r.cause == LOOP_CAUSE_IMMEDIATE ? 2 : 1;
+	switch (r.end) {
+	case LOOP_END_ESTOP:
+		return LS_STOP_ESTOP;
+	case LOOP_END_DONE:
+		/* the range played out: every board ends on the same tick */
+		return r.cause == LOOP_CAUSE_FINISHED ? LS_STOP_FINISHED : LS_STOP_ASKED;
+	case LOOP_END_STOPPED:
+		return LS_STOP_ASKED;
+	default:
+		return LS_STOP_FAULT;
+	}
+}
+
+static void hook_stop(void *ctx, int level, int kind)
+{
+	struct play *p = ctx;
+
+	/* another board's e-stop is an e-stop here (exit 6), a stop asked for
+	 * there a stop here (5), anything else a fault of the rig (7) */
+	loop_request_end(p->L, level, kind == LS_STOP_ESTOP ? LOOP_END_ESTOP :
+			 kind == LS_STOP_ASKED ? LOOP_END_STOPPED : LOOP_END_FAULT,
+			 LOOP_CAUSE_BOARD);
+}
+
+static bool hook_ended(void *ctx)
+{
+	struct play *p = ctx;
+
+	return atomic_load(&p->done);
+}
+
+/* The boards agree on an instant (ls_join), and the watch begins. Last of
+ * the preparation: the start instant leaves start_ms for what follows
+ * (the loop's thread, its memory locked). */
+static int prepare_lockstep(struct play *p, char *err, size_t errsize)
+{
+	const struct play_lockstep *o = p->o.lockstep;
+	const struct rig_desc *r = o->scene_rig;
+	const struct rig_lockstep_desc *l = &r->lockstep;
+	struct ls_hooks h = { .ctx = p, .local_end = hook_local_end, .stop = hook_stop,
+			      .ended = hook_ended };
+	struct ls_cfg c = {
+		.nboards = r->nboards, .self = o->board, .tick_hz = p->tm->tick_hz,
+		.need_ticks = loop_play_tick(p->L), .start_ms = l->start_ms,
+		.heartbeat_ms = l->heartbeat_ms, .lost_ms = l->lost_ms, .join_ms = l->join_ms,
+		.max_offset_us = l->max_offset_us, .ptp_offset_ns = l->ptp_offset_ns,
+		.ptp_socket = o->ptp_socket, .ptp_free_running = o->ptp_free_running,
+		.cancel = p->o.rig.cancel, .sched = p->plan.io, .log = p->o.rig.warn,
+	};
+	uint32_t i;
+	int rc;
+
+	p->ls_boards = calloc(r->nboards, sizeof(*p->ls_boards));
+	if (!p->ls_boards) {
+		snprintf(err, errsize, "out of memory");
+		return -ENOMEM;
+	}
+	for (i = 0; i < r->nboards; i++) {
+		p->ls_boards[i].name = r->boards[i].name;
+		p->ls_boards[i].address = r->boards[i].address;
+		p->ls_boards[i].port = r->boards[i].port ? r->boards[i].port : l->port;
+		if (r->boards[i].lead)
+			c.lead = i;
+	}
+	c.boards = p->ls_boards;
+	memcpy(c.digest, o->digest, LS_DIGEST);
+	rc = ls_open(&p->ls, &c, err, errsize);
+	if (!rc)
+		rc = ls_join(p->ls, &p->t0, err, errsize);
+	if (!rc)
+		rc = ls_watch(p->ls, &h);
+	return rc;
+}
+
 int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *src,
 		 const struct play_opts *o, char *err, size_t errsize)
 {
@@ -146,6 +236,7 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	memset(p, 0, sizeof(*p));
 	p->o = *o;
 	atomic_init(&p->done, false);
+	atomic_init(&p->press, false);
 	hal_clock_init(&p->clk, o->virtual_clock);
 	p->o.loop.wait_for_journal = o->virtual_clock;
 	if (o->virtual_clock) {
@@ -209,6 +300,10 @@ int play_prepare(struct play *p, const struct rig_desc *rd, struct play_source *
 	}
 	p->failed_at = PLAY_STAGE_START;
 	rc = given_up(p, err, errsize);
+	if (!rc && o->lockstep)
+		rc = prepare_lockstep(p, err, errsize);
+	if (rc == -ECANCELED)
+		rc = given_up(p, err, errsize) ? -ECANCELED : rc;
 	if (rc)
 		return rc;
 	p->failed_at = PLAY_STAGE_NONE;
@@ -225,7 +320,10 @@ static void *rt_main(void *arg)
 	sigfillset(&all);
 	pthread_sigmask(SIG_BLOCK, &all, NULL);
 	rt_thread_setup(&p->o.rt, &p->rt);
-	if (!p->clk.is_virtual) {
+	if (p->ls) {
+		/* the instant the boards agreed on (lockstep.h) */
+		t0 = p->t0;
+	} else if (!p->clk.is_virtual) {
 		/* tick 0 a millisecond from now, half a tick (half a
 		 * millisecond at most) past a whole millisecond: no tick on the
 		 * millisecond grid, where the kernel's own tick falls (HZ 1000,
@@ -336,6 +434,9 @@ static void serve(struct play *p, bool last)
 		if (p->telemetry)
 			telemetry_line(p, &s);
 	}
+	if (atomic_exchange(&p->press, false))
+		fprintf(stderr, "strand play: SIGUSR1: the simulated e-stops pressed (%u)\n",
+			rig_sim_press_estop(&p->rig));
 	if (p->o.status_tty && any && (last || now - p->status_shown_ns >= 100000000)) {
 		p->status_shown_ns = now;
 		status_line(p, &p->last);
@@ -406,6 +507,9 @@ void play_free(struct play *p)
 		hal_extclk_stop(p->extclk);
 		hal_extclk_close(p->extclk);
 	}
+	/* before the loop is freed: the watch reads its report */
+	ls_close(p->ls);
+	free(p->ls_boards);
 	loop_free(p->L);
 	if (p->rig_built)
 		rig_free(&p->rig);
@@ -423,11 +527,20 @@ void play_signal(struct play *p, int sig, int count)
 		loop_request_stop(p->L, 1, LOOP_CAUSE_SIGNAL);
 }
 
-void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
-			  const struct loop_result *res, char *buf, size_t size)
+void play_press_estop(struct play *p)
 {
-	const struct loop_report *r = &res->rep;
+	atomic_store(&p->press, true);
+}
+
+/* Why a run ended, in words: r of res, on rig at tm; ls the lockstep that
+ * stopped it (LOOP_CAUSE_BOARD), or NULL. */
+static void describe(const struct rig *rig, const struct mot_timing *tm,
+		     const struct loop_result *res, const struct loop_report *r,
+		     const struct lockstep *ls, char *buf, size_t size)
+{
 	int32_t o = r->out;
+	const char *why;
+	int level = 1;
 	char when[96];
 
 	snprintf(when, sizeof(when), "at tick %lld (%.3f s), last frame %lld", (long long)r->tick,
@@ -510,15 +623,33 @@ void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
 	case LOOP_CAUSE_DISABLE:
 		snprintf(buf, size, "drives disabled %s; every axis brought to rest first", when);
 		break;
+	case LOOP_CAUSE_BOARD:
+		why = ls ? ls_stop_reason(ls, &level) : NULL;
+		snprintf(buf, size, "%s; here %s %s", why ? why : "another board stopped",
+			 r->end == LOOP_END_ESTOP || level == 2 ? "every drive disabled at once" :
+			 "every axis brought to rest within its limits", when);
+		break;
 	default:
 		snprintf(buf, size, "ended (%d)", (int)r->end);
 		break;
 	}
 }
 
+void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
+			  const struct loop_result *res, char *buf, size_t size)
+{
+	describe(rig, tm, res, &res->rep, NULL, buf, size);
+}
+
+void play_describe_report(const struct play *p, const struct loop_report *r, char *buf,
+			  size_t size)
+{
+	describe(&p->rig, p->tm, loop_result(p->L), r, p->ls, buf, size);
+}
+
 void play_describe(const struct play *p, char *buf, size_t size)
 {
-	play_report_describe(&p->rig, p->tm, loop_result(p->L), buf, size);
+	play_describe_report(p, &loop_result(p->L)->rep, buf, size);
 }
 
 /* What the chase did: lock, rate, stops and cues, the schedule's phase. */
@@ -547,6 +678,29 @@ static void chase_summary(const struct play *p, FILE *f)
 			s->outliers == 1 ? "" : "s");
 	if (c->past_end)
 		fprintf(f, "  chase: the source named a frame past the range; nothing played then\n");
+}
+
+/* What the lockstep did: the start, the clocks, the heartbeats. */
+static void lockstep_summary(const struct play *p, FILE *f)
+{
+	const struct play_lockstep *o = p->o.lockstep;
+	const struct rig_desc *r = o->scene_rig;
+	struct ls_stats st;
+
+	ls_stats(p->ls, &st);
+	fprintf(f, "  lockstep: board '%s' of %u%s, play began at %lld.%09lld on the PTP clock "
+		"(CLOCK_REALTIME), tick 0 at %lld ns (CLOCK_MONOTONIC)", r->boards[o->board].name,
+		r->nboards, r->boards[o->board].lead ? " (the leader)" : "",
+		(long long)(st.play_ns / 1000000000), (long long)(st.play_ns % 1000000000),
+		(long long)st.t0_ns);
+	if (r->boards[o->board].lead)
+		fprintf(f, "; the clocks within %.1f us (board '%s'; round trips up to %.1f us)",
+			st.offset_us_max, r->boards[st.offset_board].name, st.delay_us_max);
+	fprintf(f, "; heartbeats %lld sent, %lld heard, the longest wait %.1f ms",
+		(long long)st.beats_sent, (long long)st.beats_got, st.beat_gap_max_ns / 1e6);
+	if (st.dropped)
+		fprintf(f, "; %lld datagrams refused", (long long)st.dropped);
+	fputc('\n', f);
 }
 
 void play_summary(const struct play *p, FILE *f, bool reason)
@@ -590,6 +744,8 @@ void play_summary(const struct play *p, FILE *f, bool reason)
 			(long long)res->edges_bound_ticks, LOOP_EDGES_PER_TICK);
 	if (p->extclk)
 		chase_summary(p, f);
+	if (p->ls)
+		lockstep_summary(p, f);
 	rig_report(&p->rig, f);
 	if (res->status_dropped)
 		fprintf(f, "  %lld status samples dropped (the service thread fell behind)\n",

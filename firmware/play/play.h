@@ -28,6 +28,7 @@
 #include "journal/journal.h"
 #include "chase.h"
 #include "hal/extclk.h"
+#include "lockstep/lockstep.h"
 #include "loop.h"
 #include "rig/rig.h"
 #include "rt.h"
@@ -46,6 +47,16 @@ struct play_chase {
 	struct hal_din *sim_din;   /* tests: the input of "gpio:sim", taken over */
 };
 
+/* --node: one of several boards playing the scene together
+ * (lockstep/lockstep.h); the run's rig is this board's part of it. */
+struct play_lockstep {
+	const struct rig_desc *scene_rig; /* the whole rig: boards:, lockstep: */
+	uint32_t board;                   /* this board, an index into boards: */
+	const uint8_t *digest;            /* the scene file's SHA-256 */
+	const char *ptp_socket;           /* ptp4l's uds_address */
+	bool ptp_free_running;            /* lockstep/ls_ptp.h */
+};
+
 struct play_opts {
 	struct loop_cfg loop;
 	bool virtual_clock;
@@ -55,6 +66,7 @@ struct play_opts {
 	FILE *status_tty;         /* a live status line there, or NULL */
 	struct rig_opts rig;
 	struct play_chase chase;
+	const struct play_lockstep *lockstep; /* NULL: this board alone */
 };
 
 /* Where play_prepare failed, for the exit code. */
@@ -91,6 +103,10 @@ struct play {
 	int64_t wall_ns;          /* the run's duration on the monotonic clock */
 	struct hal_extclk *extclk; /* --chase: the source, NULL: none */
 	struct chase chase;
+	struct lockstep *ls;      /* --node: the other boards, NULL: none */
+	struct ls_board *ls_boards;
+	int64_t t0;               /* --node: tick 0, as the boards agreed */
+	_Atomic bool press;       /* SIGUSR1: press the simulated e-stops */
 };
 
 /* [init] Build the rig for src (simulated where asked), start it, prepare
@@ -112,9 +128,16 @@ void play_free(struct play *p);
  * SIGINT an immediate one. */
 void play_signal(struct play *p, int sig, int count);
 
+/* Async-signal-safe: SIGUSR1, the simulated devices' e-stops pressed (by
+ * the service thread, at its next round). */
+void play_press_estop(struct play *p);
+
 /* The one-line description of why the run ended ("e-stop: input 'estop'
  * (line 0) at tick 5000, frame 119"), into buf. */
 void play_describe(const struct play *p, char *buf, size_t size);
+/* The same for a report (loop_report_now's, while the run stops). */
+void play_describe_report(const struct play *p, const struct loop_report *r, char *buf,
+			  size_t size);
 
 /* The same for any run of the loop on rig, whose scene has timing tm. */
 void play_report_describe(const struct rig *rig, const struct mot_timing *tm,

@@ -34,6 +34,8 @@
  *   strand-rt          the loop                 SCHED_FIFO P, on CPU N
  *   strand-gpio-DEV    GPIO input events        SCHED_FIFO P, off CPU N
  *   strand-mb-DEV      Modbus I/O               SCHED_FIFO P - RT_IO_BELOW, off CPU N
+ *   strand-ltc         LTC capture (--chase)    SCHED_FIFO P - RT_IO_BELOW, off CPU N
+ *   strand-board       the lockstep (--node)    SCHED_FIFO P - RT_IO_BELOW, off CPU N
  *   strand (main)      the service thread       SCHED_OTHER
  *
  * The input event threads run at the loop's own priority: they carry the
@@ -42,7 +44,11 @@
  * work (at normal priority on a busy machine the Modbus thread was seen
  * waking late enough that a quarter of the updates at 1 kHz were replaced
  * by newer ones), never above the loop, which they would otherwise delay
- * by a bus transaction's worth of CPU. With P = 0, or P = 1 for the I/O
+ * by a bus transaction's worth of CPU. The LTC capture thread is one of
+ * them: a period read late is a timestamp read late, which its DLL filters,
+ * with a buffer of 320 ms before samples are lost, while decoding a period
+ * at the loop's priority on a CPU they share would delay the loop's
+ * wake-up by that long (seen in the one-CPU test VM). With P = 0, or P = 1 for the I/O
  * threads, a thread runs SCHED_OTHER: none is SCHED_FIFO when the loop is
  * not. Off CPU N: every CPU the process may use but the loop's, when
  * there is another. Whether SCHED_FIFO is granted at all is found out once,

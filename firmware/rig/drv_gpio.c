@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "hal/gpio/gpio.h"
+#include "hal/gpio/gpio_line.h"
 #include "rig.h"
 #include "yaml/yml.h"
 
@@ -156,3 +157,8 @@ const struct rig_driver rig_drv_gpio = {
 	.start = gpio_start,
 	.free = gpio_free,
 };
+
+const char *rig_gpio_lib_version(void)
+{
+	return gpio_line_lib_version();
+}

@@ -28,4 +28,8 @@ struct rig_gpio_desc {
 	bool allow_sleeping_chip; /* triggers on a chip that sleeps, with a warning */
 };
 
+/* The libgpiod this strand was built with ("1.6.3", "2.2.1"), for
+ * `strand --version`: two builds differ by it (mk/gpiod2.mk). */
+const char *rig_gpio_lib_version(void);
+
 #endif /* STRAND_DRV_GPIO_H */

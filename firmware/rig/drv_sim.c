@@ -216,3 +216,24 @@ const struct rig_driver rig_drv_sim = {
 	.bind = sim_bind,
 	.free = sim_free,
 };
+
+uint32_t rig_sim_press_estop(struct rig *r)
+{
+	uint32_t i, k, n = 0;
+
+	for (i = 0; i < r->nin; i++) {
+		const struct sim_dev *sd = NULL;
+
+		if (r->in[i].role != RIG_INPUT_ESTOP)
+			continue;
+		for (k = 0; k < r->ndev; k++)
+			if (r->dev[k].din == (int32_t)r->in[i].dev && r->dev[k].drv == &rig_drv_sim)
+				sd = r->dev[k].priv;
+		if (!sd || !sd->gpio)
+			continue;
+		sim_gpio_inject(sd->gpio, r->in[i].line, true);
+		sim_gpio_inject(sd->gpio, r->in[i].line, false);
+		n++;
+	}
+	return n;
+}

@@ -49,4 +49,10 @@ int rig_sim_drive_new(struct sim_drive **out, const struct rig *r, uint32_t k,
 struct sim_gpio *rig_sim_gpio(const struct rig *r, const char *name);
 struct sim_camera *rig_sim_camera(const struct rig *r, uint32_t trig);
 
+/* [one thread besides the loop] Press every e-stop of the simulated
+ * devices: each chain opens and closes again at once (the loop latches
+ * the edge). How many there were. For `strand play`'s SIGUSR1 (a button
+ * for a rig of simulated devices, the tests'). */
+uint32_t rig_sim_press_estop(struct rig *r);
+
 #endif /* STRAND_DRV_SIM_H */

@@ -10,6 +10,8 @@
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "rig_driver.h"
 
@@ -211,4 +213,63 @@ int rig_desc_validate(const struct rig_desc *d, uint32_t tick_hz, struct rig_des
 		if ((*drv)->validate && (rc = (*drv)->validate(d, tick_hz, e)))
 			return rc;
 	return 0;
+}
+
+/* ---- one board's part of the rig ------------------------------------------ */
+
+static bool on_board(const struct rig_desc *in, const struct rig_board_desc *b, const char *dev)
+{
+	uint32_t i;
+
+	for (i = 0; i < b->ndevices; i++)
+		if (!strcmp(in->devices[b->devices[i]].name, dev))
+			return true;
+	return false;
+}
+
+int rig_desc_board(const struct rig_desc *in, uint32_t b, struct rig_desc *out)
+{
+	const struct rig_board_desc *bd = &in->boards[b];
+	struct rig_device_desc *dev;
+	struct rig_output_desc *o;
+	struct rig_trigger_desc *t;
+	struct rig_input_desc *n;
+	uint32_t i;
+
+	*out = *in;
+	dev = calloc(bd->ndevices + 1, sizeof(*dev));
+	o = calloc(in->noutputs + 1, sizeof(*o));
+	t = calloc(in->ntriggers + 1, sizeof(*t));
+	n = calloc(in->ninputs + 1, sizeof(*n));
+	out->devices = dev;
+	out->outputs = o;
+	out->triggers = t;
+	out->inputs = n;
+	if (!dev || !o || !t || !n) {
+		rig_desc_board_free(out);
+		return -ENOMEM;
+	}
+	out->ndevices = bd->ndevices;
+	for (i = 0; i < bd->ndevices; i++)
+		dev[i] = in->devices[bd->devices[i]];
+	out->noutputs = out->ntriggers = out->ninputs = 0;
+	for (i = 0; i < in->noutputs; i++)
+		if (on_board(in, bd, in->outputs[i].device))
+			o[out->noutputs++] = in->outputs[i];
+	for (i = 0; i < in->ntriggers; i++)
+		if (on_board(in, bd, in->triggers[i].device))
+			t[out->ntriggers++] = in->triggers[i];
+	for (i = 0; i < in->ninputs; i++)
+		if (on_board(in, bd, in->inputs[i].device))
+			n[out->ninputs++] = in->inputs[i];
+	return 0;
+}
+
+void rig_desc_board_free(struct rig_desc *d)
+{
+	free((void *)d->devices);
+	free((void *)d->outputs);
+	free((void *)d->triggers);
+	free((void *)d->inputs);
+	memset(d, 0, sizeof(*d));
 }

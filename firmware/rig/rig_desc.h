@@ -119,6 +119,30 @@ struct rig_input_desc {
 	const char *line_name; /* gpio: the line by its name; NULL: by number */
 };
 
+/*
+ * boards: and lockstep: (README "Several boards, one scene"): the boards
+ * that play one scene together, each driving some of its devices, one of
+ * them leading (play/lockstep.h).
+ */
+struct rig_board_desc {
+	const char *name;
+	const char *address;     /* where the others reach it: an IP address or a host name */
+	uint32_t port;           /* UDP; 0: lockstep's */
+	bool lead;               /* exactly one board leads */
+	uint32_t ndevices;
+	const uint32_t *devices; /* indices into rig_desc.devices; each device on one board */
+};
+
+struct rig_lockstep_desc {
+	uint32_t port;        /* UDP port of every board without its own */
+	double start_ms;      /* the start instant, after the longest pre-roll */
+	double heartbeat_ms;  /* every board to every other, while they play */
+	double lost_ms;       /* none from a board this long: it is lost */
+	double join_ms;       /* how long a board waits for the others to come up */
+	double max_offset_us; /* the boards' clocks may disagree by this much */
+	double ptp_offset_ns; /* ptp4l's offset from its master, for it to count as locked */
+};
+
 struct rig_desc {
 	uint32_t ndevices;
 	const struct rig_device_desc *devices;
@@ -128,7 +152,22 @@ struct rig_desc {
 	const struct rig_trigger_desc *triggers;
 	uint32_t ninputs;
 	const struct rig_input_desc *inputs;
+	uint32_t nboards;    /* 0: one board plays the whole rig */
+	const struct rig_board_desc *boards;
+	struct rig_lockstep_desc lockstep; /* the defaults when the scene says nothing */
 };
+
+/* lockstep:'s defaults. */
+#define RIG_LOCKSTEP_PORT 47474
+#define RIG_LOCKSTEP_DEFAULTS                                                              \
+	{ .port = RIG_LOCKSTEP_PORT, .start_ms = 2000, .heartbeat_ms = 100, .lost_ms = 500,   \
+	  .join_ms = 30000, .max_offset_us = 1000, .ptp_offset_ns = 100000 }
+
+/* [init] The part of rig `in` that board b drives: its devices and the
+ * outputs, triggers and inputs on them, into out (arrays allocated; free
+ * with rig_desc_board_free). 0 or -ENOMEM. */
+int rig_desc_board(const struct rig_desc *in, uint32_t b, struct rig_desc *out);
+void rig_desc_board_free(struct rig_desc *d);
 
 /* ---- the rules (rig_desc.c) ------------------------------------------------
  * [init]. Each: 0, or a negative errno with the reason in msg, which names

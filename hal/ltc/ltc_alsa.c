@@ -10,6 +10,15 @@
  * a sample position (read so far plus available) with the instant the
  * driver saw it, which is what the decoder's DLL needs; its jitter (the
  * interrupt's latency) is the DLL's to filter.
+ *
+ * The buffer holds ALSA_PERIODS periods: a capture is read as soon as a
+ * period is there, so a long buffer adds no delay, only room for the
+ * thread to be late (an overrun loses samples and costs a resync). A read
+ * that finds no samples in time fails with EIO in the kernel (its wait is
+ * the buffer's time plus 10%, at least 100 ms): a card that stopped, or a
+ * machine that stalled for that long (seen under emulation). Either is
+ * taken as an overrun, and the stream started again; ALSA_STALLS of them in
+ * a row without a sample between are the card's failure.
  */
 #include "ltc.h"
 
@@ -20,12 +29,18 @@
 
 #include "hal/rt.h"
 
+/* Periods in the buffer: 320 ms at 10 ms periods. */
+#define ALSA_PERIODS 32
+/* Reads in a row that time out before the card counts as failed. */
+#define ALSA_STALLS 5
+
 struct ltc_alsa {
 	struct ltc_cap base; /* first */
 	snd_pcm_t *pcm;
 	unsigned channels;
 	int16_t *frames;     /* a period of interleaved frames */
 	int64_t pos;         /* samples read so far */
+	int stalls;          /* reads in a row that timed out */
 };
 
 static int alsa_read(struct ltc_cap *c, int16_t *buf, uint32_t n, struct ltc_stamp *st)
@@ -39,14 +54,18 @@ static int alsa_read(struct ltc_cap *c, int16_t *buf, uint32_t n, struct ltc_sta
 	if (n > c->period)
 		n = c->period;
 	got = snd_pcm_readi(a->pcm, a->frames, n);
-	if (got == -EPIPE || got == -ESTRPIPE) {
-		/* an overrun: start the stream again; the caller resyncs */
-		snd_pcm_prepare(a->pcm);
-		snd_pcm_start(a->pcm);
-		return -EPIPE;
+	if (got == -EIO && ++a->stalls >= ALSA_STALLS)
+		return -EIO;
+	if (got == -EPIPE || got == -ESTRPIPE || got == -EIO) {
+		/* an overrun (or a stall): prepared again, the next read starts
+		 * the stream; the caller resyncs */
+		got = snd_pcm_prepare(a->pcm);
+		return got < 0 ? (int)got : -EPIPE;
 	}
 	if (got < 0)
 		return (int)got;
+	if (got > 0)
+		a->stalls = 0;
 	for (i = 0; i < (uint32_t)got; i++)
 		buf[i] = a->frames[i * a->channels];
 	a->pos += got;
@@ -90,7 +109,7 @@ int ltc_alsa_open(struct ltc_cap **out, const char *device, uint32_t rate, uint3
 {
 	snd_pcm_hw_params_t *hw;
 	snd_pcm_sw_params_t *sw;
-	snd_pcm_uframes_t per = period, buf = (snd_pcm_uframes_t)period * 8;
+	snd_pcm_uframes_t per = period, buf = (snd_pcm_uframes_t)period * ALSA_PERIODS;
 	struct ltc_alsa *a;
 	unsigned r = rate, ch = 1;
 	int rc, dir = 0;
@@ -132,6 +151,7 @@ int ltc_alsa_open(struct ltc_cap **out, const char *device, uint32_t rate, uint3
 	ALSA_TRY(snd_pcm_sw_params_set_tstamp_type(a->pcm, sw, SND_PCM_TSTAMP_TYPE_MONOTONIC),
 		 "monotonic timestamps refused");
 	ALSA_TRY(snd_pcm_sw_params_set_avail_min(a->pcm, sw, per), "avail_min refused");
+	ALSA_TRY(snd_pcm_sw_params_set_start_threshold(a->pcm, sw, 1), "start threshold refused");
 	ALSA_TRY(snd_pcm_sw_params(a->pcm, sw), "software parameters refused");
 	a->channels = ch;
 	a->base.rate = r;
@@ -142,8 +162,9 @@ int ltc_alsa_open(struct ltc_cap **out, const char *device, uint32_t rate, uint3
 		snprintf(err, errsize, "out of memory");
 		goto fail;
 	}
+	/* prepared; the capture thread's first read starts it (the start
+	 * threshold is one sample), so that nothing overruns before it reads */
 	ALSA_TRY(snd_pcm_prepare(a->pcm), "cannot prepare");
-	ALSA_TRY(snd_pcm_start(a->pcm), "cannot start capture");
 	*out = &a->base;
 	return 0;
 fail:

@@ -21,8 +21,9 @@ int ltc_dec_init(struct ltc_dec *x, uint32_t rate, uint32_t period, double fps, 
 	x->floor_ns = 0;
 	x->frames = 0;
 	x->resyncs = 0;
+	x->apv = (int)lround(rate / fps);
 	x->u8 = malloc(period);
-	x->d = ltc_decoder_create((int)lround(rate / fps), LTC_DEC_QUEUE);
+	x->d = ltc_decoder_create(x->apv, LTC_DEC_QUEUE);
 	if (!x->u8 || !x->d) {
 		ltc_dec_free(x);
 		snprintf(err, errsize, "out of memory");
@@ -41,10 +42,17 @@ void ltc_dec_free(struct ltc_dec *x)
 	x->u8 = NULL;
 }
 
-void ltc_dec_resync(struct ltc_dec *x)
+int ltc_dec_resync(struct ltc_dec *x)
 {
 	x->clk.n = 0;
 	x->resyncs++;
+	/* libltc has no reset: what it holds of a frame begun before the
+	 * samples were lost would be spliced onto what comes after them, and
+	 * 80 bits from two frames can pass for a frame with a label of
+	 * neither (seen in the VM: a "jump" the source never made) */
+	ltc_decoder_free(x->d);
+	x->d = ltc_decoder_create(x->apv, LTC_DEC_QUEUE);
+	return x->d ? 0 : -ENOMEM;
 }
 
 /* The period into x->u8, scaled so that its peak nears libltc's full 8

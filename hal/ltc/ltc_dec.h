@@ -48,6 +48,7 @@ struct ltc_dec {
 	struct hal_dll clk;     /* sample position -> CLOCK_MONOTONIC, the stamps' middle */
 	double floor_ns;        /* the stamps' lower edge against the loop's line */
 	uint32_t rate, period;
+	int apv;                /* samples per frame, for libltc */
 	unsigned char *u8;      /* a period as libltc takes it */
 	int64_t pos;            /* samples given to libltc so far */
 	double peak;            /* the signal's recent peak, 16-bit units */
@@ -68,7 +69,8 @@ uint32_t ltc_dec_period(struct ltc_dec *x, const int16_t *s, uint32_t n,
 			const struct ltc_stamp *st, struct hal_mark *m, uint32_t max);
 
 /* The capture's position broke off (an overrun lost samples): the sample
- * clock starts its fit again from the next stamp, keeping its rate. */
-void ltc_dec_resync(struct ltc_dec *x);
+ * clock starts its fit again from the next stamp, keeping its rate, and
+ * the frame under way is dropped. 0, or -ENOMEM (the decoder is gone). */
+int ltc_dec_resync(struct ltc_dec *x);
 
 #endif /* HAL_LTC_DEC_H */

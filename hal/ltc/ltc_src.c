@@ -89,7 +89,11 @@ static void *capture_thread(void *arg)
 	while (!atomic_load(&s->quit)) {
 		rc = ltc_cap_read(s->cap, s->buf, s->cap->period, &st);
 		if (rc == -EPIPE) { /* an overrun: samples lost, the position breaks off */
-			ltc_dec_resync(&s->dec);
+			rc = ltc_dec_resync(&s->dec);
+			if (rc) {
+				latch(s, rc, "out of memory");
+				break;
+			}
 			continue;
 		}
 		if (rc <= 0) {

@@ -29,7 +29,7 @@ static const struct err_case cases[] = {
 	{ "unknown key listed",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "lights: []\n",
-	  "t.yaml:2:1: unknown key 'lights' in the scene (valid keys: scene, timing, nodes, strands, camera, cycles, attributes, surfaces, particles, flocks, aims, devices, outputs, triggers, inputs)" },
+	  "t.yaml:2:1: unknown key 'lights' in the scene (valid keys: scene, timing, nodes, strands, camera, cycles, attributes, surfaces, particles, flocks, aims, devices, outputs, triggers, inputs, boards, lockstep)" },
 	{ "unknown key in a key",
 	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
 	  "nodes: [{name: a, joint: {type: revolute, axis: z}}]\n"
@@ -1036,6 +1036,84 @@ static const struct err_case cases[] = {
 	  "  - {name: a, joint: {type: revolute, axis: z}}\n"
 	  "  - {name: b, joint: {type: revolute, axis: z}, rest: 3, mimic: {joint: a}}\n",
 	  "t.yaml:4:55: 'b' mimics a joint: its rest is the master's, mapped (give 'offset' instead)" },
+	{ "boards: unknown device",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [amr]}\n  - {name: r, address: 10.0.0.2, devices: [io]}\n",
+	  "t.yaml:5:56: unknown device 'amr'; did you mean 'arm'?" },
+	{ "boards: a device twice",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.2, devices: [arm, io]}\n",
+	  "t.yaml:6:44: device 'arm' is already on board 'l' (line 5): a device is driven by one board" },
+	{ "boards: a device on none",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.2, devices: []}\n",
+	  "t.yaml:5:3: device 'io' is on no board: every device is driven by one" },
+	{ "boards: no leader",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, devices: [arm]}\n  - {name: r, address: 10.0.0.2, devices: [io]}\n",
+	  "t.yaml:5:3: no board leads: give one of them `lead: true`" },
+	{ "boards: two leaders",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.2, lead: true, devices: [io]}\n",
+	  "t.yaml:6:40: board 'r' leads too: one board leads (board 'l', line 5)" },
+	{ "boards: one board",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm, io]}\n",
+	  "t.yaml:5:3: boards: names at least two boards (one board plays the whole rig without it)" },
+	{ "boards: same address",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.1, devices: [io]}\n",
+	  "t.yaml:6:24: board 'r' has the address and port of board 'l' (line 5)" },
+	{ "boards: same name",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm]}\n  - {name: l, address: 10.0.0.2, devices: [io]}\n",
+	  "t.yaml:6:12: board 'l' is already listed (line 5)" },
+	{ "boards: no address",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.2, devices: [io]}\n",
+	  "t.yaml:5:5: missing field 'address' in board" },
+	{ "boards: port",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, port: 70000, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.2, devices: [io]}\n",
+	  "t.yaml:5:40: '70000' is out of range (1 to 65535)" },
+	{ "lockstep: lost within a heartbeat",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.2, devices: [io]}\nlockstep: {heartbeat_ms: 100, lost_ms: 150}\n",
+	  "t.yaml:7:40: lost_ms 150: at least two heartbeats (heartbeat_ms 100), or one lost datagram loses a board" },
+	{ "lockstep: unknown key",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "boards:\n  - {name: l, address: 10.0.0.1, lead: true, devices: [arm]}\n  - {name: r, address: 10.0.0.2, devices: [io]}\nlockstep: {heartbeat: 100}\n",
+	  "t.yaml:7:12: unknown key 'heartbeat' in lockstep (did you mean 'heartbeat_ms'?)" },
+	{ "lockstep without boards",
+	  "timing: {frame_rate: 24, frames: [0, 10]}\n"
+	  "nodes: [{name: a, joint: {type: revolute, axis: z}, limits: {velocity: 90, acceleration: 360}}]\n"
+	  "devices: [{name: arm, driver: sim}, {name: io, driver: sim}]\n"
+	  "lockstep: {heartbeat_ms: 100}\n",
+	  "t.yaml:4:11: lockstep: goes with boards:" },
 };
 
 #define NCASES (sizeof(cases) / sizeof(cases[0]))

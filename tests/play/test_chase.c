@@ -28,149 +28,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "chaseutil.h"
 #include "playutil.h"
 #include "testutil.h"
 #include "play/chase.h"
 #include "scene/timecode.h"
 #include "sim/sim_gpio.h"
 #include "sim/sim_ltc.h"
-
-#define LOG_CAP 8192
-
-static struct sim_ltc_frame g_log[LOG_CAP];
-static size_t g_nlog;
-
-struct outcome {
-	int code;
-	struct chase_stats st;
-	int64_t recues;
-	struct tu_worst phase;   /* due - the source frame's start, us */
-	struct tu_worst stretch; /* frame interval against the source's, relative */
-	int64_t fired, matched;
-	int64_t unplayed;        /* fired while the source played no such frame then */
-	int64_t first_frame, last_frame;
-	double lock_frames;      /* the lock, in frames after the first mark */
-};
-
-/* The source frame a label names, in the source's rules. */
-static int64_t label_frame(const struct timecode *tc, const struct sim_ltc_frame *f)
-{
-	return timecode_frame(tc, f->hh, f->mm, f->ss, f->ff);
-}
-
-/* Play the arm (frames 0..last at num/den, 1 kHz) chasing spec. */
-static void run(struct outcome *oc, const char *spec, struct sim_ltc_cfg *sc,
-		struct hal_din *din, uint32_t num, uint32_t den, int64_t last,
-		const char *tc_offset, double freewheel_ms, const int64_t *truth_ns,
-		size_t ntruth)
-{
-	static struct pu_source ps;
-	static struct pu_rig r;
-	struct play_opts o;
-	struct play p;
-	struct pu_csv csv;
-	struct timecode tc;
-	char path[256];
-	int64_t off = 0, prev_due = -1, prev_t = -1;
-	uint32_t i;
-	int cf, cd, cs;
-
-	memset(oc, 0, sizeof(*oc));
-	oc->first_frame = -1;
-	g_nlog = 0;
-	if (sc) {
-		sc->log = g_log;
-		sc->log_cap = LOG_CAP;
-		sc->log_n = &g_nlog;
-	}
-	pu_arm_source(&ps, num, den, 1000, 0, last);
-	pu_rig_init(&r, &ps, 1, 0);
-	pu_opts(&o, &ps);
-	pu_tmpname(path, sizeof(path), "chase");
-	o.journal_path = path;
-	o.chase.spec = spec;
-	o.chase.sim = sc;
-	o.chase.sim_din = din;
-	o.chase.tc_offset = tc_offset;
-	o.chase.freewheel_ms = freewheel_ms;
-	oc->code = pu_run(&p, &r, &ps, &o);
-	oc->st = p.chase.st;
-	oc->recues = p.chase.recues;
-	if (oc->st.lock_ns >= 0)
-		oc->lock_frames = (double)(oc->st.lock_ns - oc->st.first_mark_ns) / p.chase.frame_ns;
-	timecode_init(&tc, num / p.chase.cfg.mult, den);
-	off = p.chase.cfg.offset;
-	play_free(&p);
-	assert_int_equal(pu_csv_read(&csv, path), 0);
-	cf = pu_csv_col(&csv, "frame");
-	cd = pu_csv_col(&csv, "due_ns");
-	cs = pu_csv_col(&csv, "source_tc");
-	for (i = 1; i < csv.nrows; i++) {
-		int64_t f = atoll(csv.cell[i][cf]), due = atoll(csv.cell[i][cd]), t = -1;
-		int64_t want = off + f; /* the source frame the scene's frame is */
-		double quant;
-		size_t j;
-
-		oc->fired++;
-		if (oc->first_frame < 0)
-			oc->first_frame = f;
-		oc->last_frame = f;
-		if (truth_ns) { /* pulses: the pulse that is this frame */
-			if (want >= 0 && (size_t)want < ntruth)
-				t = truth_ns[want];
-		} else {
-			char lbl[24];
-
-			/* the label nearest in time (reverse play repeats labels) */
-			for (j = 0; j < g_nlog && j < LOG_CAP; j++)
-				if (!g_log[j].reverse &&
-				    label_frame(&tc, &g_log[j]) == want % timecode_day(&tc) &&
-				    (t < 0 || llabs(g_log[j].t_ns - due) < llabs(t - due)))
-					t = g_log[j].t_ns;
-			/* the journal names the label the source sent then */
-			timecode_format(&tc, want, lbl, sizeof(lbl));
-			assert_string_equal(csv.cell[i][cs], lbl);
-		}
-		if (t < 0 || llabs(due - t) > 20000000) {
-			/* between a reverse or a stop of the source and the mark
-			 * that shows it (LTC is decoded a frame late), the
-			 * schedule freewheels on frames the source never played */
-			oc->unplayed++;
-			continue;
-		}
-		/* the scene's trigger tick is on the frame's start or up to a
-		 * tick after it (FORMULAS.md 5): that much is the scene's */
-		quant = ceil((double)f * den * 1000 / num - 1e-9) - (double)f * den * 1000 / num;
-		tu_worst_add(&oc->phase, ((double)(due - t) - quant * 1e6) / 1000.0, (double)f);
-		oc->matched++;
-		if (prev_due >= 0 && prev_t >= 0 && t > prev_t)
-			tu_worst_add(&oc->stretch, (double)(due - prev_due) / (double)(t - prev_t) - 1,
-				     (double)f);
-		prev_due = due;
-		prev_t = t;
-	}
-	pu_csv_free(&csv);
-	remove(path);
-}
-
-static struct sim_ltc_cfg ltc25(double cap_ppm, double src_ppm)
-{
-	struct sim_ltc_cfg c;
-
-	memset(&c, 0, sizeof(c));
-	c.rate = 48000;
-	c.period = 480;
-	c.fps_num = 25;
-	c.fps_den = 1;
-	c.ss = 1; /* 00:00:01:00: the scene's frame 25 */
-	c.begin_s = 0.1;
-	c.end_s = 12;
-	c.cap_ppm = cap_ppm;
-	c.src_ppm = src_ppm;
-	c.jitter_ns = 1000000;
-	c.seed = 5;
-	return c;
-}
 
 static void test_clock_errors(void **state)
 {
@@ -181,11 +45,11 @@ static void test_clock_errors(void **state)
 
 	(void)state;
 	for (i = 0; i < sizeof(cap) / sizeof(cap[0]); i++) {
-		struct sim_ltc_cfg c = ltc25(cap[i], src[i]);
+		struct sim_ltc_cfg c = chase_ltc25(cap[i], src[i]);
 		struct tu_worst lock = { 0 }, rate = { 0 };
-		struct outcome oc;
+		struct chase_outcome oc = { 0 };
 
-		run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
+		chase_run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
 		assert_int_equal(oc.code, 0);
 		assert_true(oc.matched > 150 && oc.matched == oc.fired && !oc.unplayed);
 		assert_int_equal(oc.last_frame, 240);
@@ -207,15 +71,15 @@ static void test_clock_errors(void **state)
 static void test_dropouts(void **state)
 {
 	struct sim_ltc_event ev[1] = { { .at_s = 3.0, .ev = SIM_LTC_SILENCE, .until_s = 3.3 } };
-	struct sim_ltc_cfg c = ltc25(100, 0);
+	struct sim_ltc_cfg c = chase_ltc25(100, 0);
 	struct tu_worst fw = { 0 };
-	struct outcome oc;
+	struct chase_outcome oc = { 0 };
 
 	(void)state;
 	/* 300 ms of silence, freewheel 500: played through */
 	c.events = ev;
 	c.nevents = 1;
-	run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
+	chase_run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
 	assert_int_equal(oc.code, 0);
 	assert_int_equal(oc.recues, 0);
 	assert_int_equal(oc.st.events[CHASE_EV_LOST], 0);
@@ -223,7 +87,7 @@ static void test_dropouts(void **state)
 	/* 1.5 s of silence, freewheel 500: a stop after 500 ms without a
 	 * mark, a new cue once it is back, the scene played to its end */
 	ev[0].until_s = 4.5;
-	run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
+	chase_run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
 	assert_int_equal(oc.code, 0);
 	assert_int_equal(oc.st.events[CHASE_EV_LOST], 1);
 	assert_int_equal(oc.recues, 1);
@@ -242,13 +106,13 @@ static void test_jump_reverse_hold(void **state)
 		{ .at_s = 3.0, .ev = SIM_LTC_REVERSE }, { .at_s = 3.5, .ev = SIM_LTC_FORWARD } };
 	static const struct sim_ltc_event hold[] = {
 		{ .at_s = 3.0, .ev = SIM_LTC_HOLD, .until_s = 3.6 } };
-	struct sim_ltc_cfg c = ltc25(0, 0);
-	struct outcome oc;
+	struct sim_ltc_cfg c = chase_ltc25(0, 0);
+	struct chase_outcome oc = { 0 };
 
 	(void)state;
 	c.events = jump;
 	c.nevents = 1;
-	run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
+	chase_run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
 	assert_int_equal(oc.code, 0);
 	assert_int_equal(oc.st.events[CHASE_EV_JUMP], 1);
 	assert_int_equal(oc.recues, 1);
@@ -256,7 +120,7 @@ static void test_jump_reverse_hold(void **state)
 	tu_bound("chase_trigger_after_jump", &oc.phase, 1000, "us");
 	c.events = rev;
 	c.nevents = 2;
-	run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
+	chase_run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
 	assert_int_equal(oc.code, 0);
 	assert_true(oc.st.events[CHASE_EV_REVERSE] >= 1);
 	assert_true(oc.recues >= 1);
@@ -264,7 +128,7 @@ static void test_jump_reverse_hold(void **state)
 	tu_bound("chase_trigger_after_reverse", &oc.phase, 1000, "us");
 	c.events = hold;
 	c.nevents = 1;
-	run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
+	chase_run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
 	assert_int_equal(oc.code, 0);
 	assert_true(oc.st.events[CHASE_EV_STOPPED] >= 1);
 	assert_true(oc.recues >= 1);
@@ -274,12 +138,12 @@ static void test_jump_reverse_hold(void **state)
 
 static void test_quiet(void **state)
 {
-	struct sim_ltc_cfg c = ltc25(-100, 0);
-	struct outcome oc;
+	struct sim_ltc_cfg c = chase_ltc25(-100, 0);
+	struct chase_outcome oc = { 0 };
 
 	(void)state;
 	c.volume_db = -40;
-	run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
+	chase_run(&oc, "ltc:sim", &c, NULL, 25, 1, 240, NULL, 500, NULL, 0);
 	assert_int_equal(oc.code, 0);
 	assert_true(oc.st.level_dbfs < -39 && oc.st.level_dbfs > -42);
 	tu_bound("chase_trigger_quiet_-40dBFS", &oc.phase, 1000, "us");
@@ -289,15 +153,15 @@ static void test_quiet(void **state)
  * labels ;00 and ;01 at 00:01:00) and the scene's frame 0 at 00:00:57;00. */
 static void test_drop_frame(void **state)
 {
-	struct sim_ltc_cfg c = ltc25(200, 0);
-	struct outcome oc;
+	struct sim_ltc_cfg c = chase_ltc25(200, 0);
+	struct chase_outcome oc = { 0 };
 
 	(void)state;
 	c.fps_num = 30000;
 	c.fps_den = 1001;
 	c.ss = 58;
 	c.end_s = 8;
-	run(&oc, "ltc:sim", &c, NULL, 30000, 1001, 200, "00:00:57;00", 500, NULL, 0);
+	chase_run(&oc, "ltc:sim", &c, NULL, 30000, 1001, 200, "00:00:57;00", 500, NULL, 0);
 	assert_int_equal(oc.code, 0);
 	assert_int_equal(oc.last_frame, 200);
 	/* frame 200 is 00:01:03;22: past the boundary, two labels dropped */
@@ -342,7 +206,7 @@ static void test_genlock(void **state)
 	struct sim_gpio *g;
 	struct hal_clock clk;
 	struct tu_rng rng;
-	struct outcome oc;
+	struct chase_outcome oc = { 0 };
 	char err[128];
 	int i;
 
@@ -361,7 +225,7 @@ static void test_genlock(void **state)
 		assert_int_equal(sim_gpio_schedule(g, 0, at + 2000000, false), 0);
 	}
 	/* truth is by pulse count from the first: offset chosen at the cue */
-	run(&oc, "gpio:sim", NULL, sim_gpio_din(g), 25, 1, 240, NULL, 500, truth, 400);
+	chase_run(&oc, "gpio:sim", NULL, sim_gpio_din(g), 25, 1, 240, NULL, 500, truth, 400);
 	sim_gpio_free(g);
 	assert_int_equal(oc.code, 0);
 	assert_int_equal(oc.last_frame, 240);

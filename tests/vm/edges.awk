@@ -18,6 +18,21 @@
 # after their ticks were due (the jitter of the trigger), how far the
 # pulses' widths were off, and how long after the edge the journal's time
 # was read. On a mismatch it prints the first one and exits 1.
+#
+# With -v lost=N, up to N frames may have no edge seen: the observer's loss
+# (gpiomon's v1 event thread makes one event of two edges when the emulated
+# CPU stalls for longer than a pulse), not the trigger's. Each frame's
+# rising edge is then the first edge between its due time and the loop's
+# clock reading after the commit (its kind not trusted, as below), the
+# figures are over the frames seen, and pulse widths are not checked.
+#
+# With -v frame_ns=F (the scene's frame period), also the rate the pulses
+# came at against it, as an observer with the kernel's timestamps measures
+# it, as BENCH gpio_edge_rate_ppm: each rising edge's time less its frame's
+# nominal one, the 10th percentile of that in the first and in the last
+# third of the run, and the slope between them. An edge is late, never
+# early, and a stall of the emulated CPU makes a burst of edges late, which
+# a line through all of them would follow; the lower edge does not.
 
 function fail(msg) {
 	print "edges: " msg
@@ -70,6 +85,7 @@ NR == FNR {
 	split($0, f, " ")
 	ts = f[2] * 1000000000 + f[3]
 	ne++
+	ev[ne] = ts
 	if (ne % 2 == 1)
 		rise[++nr] = ts
 	else
@@ -78,11 +94,56 @@ NR == FNR {
 		mislabelled++
 }
 
+# the rate the rising edges rise[1..n] of frames fr[1..n] came at
+function rate(rise, fr, n,    h, k, f1, f3, r1, r3, per) {
+	h = int(n / 3)
+	f1 = f3 = 0
+	for (k = 1; k <= h; k++) {
+		r1[k] = rise[k] - fr[k] * frame_ns
+		r3[k] = rise[n - h + k] - fr[n - h + k] * frame_ns
+		f1 += fr[k] / h
+		f3 += fr[n - h + k] / h
+	}
+	per = frame_ns + (quantile(r3, h, 0.1) - quantile(r1, h, 0.1)) / (f3 - f1)
+	printf "BENCH gpio_edge_rate_ppm %.1f\n", (frame_ns / per - 1) * 1e6
+}
+
+function lossy(    j, k, seen, sr, sf, sl) {
+	j = 1
+	seen = 0
+	for (k = 1; k <= nj; k++) {
+		while (j <= ne && ev[j] < due[k])
+			j++
+		if (j <= ne && ev[j] <= mono[k]) {
+			seen++
+			sr[seen] = ev[j]
+			sf[seen] = frame[k]
+			sl[seen] = (ev[j] - due[k]) / 1000
+			j++
+		}
+	}
+	if (nj - seen > lost)
+		fail(sprintf("%d of %d frames without an edge between due time and journal time " \
+			     "(%d edges; up to %d may be lost by the observer)", nj - seen, nj, ne, lost))
+	printf "edges: %d frames, %d of them seen rising between their due time and the loop's " \
+	       "clock reading (%d lost by the observer)\n", nj, seen, nj - seen
+	printf "BENCH gpio_trigger_edges %d\n", seen
+	if (frame_ns > 0 && seen >= 30)
+		rate(sr, sf, seen)
+	printf "BENCH gpio_edge_late_p50 %.1f us\n", quantile(sl, seen, 0.5)
+	printf "BENCH gpio_edge_late_p99 %.1f us\n", quantile(sl, seen, 0.99)
+	printf "BENCH gpio_edge_late_max %.1f us\n", sl[seen]
+}
+
 END {
 	if (bad)
 		exit 1
 	if (nj == 0)
 		fail("the journal has no frame")
+	if (lost != "") {
+		lossy()
+		exit bad
+	}
 	if (nr != nj)
 		fail(nr " rising edges on the wire, " nj " frames in the journal")
 	if (nf != nj)
@@ -131,4 +192,6 @@ END {
 	printf "BENCH gpio_pulse_width_error_max %.1f us\n", worst_w
 	printf "BENCH gpio_journal_after_edge_p50 %.1f us\n", quantile(lag, nj, 0.5)
 	printf "BENCH gpio_journal_after_edge_max %.1f us\n", lag[nj]
+	if (frame_ns > 0 && nj >= 30)
+		rate(rise, frame, nj)
 }

@@ -11,6 +11,10 @@
 #   VMTEST TIME <name> <s>              how long it took
 #   VMRESULT PASS|FAIL <words>          the run's verdict, the last line
 #
+# A name NAME@VARIANT in the list is the test NAME run again with
+# /VARIANT/bin first on PATH: the same script against a second build of
+# strand (mk/gpiod2.mk: @gpiod2, libgpiod 2).
+#
 # Kernel command line: strand.only=t_a,t_b runs only those tests;
 # strand.watchdog=S (default 240) fails the run after S seconds;
 # strand.shell=1 gives a shell on the console instead.
@@ -106,14 +110,17 @@ for name in $(cat /tests/list); do
 	if [ -n "$only" ] && ! echo " $only " | grep -q " $name "; then
 		continue
 	fi
-	t=/tests/$name.sh
+	t=/tests/${name%@*}.sh
+	path=$PATH
+	case $name in *@*) path=/${name#*@}/bin:$PATH ;; esac
 	limit=$(sed -n 's/^# vm-timeout: *\([0-9]*\).*/\1/p' "$t")
 	echo "$name" >/tmp/current
 	echo "VMTEST BEGIN $name"
 	t0=$(cut -d' ' -f1 /proc/uptime)
 	# Output to a file rather than a pipe: a process the test left behind
 	# cannot hold the run up by keeping a pipe open.
-	(cd /tmp && VM_TEST=$name timeout -s KILL "${limit:-60}" sh "$t") >/tmp/current.out 2>&1 </dev/null
+	(cd /tmp && PATH=$path VM_TEST=$name timeout -s KILL "${limit:-60}" sh "$t") \
+		>/tmp/current.out 2>&1 </dev/null
 	rc=$?
 	t1=$(cut -d' ' -f1 /proc/uptime)
 	reap

@@ -153,3 +153,12 @@ twice() {
 	WHY=""
 	"$1"
 }
+
+# A test run again against the libgpiod 2 build (NAME@gpiod2: init.sh puts
+# /gpiod2/bin first on PATH): make sure that is the strand it runs.
+case $VM_TEST in
+*@gpiod2)
+	strand --version | grep -q '(libgpiod 2\.' ||
+		fail "not the libgpiod 2 build: $(strand --version 2>&1)"
+	;;
+esac

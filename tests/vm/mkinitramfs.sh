@@ -10,6 +10,8 @@
 #               them without an ld.so.cache)
 #   VM_FILES    DEST=SRC pairs, copied as they are
 #   VM_TESTS    test scripts, copied to /tests/ and run in this order
+#   VM_AGAIN    NAME@VARIANT: the test NAME run once more after them, with
+#               /VARIANT/bin first on PATH (a second build of strand there)
 # The rest is busybox (static), one symlink per applet.
 set -eu
 [ $# -eq 2 ] || { echo "usage: mkinitramfs.sh INIT OUT" >&2; exit 2; }
@@ -69,6 +71,10 @@ done
 for t in ${VM_TESTS:-}; do
 	cp "$t" "$root/tests/"
 	basename "$t" .sh >>"$out.tests.new"
+done
+for a in ${VM_AGAIN:-}; do
+	[ -f "$root/tests/${a%@*}.sh" ] || { echo "mkinitramfs: VM_AGAIN $a: no such test" >&2; exit 1; }
+	echo "$a" >>"$out.tests.new"
 done
 cp "$out.tests.new" "$root/tests/list"
 
