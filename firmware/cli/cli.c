@@ -13,6 +13,7 @@
 #include "exitcode.h"
 #include "opt.h"
 #include "plan/gomo.h"
+#include "play/rt.h"
 
 int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
 {
@@ -135,4 +136,23 @@ int cli_shutter_usage(const struct cli_cmd *cmd, FILE *err, const struct mot_tim
 	char msg[200];
 
 	return run_check_shutter(t, s, msg, sizeof(msg)) ? cli_usage(cmd, err, "%s", msg) : -1;
+}
+
+int cli_rt_option(const struct cli_cmd *cmd, FILE *err, const char *name, const char *arg,
+		  struct rt_opts *rt)
+{
+	long long v;
+
+	if (!strcmp(name, "no-mlock")) {
+		rt->lock_memory = false;
+	} else if (!strcmp(name, "priority")) {
+		if (!opt_long(arg, 0, 99, &v))
+			return cli_usage(cmd, err, "--priority %s: 0 to 99", arg);
+		rt->priority = (int)v;
+	} else {
+		if (!opt_long(arg, 0, 1023, &v))
+			return cli_usage(cmd, err, "--cpu %s: a CPU number", arg);
+		rt->cpu = (int)v;
+	}
+	return -1;
 }

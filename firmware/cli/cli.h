@@ -35,6 +35,12 @@ int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
 struct lim_run;
+struct rt_opts;
+
+/* --priority N, --cpu N or --no-mlock (name without the dashes) of strand
+ * play and strand serve into rt: -1, or the usage error's exit code. */
+int cli_rt_option(const struct cli_cmd *cmd, FILE *err, const char *name, const char *arg,
+		  struct rt_opts *rt);
 
 /* The run's options against each other (check/run_check.h): -1 when they
  * agree, else the usage error's exit code, said on err. */

@@ -152,7 +152,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	if (!c.no_journal) {
 		if (!c.journal[0])
 			default_journal(c.journal, sizeof(c.journal), argv[first]);
-		c.o.journal = c.journal;
+		c.o.journal_file = c.journal;
 		c.o.journal_gomo = true;
 	}
 	rc = live_open(&lv, argv[first], &c.o, msg, sizeof(msg));

@@ -197,18 +197,10 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		c->o.virtual_clock = !strcmp(arg, "virtual");
 		return -1;
 	case OPT_PRIORITY:
-		if (!opt_long(arg, 0, 99, &v))
-			return cli_usage(c->cmd, c->err, "--priority %s: 0 to 99", arg);
-		c->o.rt.priority = (int)v;
-		return -1;
 	case OPT_CPU:
-		if (!opt_long(arg, 0, 1023, &v))
-			return cli_usage(c->cmd, c->err, "--cpu %s: a CPU number", arg);
-		c->o.rt.cpu = (int)v;
-		return -1;
 	case OPT_NO_MLOCK:
-		c->o.rt.lock_memory = false;
-		return -1;
+		return cli_rt_option(c->cmd, c->err, opt == OPT_PRIORITY ? "priority" :
+					      opt == OPT_CPU ? "cpu" : "no-mlock", arg, &c->o.rt);
 	case OPT_FORCE:
 		c->o.loop.force = true;
 		return -1;
@@ -344,22 +336,6 @@ static void default_journal(char *buf, size_t size, const char *scene)
 }
 
 /* The histogram as cyclictest -h writes its own: "us count" lines. */
-static int write_hist(const char *path, const struct lat_stats *s)
-{
-	FILE *f = fopen(path, "w");
-	uint32_t i;
-
-	if (!f)
-		return -errno;
-	fprintf(f, "# strand wake-up latency, 1 us buckets\n");
-	for (i = 0; i < LAT_HIST_US; i++)
-		if (s->hist[i])
-			fprintf(f, "%06u %06u\n", i, s->hist[i]);
-	fprintf(f, "# Total: %lld\n# Overflow: %lld\n# Max Latencies: %.3f\n", (long long)s->n,
-		(long long)s->overflow, s->n ? s->max_ns / 1000.0 : 0.0);
-	return fclose(f) ? -errno : 0;
-}
-
 /*
  * strand check's walk over what this run will play, with the limits its
  * rig holds each channel to (an automatic rig's derived ones included),
@@ -673,7 +649,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		play_describe(&p, msg, sizeof(msg));
 		fprintf(err, "strand play: %s\n", msg);
 	}
-	if (c.lat_hist && write_hist(c.lat_hist, &loop_result(p.L)->lat))
+	if (c.lat_hist && lat_write_hist(c.lat_hist, &loop_result(p.L)->lat))
 		fprintf(err, "strand play: %s: %s\n", c.lat_hist, strerror(errno));
 	/* the reason is on err already when the run did not finish */
 	if (!c.quiet)

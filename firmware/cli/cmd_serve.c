@@ -18,7 +18,7 @@
 #include "serve/server.h"
 
 enum {
-	OPT_SIM = 256, OPT_LISTEN, OPT_TOKEN_FILE, OPT_DATA, OPT_FORCE,
+	OPT_SIM = 256, OPT_LISTEN, OPT_TOKEN_FILE, OPT_DATA, OPT_FORCE, OPT_LAT_HIST, OPT_JOURNAL,
 };
 
 static const struct option serve_options[] = {
@@ -28,6 +28,8 @@ static const struct option serve_options[] = {
 	{ "data", required_argument, NULL, OPT_DATA },
 	{ "force", no_argument, NULL, OPT_FORCE },
 	CLI_LIVE_OPTIONS,
+	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
+	{ "journal", required_argument, NULL, OPT_JOURNAL },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -62,6 +64,12 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		return -1;
 	case OPT_FORCE:
 		c->o.force = true;
+		return -1;
+	case OPT_LAT_HIST:
+		c->o.lat_hist = arg;
+		return -1;
+	case OPT_JOURNAL:
+		c->o.journal = arg;
 		return -1;
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
@@ -185,10 +193,13 @@ const struct cli_cmd cmd_serve = {
 		"                        loopback needs --token-file\n"
 		"  --token-file FILE     every request must present this token (Authorization:\n"
 		"                        Bearer TOKEN, or Basic with any user name)\n"
-		"  --data DIR            where load and save find scene files (the scene's folder,\n"
-		"                        or the working directory without one)\n"
+		"  --data DIR            where load and save find scene files (the scene's\n"
+		"                        folder, or the working directory without one)\n"
 		"  --clock real|virtual  the wall clock (default) or virtual time (tests)\n"
 		"  --deadman MS          a jog stops without a refresh for MS (250)\n"
+		"  --journal DIR         each play segment's journal,\n"
+		"                        DIR/SCENE-DATE-TIME-N.journal\n"
+		"  --latency-hist FILE   each run's wake-up latency histogram (as cyclictest's)\n"
 		"  --priority N, --cpu N, --no-mlock, --force   as for strand play\n"
 		"\n"
 		"SIGINT or SIGTERM: the motion comes to rest, the drives are disabled, exit 0.\n"

@@ -16,7 +16,6 @@ void cli_live_defaults(struct live_opts *o)
 int cli_live_opt(const struct cli_cmd *cmd, FILE *err, int opt, const char *arg,
 		 struct live_opts *o)
 {
-	long long v;
 	double d;
 
 	switch (opt) {
@@ -28,18 +27,11 @@ int cli_live_opt(const struct cli_cmd *cmd, FILE *err, int opt, const char *arg,
 		o->virtual_clock = o->pace_all = !strcmp(arg, "virtual");
 		return -1;
 	case CLI_LIVE_PRIORITY:
-		if (!opt_long(arg, 0, 99, &v))
-			return cli_usage(cmd, err, "--priority %s: 0 to 99", arg);
-		o->rt.priority = (int)v;
-		return -1;
 	case CLI_LIVE_CPU:
-		if (!opt_long(arg, 0, 1023, &v))
-			return cli_usage(cmd, err, "--cpu %s: a CPU number", arg);
-		o->rt.cpu = (int)v;
-		return -1;
 	case CLI_LIVE_NO_MLOCK:
-		o->rt.lock_memory = false;
-		return -1;
+		/* as strand play's */
+		return cli_rt_option(cmd, err, opt == CLI_LIVE_PRIORITY ? "priority" :
+					   opt == CLI_LIVE_CPU ? "cpu" : "no-mlock", arg, &o->rt);
 	case CLI_LIVE_DEADMAN:
 		if (!opt_double(arg, 10, 10000, &d))
 			return cli_usage(cmd, err, "--deadman %s: 10 to 10000 ms", arg);

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check/pools.h"
 #include "check/run_check.h"
 #include "hal/rt.h"
 #include "play/play.h"
@@ -141,6 +142,7 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 {
 	struct run_check c = { .out = NULL };
 	char line[LIVE_MSG];
+	uint32_t pools;
 	int rc = run_check_options(run, msg, size);
 
 	if (rc)
@@ -153,9 +155,16 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 	if (rc) {
 		snprintf(msg, size, "%s: the limit check: %s", s->path, strerror(-rc));
 	} else if (c.res.sat) {
-		snprintf(msg, size, "%s: the core's arithmetic saturated at frame %.10g: values too "
-			 "large for its Q32.32 format", s->path, c.res.sat_frame);
+		snprintf(msg, size, "%s: the core's arithmetic saturated at frame %.10g: values "
+			 "too large for its Q32.32 format", s->path, c.res.sat_frame);
 		rc = -ERANGE;
+	} else if (!c.res.violations && !lv->o.force &&
+		   (pools = lim_pools(NULL, NULL, &s->sf.desc, &s->b.sc, run->to, line,
+				      sizeof(line)))) {
+		/* a particle pool that runs out, as strand play refuses it */
+		snprintf(msg, size, "%s: strand check finds %u violation%s, the first: %s", s->path,
+			 pools, pools == 1 ? "" : "s", line);
+		rc = -EDOM;
 	} else if (c.res.violations && !lv->o.force) {
 		run_check_line(line, sizeof(line), &c, &c.first);
 		snprintf(msg, size, "%s: strand check finds %u limit violation%s, the first: %s "
@@ -170,42 +179,18 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 
 /* ---- the journal ---- */
 
-/* Records the journal keeps mapped ahead of the loop (as strand play's:
- * ten seconds of frames at the scene's rate, 4096 at least). */
+/* The session's journal (o.journal_file), as strand play opens its own,
+ * without an end: every run's shots go into it. */
 static int journal_up(struct live *lv, char *err, size_t errsize)
 {
-	const struct play_source *s = &lv->sc->src.s;
-	const char *names[LOOP_LIVE_OUT_MAX];
-	uint32_t units[LOOP_LIVE_OUT_MAX], i, n = lv->rig.nout;
-	struct journal_info ji;
-	int rc;
+	int rc = play_journal_open(&lv->sess_jr, lv->o.journal_file, &lv->rig, &lv->sc->src.s,
+				   JOURNAL_MODE_STEP |
+				   (lv->o.journal_gomo ? JOURNAL_MODE_GOMO : 0), -1,
+				   hal_clock_wall(&lv->clk), err, errsize);
 
-	for (i = 0; i < n; i++) {
-		names[i] = lv->rig.out[i].channel;
-		units[i] = lv->rig.out[i].unit == SRC_UNIT_TURNS ? JOURNAL_UNIT_TURNS :
-								    JOURNAL_UNIT_PLAIN;
-	}
-	memset(&ji, 0, sizeof(ji));
-	ji.scene = s->name;
-	ji.rate_num = s->timing.num;
-	ji.rate_den = s->timing.den;
-	ji.tick_hz = s->timing.tick_hz;
-	ji.mode = JOURNAL_MODE_STEP | (lv->o.journal_gomo ? JOURNAL_MODE_GOMO : 0);
-	ji.start_wall_ns = hal_clock_wall(&lv->clk);
-	ji.nout = n;
-	ji.out_name = names;
-	ji.out_unit = units;
-	ji.capacity = JOURNAL_UNBOUNDED;
-	ji.ahead = (int64_t)fmax(4096, 10.0 * s->timing.num / s->timing.den *
-					       (lv->rig.ntrig ? lv->rig.ntrig : 1));
-	ji.behind = lv->rig.ntrig ? lv->rig.ntrig : 1;
-	rc = journal_open(&lv->jr, lv->o.journal, &ji);
-	if (rc) {
-		snprintf(err, errsize, "journal %s: %s", lv->o.journal, strerror(-rc));
-		return rc;
-	}
-	lv->has_journal = true;
-	return 0;
+	if (!rc)
+		lv->has_sess_jr = true;
+	return rc;
 }
 
 /* ---- open and close ---- */
@@ -255,8 +240,9 @@ int live_rig_up(struct live *lv, char *err, size_t errsize)
 	lv->rd = &lv->sc->sf.rig;
 	if (!lv->rd->noutputs && !lv->rd->ntriggers) {
 		if (!lv->o.sim) {
-			snprintf(err, errsize, "%s: the scene describes no rig (devices:, outputs:, "
-				 "triggers:); serve it on a simulated one with --sim", lv->sc->path);
+			snprintf(err, errsize, "%s: the scene describes no rig (devices:, "
+				 "outputs:, triggers:); serve it on a simulated one with --sim",
+				 lv->sc->path);
 			return -EINVAL;
 		}
 		if (rig_auto_build(&lv->ra, &lv->sc->sf.desc, &lv->sc->src.s,
@@ -360,7 +346,7 @@ int live_open(struct live **out, const char *scene, const struct live_opts *o, c
 	rc = scene ? live_scene_open(&lv->sc, scene, err, errsize) : 0;
 	if (!rc && scene)
 		rc = live_rig_up(lv, err, errsize);
-	if (!rc && lv->o.journal && lv->sc)
+	if (!rc && lv->o.journal_file && lv->sc)
 		rc = journal_up(lv, err, errsize);
 	if (rc) {
 		live_close(lv);
@@ -388,8 +374,8 @@ void live_close(struct live *lv)
 	}
 	loop_free(lv->L);
 	live_rig_down(lv);
-	if (lv->has_journal)
-		journal_close(&lv->jr);
+	if (lv->has_sess_jr)
+		journal_close(&lv->sess_jr);
 	live_scene_free(lv->sc);
 	free(lv->st_buf);
 	free(lv->st);
@@ -442,8 +428,9 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 		atomic_store(&lv->last_frame, st->at_frame);
 	s->frame = st->at_frame;
 	if (st->rep.end != LOOP_END_NONE)
-		play_report_describe(&lv->rig, &lv->sc->src.s.timing, &(struct loop_result){
-			.rep = st->rep, .frames_fired = st->s.fired }, s->reason, sizeof(s->reason));
+		play_report_describe(&lv->rig, &lv->sc->src.s.timing,
+				     &(struct loop_result){ .frames_fired = st->s.fired }, &st->rep,
+				     NULL, s->reason, sizeof(s->reason));
 	s->nout = st->n;
 	for (i = 0; i < st->n && i < LOOP_LIVE_OUT_MAX; i++) {
 		s->out[i] = st->out[i];
@@ -454,8 +441,11 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 	}
 	/* a run's loop counts from the commands it took itself */
 	s->cmd_seen = st->cmd_seq > lv->seq_run ? st->cmd_seq : lv->seq_run;
-	s->journal_frames = lv->has_journal ? atomic_load(&lv->jr.written) : -1;
+	if (lv->has_sess_jr)
+		s->journal_frames = atomic_load(&lv->sess_jr.written);
 	s->taken_ns = hal_mono_ns();
+	lv->seg_active = st->seg_first >= 0;
+	lv->seen_seq = st->cmd_seq;
 	s->serial = ++lv->serial;
 }
 
@@ -465,8 +455,8 @@ int live_service(struct live *lv)
 
 	/* chunks mapped ahead of the loop (journal.h); its error stops the
 	 * run at the next shot, which the report then names */
-	if (lv->has_journal)
-		journal_service(&lv->jr, hal_mono_ns());
+	if (lv->has_sess_jr)
+		journal_service(&lv->sess_jr, hal_mono_ns());
 	/* the status ring's consumer is this thread alone; a run's start
 	 * sets the ring up before it sets running */
 	while (lv->running && hal_ring_pop(&lv->status, lv->st)) {
@@ -478,10 +468,36 @@ int live_service(struct live *lv)
 	/* what needs the session's lock waits for no command: a command
 	 * under way (an enable starting the drives) has it, and the next
 	 * round comes in milliseconds */
+	if (!lv->running && atomic_load(&lv->estop_req)) {
+		/* latched at once, whatever command holds the lock (an enable
+		 * that the e-stop gives up) */
+		pthread_mutex_lock(&lv->snap_mu);
+		if (lv->snap.state != LIVE_ESTOPPED) {
+			lv->snap.state = LIVE_ESTOPPED;
+			lv->snap.loop_state = live_state_name(LIVE_ESTOPPED);
+			snprintf(lv->snap.reason, sizeof(lv->snap.reason),
+				 "e-stop (commanded) while the drives were disabled; latched");
+			lv->snap.serial = ++lv->serial;
+		}
+		pthread_mutex_unlock(&lv->snap_mu);
+	}
 	if (pthread_mutex_trylock(&lv->mu))
 		return 2;
 	if (lv->running && !atomic_load(&lv->done))
 		live_space_follow(lv);
+	if (lv->has_jr) {
+		bool over;
+
+		journal_service(&lv->jr, hal_mono_ns());
+		pthread_mutex_lock(&lv->snap_mu);
+		lv->snap.journal_frames = atomic_load(&lv->jr.written);
+		/* a sample of a tick that had taken the play and left its
+		 * segment: the loop has let the journal go */
+		over = lv->seen_seq >= lv->jr_seq && !lv->seg_active;
+		pthread_mutex_unlock(&lv->snap_mu);
+		if (over)
+			live_journal_close(lv);
+	}
 	if (lv->running && atomic_load(&lv->done)) {
 		/* the last samples first */
 		while (hal_ring_pop(&lv->status, lv->st)) {
@@ -494,8 +510,8 @@ int live_service(struct live *lv)
 	if (!lv->running) {
 		if (atomic_load(&lv->estop_req) && lv->state != LIVE_ESTOPPED) {
 			lv->state = LIVE_ESTOPPED;
-			snprintf(lv->reason, sizeof(lv->reason), "e-stop (command) while the drives "
-				 "were disabled; latched");
+			snprintf(lv->reason, sizeof(lv->reason),
+				 "e-stop (commanded) while the drives were disabled; latched");
 		}
 		if (atomic_load(&lv->signal_req))
 			atomic_store(&lv->finished, true);
@@ -613,6 +629,19 @@ void live_keys(struct live *lv, void (*fn)(void *ctx, const char *channel, doubl
 		for (k = 0; st->present && k < st->nkeys; k++)
 			fn(ctx, info[i].channel, st->key_frames[k]);
 	}
+}
+
+uint32_t live_jog_targets(struct live *lv, const char **names, uint32_t max)
+{
+	const struct scene_desc *d = lv->sc ? &lv->sc->sf.desc : NULL;
+	uint32_t i, n = 0;
+
+	if (d && d->has_camera && n < max)
+		names[n++] = "camera";
+	for (i = 0; d && i < d->nnodes && n < max; i++)
+		if (d->nodes[i].kind == MOT_NODE_FREE)
+			names[n++] = d->nodes[i].name;
+	return n;
 }
 
 const char *live_state_name(enum live_state s)

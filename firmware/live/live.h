@@ -57,8 +57,12 @@ struct live_opts {
 	bool pace_all;        /* virtual time: at the wall's pace in every state */
 	bool force;           /* play and teach what strand check rejects */
 	struct rt_opts rt;
-	const char *journal;  /* the frame journal of every shot, NULL: none */
-	bool journal_gomo;    /* its records hold go-motion's exposures (JOURNAL_MODE_GOMO) */
+	const char *journal;  /* a folder for each play segment's journal, or NULL */
+	const char *journal_file; /* one journal of the whole session's shots (strand
+				   * dfmoco), or NULL; journal is then unused */
+	bool journal_gomo;    /* journal_file's records hold go-motion's exposures
+			       * (JOURNAL_MODE_GOMO) */
+	const char *lat_hist; /* each run's wake-up latency histogram, or NULL */
 	const char *data_dir; /* where load and save find scene files */
 	double deadman_ms;    /* a jog lapses without a refresh (250) */
 	uint32_t status_hz;   /* status samples a second (250) */
@@ -127,7 +131,8 @@ struct live_snap {
 	const char *loop_state; /* the loop's: hold, jog, move, pre-roll, play, ... */
 	int64_t lat_max_ns, lat_min_ns, lat_avg_ns, overruns;
 	uint64_t lat_n;
-	int64_t journal_frames; /* recorded so far, -1 without a journal */
+	int64_t journal_frames; /* the session journal's records (journal_file), else
+				 * the last segment's, -1: none */
 	uint32_t nout;
 	struct loop_live_out out[LOOP_LIVE_OUT_MAX]; /* file units */
 	uint64_t serial;        /* counts the samples taken in */
@@ -167,6 +172,10 @@ void live_span(struct live *lv, int64_t *first, int64_t *last, uint32_t *num, ui
  * calls fn for each (channel, frame). */
 void live_keys(struct live *lv, void (*fn)(void *ctx, const char *channel, double frame),
 	       void *ctx);
+
+/* What live_jog_space takes: "camera" when the scene has one, then each
+ * free node, into names (at most max): their number. */
+uint32_t live_jog_targets(struct live *lv, const char **names, uint32_t max);
 
 const char *live_state_name(enum live_state s);
 
@@ -220,8 +229,10 @@ int live_teach_move(struct live *lv, const char *node, double from, double to, c
 int live_save(struct live *lv, const char *name, char *msg, size_t size);
 
 /* A probe of the command path: a command that does nothing, answered by
- * the tick that takes it; *latency_ns from its arrival to that tick. */
-int live_ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size);
+ * the tick that takes it; *latency_ns from its arrival (hal_mono_ns() when
+ * the front end received it; 0: now) to that tick's wake-up. */
+int live_ping(struct live *lv, int64_t arrival_ns, int64_t *latency_ns, char *msg,
+	      size_t size);
 
 /* Ask the loop to stop as a signal does (async-signal-safe): controlled,
  * or immediate for level 2. */

@@ -119,7 +119,13 @@ void live_client_gone(struct live *lv, uint64_t client)
 			c.out = i;
 			live_send(lv, &c, &a, msg, sizeof(msg));
 		}
+		if (lv->space_seq) { /* a jog of the camera or a node: every output at 0 */
+			struct loop_cmd v = { .kind = LOOP_CMD_JOG_VEC };
+
+			live_send(lv, &v, &a, msg, sizeof(msg));
+		}
 		lv->jog_client = 0;
+		lv->space_seq = 0;
 		memset(lv->jog_seq, 0, sizeof(lv->jog_seq));
 	}
 	pthread_mutex_unlock(&lv->mu);
@@ -337,11 +343,17 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 		cfg->to = run.to = to > s->frame_last ? to : s->frame_last;
 	}
 	rc = live_scene_check(lv, lv->sc, &run, msg, size);
+	if (!rc)
+		rc = live_journal_open(lv, &c, msg, size);
 	if (rc)
 		return rc;
 	rc = live_send(lv, &c, &a, msg, size);
-	if (!rc)
+	if (!rc) {
 		lv->goto_frame = -1;
+		lv->jr_seq = c.seq;
+	} else {
+		live_journal_close(lv); /* not taken: the loop never had it */
+	}
 	return rc;
 }
 
@@ -522,11 +534,17 @@ static int gomo(struct live *lv, const struct live_gomo *g, int64_t *delay_ms, c
 	cfg->ready_timeout_ticks = cfg->in_position_timeout_ticks;
 	c.nframes = 1;
 	c.frames[0] = (struct frame_item){ g->frame, g->frame, 1 };
+	rc = live_journal_open(lv, &c, msg, size);
+	if (rc)
+		return rc;
 	rc = live_send(lv, &c, &a, msg, size);
 	lv->path_seq = c.seq;
 	if (!rc) {
 		lv->goto_frame = -1;
 		lv->gomo_armed = true;
+		lv->jr_seq = c.seq;
+	} else {
+		live_journal_close(lv); /* not taken: the loop never had it */
 	}
 	return rc;
 }
@@ -534,7 +552,7 @@ static int gomo(struct live *lv, const struct live_gomo *g, int64_t *delay_ms, c
 int live_gomo(struct live *lv, const struct live_gomo *g, int64_t *delay_ms, char *msg,
 	      size_t size)
 {
-	return LOCKED(lv, gomo(lv, g, delay_ms, msg, size));
+	return SCENE_LOCKED(lv, gomo(lv, g, delay_ms, msg, size));
 }
 
 static int gomo_go(struct live *lv, char *msg, size_t size)
@@ -604,9 +622,10 @@ int live_reset(struct live *lv, char *msg, size_t size)
 	return LOCKED(lv, reset(lv, msg, size));
 }
 
-static int ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
+static int ping(struct live *lv, int64_t arrival_ns, int64_t *latency_ns, char *msg,
+		size_t size)
 {
-	struct loop_cmd c = { .kind = LOOP_CMD_NOP };
+	struct loop_cmd c = { .kind = LOOP_CMD_NOP, .arrival_ns = arrival_ns };
 	struct loop_ack a;
 	int rc = live_send(lv, &c, &a, msg, size);
 
@@ -614,7 +633,8 @@ static int ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
 	return rc;
 }
 
-int live_ping(struct live *lv, int64_t *latency_ns, char *msg, size_t size)
+int live_ping(struct live *lv, int64_t arrival_ns, int64_t *latency_ns, char *msg,
+	      size_t size)
 {
-	return SCENE_LOCKED(lv, ping(lv, latency_ns, msg, size));
+	return SCENE_LOCKED(lv, ping(lv, arrival_ns, latency_ns, msg, size));
 }

@@ -20,6 +20,7 @@
 #include "hal/clock.h"
 #include "hal/ring.h"
 #include "hal/thread.h"
+#include "journal/journal.h"
 #include "check/limit_check.h"
 #include "load/load.h"
 #include "motion/mat.h"
@@ -112,13 +113,20 @@ struct live {
 	} space_jog;
 	_Atomic int64_t last_frame; /* the last frame the rig was at, -1: none yet */
 	uint64_t generation;
+	/* the journal of the play segment under way (--journal DIR) */
+	struct journal jr;
+	bool has_jr;
+	uint64_t jr_seq;         /* the PLAY command that took it */
+	uint32_t jr_n;           /* segments journaled */
+	bool seg_active;         /* snap_mu: the newest sample is inside a segment */
+	uint64_t seen_seq;       /* snap_mu: the newest sample's command */
 	struct live_snap snap;   /* snap_mu */
 	uint64_t serial;
 
-	/* the frame journal (o.journal): one for the session, every run's
-	 * shots in it */
-	struct journal jr;
-	bool has_journal;
+	/* the session's journal (o.journal_file): every run's shots in it,
+	 * handed to the loop with each play as a segment's is */
+	struct journal sess_jr;
+	bool has_sess_jr;
 	/* go-motion through a front end's poses (live_gomo): the loop reads
 	 * the path while it runs the segment, live_gomo writes it at rest */
 	struct source_path path;
@@ -169,6 +177,12 @@ void live_publish_scene(struct live *lv);
 /* live_space.c (mu held): a jog of the camera or a node under way turns
  * its direction as the rig turns. */
 void live_space_follow(struct live *lv);
+
+/* live_run.c (mu held): the segment's journal opened for a play (0 when
+ * there is none to keep) into c->jr, and closed; with a session journal
+ * (o.journal_file) that one goes into c->jr instead and stays open. */
+int live_journal_open(struct live *lv, struct loop_cmd *c, char *msg, size_t size);
+void live_journal_close(struct live *lv);
 
 /* "no scene loaded: ..." into msg; -ENOENT. */
 int live_no_scene(char *msg, size_t size);

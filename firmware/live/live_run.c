@@ -10,12 +10,14 @@
 #include "live_priv.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
 #include "hal/rt.h"
+#include "play/latency.h"
 #include "play/play.h"
 
 static void *rt_main(void *arg)
@@ -112,8 +114,6 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 		lc.signal = &lv->signal_req;
 		rc = loop_live_init(lv->L, &lc, msg, size);
 	}
-	if (!rc && lv->has_journal)
-		loop_set_journal(lv->L, &lv->jr);
 	if (rc)
 		goto stop;
 	hal_ring_init(&lv->status, lv->st_buf, LIVE_STATUS_RING, lv->st_size);
@@ -128,9 +128,12 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 		goto stop;
 	}
 	lv->seq_run = lv->seq;
-	lv->running = true;
 	lv->state = LIVE_ENABLED;
 	lv->reason[0] = 0;
+	pthread_mutex_lock(&lv->snap_mu);
+	lv->snap.reason[0] = 0; /* the last run's end is the past */
+	pthread_mutex_unlock(&lv->snap_mu);
+	lv->running = true;
 	return 0;
 stop:
 	for (i = 0; i < lv->rig.naxes; i++)
@@ -148,9 +151,12 @@ void live_run_end(struct live *lv)
 	lv->running = false;
 	for (i = 0; i < lv->rig.naxes; i++)
 		hal_axis_stop(lv->rig.axes[i]);
+	live_journal_close(lv);
 	r = &loop_result(lv->L)->rep;
-	play_report_describe(&lv->rig, &lv->sc->src.s.timing, loop_result(lv->L), lv->reason,
-			     sizeof(lv->reason));
+	if (lv->o.lat_hist && lat_write_hist(lv->o.lat_hist, &loop_result(lv->L)->lat))
+		fprintf(stderr, "strand serve: %s: %s\n", lv->o.lat_hist, strerror(errno));
+	play_report_describe(&lv->rig, &lv->sc->src.s.timing, loop_result(lv->L), r, NULL,
+			     lv->reason, sizeof(lv->reason));
 	if (r->cause == LOOP_CAUSE_ESTOP || atomic_load(&lv->estop_req))
 		lv->state = LIVE_ESTOPPED;
 	else if (r->end == LOOP_END_FAULT || r->end == LOOP_END_INTERNAL)
@@ -159,7 +165,7 @@ void live_run_end(struct live *lv)
 		lv->state = LIVE_DISABLED;
 	if (r->cause == LOOP_CAUSE_ESTOP && !atomic_load(&lv->estop_req))
 		atomic_store(&lv->estop_req, true); /* the input's: latched as the command's */
-	if (r->cause == LOOP_CAUSE_DISABLE)
+	if (r->cause == LOOP_CAUSE_DISABLE || r->end == LOOP_END_NONE)
 		lv->reason[0] = 0;
 	if (atomic_load(&lv->signal_req))
 		atomic_store(&lv->finished, true);
@@ -185,7 +191,8 @@ int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg
 	}
 	c->seq = ++lv->seq;
 	atomic_store(&lv->cmd_sent, c->seq);
-	c->arrival_ns = hal_mono_ns();
+	if (!c->arrival_ns)
+		c->arrival_ns = hal_mono_ns();
 	if (!hal_ring_push(&lv->cmds, c)) {
 		snprintf(msg, size, "the loop's command queue is full");
 		return -EBUSY;
@@ -230,4 +237,59 @@ answered:
 		snprintf(msg, size, "invalid command");
 		return -EINVAL;
 	}
+}
+
+int live_journal_open(struct live *lv, struct loop_cmd *c, char *msg, size_t size)
+{
+	const struct play_source *src = &lv->sc->src.s;
+	char path[PATH_MAX], when[32];
+	struct tm tm;
+	time_t now;
+	int rc;
+
+	if (lv->has_sess_jr) { /* the session's: open for as long as it lasts */
+		c->jr = &lv->sess_jr;
+		return 0;
+	}
+	if (lv->has_jr) {
+		bool over;
+
+		pthread_mutex_lock(&lv->snap_mu);
+		over = lv->seen_seq >= lv->jr_seq && !lv->seg_active;
+		pthread_mutex_unlock(&lv->snap_mu);
+		if (!over) { /* the loop still writes the last segment's */
+			snprintf(msg, size, "the rig is not at rest (a play segment): stop first");
+			return -EBUSY;
+		}
+		live_journal_close(lv);
+	}
+	if (!lv->o.journal)
+		return 0;
+	/* named by the wall's date, whatever clock the loop runs on */
+	now = time(NULL);
+	strftime(when, sizeof(when), "%Y%m%d-%H%M%S", gmtime_r(&now, &tm));
+	if ((size_t)snprintf(path, sizeof(path), "%s/%s-%s-%u.journal", lv->o.journal, src->name,
+			     when, ++lv->jr_n) >= sizeof(path)) {
+		snprintf(msg, size, "--journal %s: the path is too long", lv->o.journal);
+		return -ENAMETOOLONG;
+	}
+	rc = play_journal_open(&lv->jr, path, &lv->rig, src,
+			       (c->cfg.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
+			       (c->cfg.mode == LOOP_MODE_STEP && c->cfg.shutter ?
+				JOURNAL_MODE_GOMO : 0), -1, hal_clock_wall(&lv->clk), msg, size);
+	if (rc)
+		return rc;
+	lv->has_jr = true;
+	c->jr = &lv->jr;
+	return 0;
+}
+
+void live_journal_close(struct live *lv)
+{
+	if (!lv->has_jr)
+		return;
+	if (journal_close(&lv->jr))
+		fprintf(stderr, "strand serve: a journal could not be closed: %s\n",
+			strerror(errno));
+	lv->has_jr = false;
 }

@@ -314,9 +314,10 @@ static int rates(struct live *lv, int32_t node, int k, bool local, double *rate,
 		for (i = 0; i < lv->rig.nout; i++) {
 			const struct chan *c = out_chan(lv, i);
 
+			const double *a = pa[c->index], *b = pb[c->index];
+
 			rate[i] = c->kind == CHAN_POS && below(sc, c->index, (uint32_t)node) ?
-					  (pa[c->index][c->comp] - pb[c->index][c->comp]) / (2 * h) :
-					  0;
+					  (a[c->comp] - b[c->comp]) / (2 * h) : 0;
 		}
 		/* what the next refresh measures the motion by */
 		lv->space = (struct live_space){ .valid = true, .node = node, .w = wn, .k = k,
@@ -414,8 +415,8 @@ static int jog_space(struct live *lv, uint64_t client, const char *name, const c
 		rc = space_vector(lv, node, ax->k, !strcmp(space, "local"), ax->sign, speed, c.vec,
 				  msg, size);
 		if (rc == -ENOENT)
-			snprintf(msg, size, "no output of the rig follows %s's %s in %s space", name,
-				 axis, space);
+			snprintf(msg, size, "no output of the rig follows %s's %s in %s space",
+				 name, axis, space);
 		if (rc)
 			return rc;
 	}

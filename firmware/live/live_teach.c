@@ -17,6 +17,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "scene/channel.h"
 #include "yedit.h"
 
 /* text into path's directory as path + suffix, synced: 0 or -errno */
@@ -63,7 +64,8 @@ static int data_path(struct live *lv, const char *name, char *path, size_t size,
 		      name[i] == '.'))
 			break;
 	if (!n || n > 128 || i < n || name[0] == '.' ||
-	    !((n > 5 && !strcmp(name + n - 5, ".yaml")) || (n > 4 && !strcmp(name + n - 4, ".yml")))) {
+	    !((n > 5 && !strcmp(name + n - 5, ".yaml")) ||
+	      (n > 4 && !strcmp(name + n - 4, ".yml")))) {
 		snprintf(msg, msgsize, "'%.140s': a file name of the data folder (letters, digits, "
 			 "'_', '-', '.', ending in .yaml), no path", name ? name : "");
 		return -EINVAL;
@@ -185,6 +187,76 @@ static bool wanted(const char *name, const char *const *nodes, uint32_t n)
 	return false;
 }
 
+/* Output i follows one of the camera's channels. */
+static bool drives_camera(struct live *lv, uint32_t i)
+{
+	return lv->sc->src.all.c[lv->rig.out[i].src].kind == CHAN_CAMERA;
+}
+
+/* y = x with a key set, *x freed (NULL: the session's text). */
+static int set_key(struct live *lv, char **x, size_t *len, const char *node, const char *field,
+		   double frame, const char *value, char *msg, size_t size)
+{
+	char *next;
+	size_t nlen;
+	int rc = yedit_key_set_text(*x ? *x : lv->sc->text, *x ? *len : lv->sc->len, node, field,
+				    frame, value, &next, &nlen, msg, size);
+
+	if (rc)
+		return rc;
+	free(*x);
+	*x = next;
+	*len = nlen;
+	return 0;
+}
+
+/*
+ * The camera's key where the rig holds it: the eye its slider's outputs
+ * say, looking as its head's pan and tilt say (camera.h: from the eye down
+ * (-sin pan cos tilt, sin tilt, -cos pan cos tilt)) at the distance the
+ * scene's point looked at keeps at that frame, twist its roll. Channels no
+ * output drives are the scene's there.
+ */
+static int teach_camera(struct live *lv, double frame, char **text, size_t *len, char *msg,
+			size_t size)
+{
+	struct source_scene *ss = &lv->sc->twin;
+	mot_q32 tmp[LOOP_LIVE_OUT_MAX];
+	double q[6], look[3], f[3], d = 0, p, t;
+	char eye_s[120], look_s[120], twist_s[40];
+	uint32_t sat = 0, i;
+	int rc;
+
+	src_eval(&ss->s, (mot_q32)llround(frame * 4294967296.0), tmp, &sat);
+	for (i = 0; i < 3; i++) {
+		q[i] = (double)ss->pose.cam.eye[i] / 4294967296.0;
+		look[i] = (double)ss->pose.cam.look[i] / 4294967296.0;
+		d += (look[i] - q[i]) * (look[i] - q[i]);
+	}
+	q[3] = (double)ss->pose.cam.pan * (360.0 / 4294967296.0);
+	q[4] = (double)ss->pose.cam.tilt * (360.0 / 4294967296.0);
+	q[5] = (double)ss->pose.cam.roll * (360.0 / 4294967296.0);
+	d = d > 0 ? sqrt(d) : 1;
+	for (i = 0; i < lv->rig.nout; i++)
+		if (drives_camera(lv, i))
+			q[lv->sc->src.all.c[lv->rig.out[i].src].comp] = pose_at(lv, i);
+	p = q[3] * M_PI / 180;
+	t = q[4] * M_PI / 180;
+	f[0] = -sin(p) * cos(t);
+	f[1] = sin(t);
+	f[2] = -cos(p) * cos(t);
+	snprintf(eye_s, sizeof(eye_s), "[%.10g, %.10g, %.10g]", q[0], q[1], q[2]);
+	snprintf(look_s, sizeof(look_s), "[%.10g, %.10g, %.10g]", q[0] + d * f[0],
+		 q[1] + d * f[1], q[2] + d * f[2]);
+	snprintf(twist_s, sizeof(twist_s), "%.10g", q[5]);
+	rc = set_key(lv, text, len, "camera", "eye", frame, eye_s, msg, size);
+	if (!rc)
+		rc = set_key(lv, text, len, "camera", "look_at", frame, look_s, msg, size);
+	if (!rc)
+		rc = set_key(lv, text, len, "camera", "twist", frame, twist_s, msg, size);
+	return rc;
+}
+
 static int teach(struct live *lv, double frame, const char *const *nodes, uint32_t n, char *msg,
 		 size_t size)
 {
@@ -205,13 +277,21 @@ static int teach(struct live *lv, double frame, const char *const *nodes, uint32
 	}
 	for (k = 0; k < n; k++) {
 		for (i = 0; i < nout; i++)
-			if (info[i].node >= 0 &&
-			    !strcmp(lv->sc->sf.desc.nodes[info[i].node].name, nodes[k]))
+			if ((info[i].node >= 0 &&
+			     !strcmp(lv->sc->sf.desc.nodes[info[i].node].name, nodes[k])) ||
+			    (!strcmp(nodes[k], "camera") && drives_camera(lv, i)))
 				break;
 		if (i == nout) {
-			snprintf(msg, size, "'%s' is not a joint that drives an output", nodes[k]);
+			snprintf(msg, size, "'%s' is not a joint or the camera that drives an "
+				 "output", nodes[k]);
 			return -ENOENT;
 		}
+	}
+	for (i = 0; i < nout && !rc; i++) {
+		if (!drives_camera(lv, i) || !wanted("camera", nodes, n))
+			continue;
+		rc = teach_camera(lv, frame, &text, &len, msg, size);
+		done++;
 	}
 	for (i = 0; i < nout; i++) {
 		const struct sd_node *nd;
@@ -238,7 +318,8 @@ static int teach(struct live *lv, double frame, const char *const *nodes, uint32
 		done++;
 	}
 	if (!rc && !done) {
-		snprintf(msg, size, "no joint of the scene drives an output: nothing to teach");
+		snprintf(msg, size, "no joint of the scene, nor its camera, drives an output: "
+			 "nothing to teach");
 		rc = -ENOENT;
 	}
 	if (!rc)
@@ -260,19 +341,33 @@ int live_teach(struct live *lv, double frame, const char *const *nodes, uint32_t
 	return rc;
 }
 
-int live_teach_delete(struct live *lv, const char *node, double frame, char *msg, size_t size)
+/* A key deleted (del) or moved from `from` to `to`, then applied. */
+static int key_edit(struct live *lv, const char *node, bool del, double from, double to,
+		    char *msg, size_t size)
 {
 	char *text;
 	size_t len;
 	int rc;
 
+	if (!lv->sc)
+		return live_no_scene(msg, size);
+	rc = del ? yedit_key_delete(lv->sc->text, lv->sc->len, node, from, &text, &len, msg,
+				     size) :
+		   yedit_key_move(lv->sc->text, lv->sc->len, node, from, to, &text, &len, msg,
+				  size);
+	if (rc)
+		return rc;
+	rc = apply(lv, text, len, NULL, msg, size);
+	free(text);
+	return rc;
+}
+
+int live_teach_delete(struct live *lv, const char *node, double frame, char *msg, size_t size)
+{
+	int rc;
+
 	pthread_mutex_lock(&lv->mu);
-	rc = lv->sc ? yedit_key_delete(lv->sc->text, lv->sc->len, node, frame, &text, &len, msg,
-				       size) : live_no_scene(msg, size);
-	if (!rc) {
-		rc = apply(lv, text, len, NULL, msg, size);
-		free(text);
-	}
+	rc = key_edit(lv, node, true, frame, 0, msg, size);
 	pthread_mutex_unlock(&lv->mu);
 	return rc;
 }
@@ -280,17 +375,10 @@ int live_teach_delete(struct live *lv, const char *node, double frame, char *msg
 int live_teach_move(struct live *lv, const char *node, double from, double to, char *msg,
 		    size_t size)
 {
-	char *text;
-	size_t len;
 	int rc;
 
 	pthread_mutex_lock(&lv->mu);
-	rc = lv->sc ? yedit_key_move(lv->sc->text, lv->sc->len, node, from, to, &text, &len, msg,
-				     size) : live_no_scene(msg, size);
-	if (!rc) {
-		rc = apply(lv, text, len, NULL, msg, size);
-		free(text);
-	}
+	rc = key_edit(lv, node, false, from, to, msg, size);
 	pthread_mutex_unlock(&lv->mu);
 	return rc;
 }

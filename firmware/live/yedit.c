@@ -70,6 +70,14 @@ static int ydoc_open(struct ydoc *y, const char *text, size_t len, const char *n
 		return -EBADMSG;
 	}
 	root = yaml_document_get_root_node(&y->d);
+	if (!strcmp(node, "camera")) {
+		/* the camera's keys: camera: {keys: [...]}, a strand of its own */
+		y->strand = map_get(y, root, "camera");
+		y->keys = map_get(y, y->strand, "keys");
+		if (y->keys && y->keys->type != YAML_SEQUENCE_NODE)
+			y->keys = NULL;
+		return 0;
+	}
 	y->strands = map_get(y, root, "strands");
 	if (y->strands && y->strands->type != YAML_SEQUENCE_NODE)
 		y->strands = NULL;
@@ -181,15 +189,16 @@ static yaml_node_t *key_item(struct ydoc *y, int i)
 
 static int nkeys(struct ydoc *y)
 {
-	return y->keys ? (int)(y->keys->data.sequence.items.top - y->keys->data.sequence.items.start)
-		       : 0;
+	const yaml_node_t *k = y->keys;
+
+	return k ? (int)(k->data.sequence.items.top - k->data.sequence.items.start) : 0;
 }
 
 /* A new strand at the end of strands: (block style). */
 static int add_strand(struct ydoc *y, const char *node, const char *key, char **out,
 		      size_t *outlen, char *err, size_t errsize)
 {
-	char rep[512], ind[64];
+	char rep[720], ind[64];
 	yaml_node_t *last;
 	size_t at, ls, k;
 	int n;
@@ -222,17 +231,31 @@ int yedit_key_set(const char *text, size_t len, const char *node, const char *fi
 		  double frame, double value, char **out, size_t *outlen, char *err,
 		  size_t errsize)
 {
-	char key[160], num[40], fr[40], rep[256];
+	char num[40];
+
+	fmt_num(num, sizeof(num), value);
+	return yedit_key_set_text(text, len, node, field, frame, num, out, outlen, err, errsize);
+}
+
+int yedit_key_set_text(const char *text, size_t len, const char *node, const char *field,
+		       double frame, const char *num, char **out, size_t *outlen, char *err,
+		       size_t errsize)
+{
+	char key[320], fr[40], rep[720];
 	struct ydoc y;
 	yaml_node_t *item, *v;
 	int i, after, rc;
 
 	fmt_num(fr, sizeof(fr), frame);
-	fmt_num(num, sizeof(num), value);
 	snprintf(key, sizeof(key), "{frame: %s, %s: %s}", fr, field, num);
 	rc = ydoc_open(&y, text, len, node, err, errsize);
 	if (rc)
 		return rc;
+	if (!y.strand && !strcmp(node, "camera")) {
+		snprintf(err, errsize, "the scene has no camera: keys");
+		rc = -ENOENT;
+		goto out;
+	}
 	if (!y.strand) {
 		rc = add_strand(&y, node, key, out, outlen, err, errsize);
 		goto out;
@@ -246,7 +269,9 @@ int yedit_key_set(const char *text, size_t len, const char *node, const char *fi
 	if (i >= 0) {
 		item = key_item(&y, i);
 		v = map_get(&y, item, field);
-		if (v && v->type == YAML_SCALAR_NODE) {
+		if (v && (v->type == YAML_SCALAR_NODE ||
+			  (v->type == YAML_SEQUENCE_NODE &&
+			   v->data.sequence.style == YAML_FLOW_SEQUENCE_STYLE))) {
 			rc = splice(text, len, v->start_mark.index, v->end_mark.index, num, out,
 				    outlen, err, errsize);
 		} else if (item->type == YAML_MAPPING_NODE &&
@@ -261,7 +286,8 @@ int yedit_key_set(const char *text, size_t len, const char *node, const char *fi
 			size_t ls = line_start(text, f->start_mark.index);
 			int ind = (int)(f->start_mark.index - ls) - 7; /* "frame: " */
 
-			snprintf(rep, sizeof(rep), "\n%*s%s: %s", ind > 0 ? ind : 0, "", field, num);
+			snprintf(rep, sizeof(rep), "\n%*s%s: %s", ind > 0 ? ind : 0, "", field,
+				 num);
 			rc = splice(text, len, at, at, rep, out, outlen, err, errsize);
 		}
 		goto out;

@@ -24,6 +24,12 @@
 int yedit_key_set(const char *text, size_t len, const char *node, const char *field,
 		  double frame, double value, char **out, size_t *outlen, char *err,
 		  size_t errsize);
+/* The same with the value as YAML text ("[1, 1.5, 3]" for a camera's eye);
+ * node "camera": the camera's keys. A field's value in place is a scalar or
+ * a flow sequence. */
+int yedit_key_set_text(const char *text, size_t len, const char *node, const char *field,
+		       double frame, const char *value, char **out, size_t *outlen, char *err,
+		       size_t errsize);
 int yedit_key_delete(const char *text, size_t len, const char *node, double frame, char **out,
 		     size_t *outlen, char *err, size_t errsize);
 int yedit_key_move(const char *text, size_t len, const char *node, double from, double to,

@@ -184,8 +184,8 @@ enum loop_cause {
 	LOOP_CAUSE_JOURNAL,     /* the journal could not take the frame */
 	LOOP_CAUSE_SATURATION,  /* fixed-point arithmetic saturated */
 	LOOP_CAUSE_CHASE,       /* the chased source: detail is its enum chase_event */
-	LOOP_CAUSE_DISABLE,     /* live mode: the drives were disabled */
 	LOOP_CAUSE_BOARD,       /* another board of a lockstep run (play/lockstep) */
+	LOOP_CAUSE_DISABLE,     /* live mode: the drives were disabled */
 };
 
 /* What ended the run, for the message at the edge. */

@@ -258,6 +258,7 @@ static int STRAND_RT take_play(struct loop *L, const struct loop_cmd *c, int32_t
 	}
 	L->res->total_frames = total;
 	L->res->frames_fired = 0;
+	L->trig.jr = c->jr;
 	return LOOP_CMD_OK;
 }
 
@@ -362,12 +363,12 @@ static void STRAND_RT take(struct loop *L, const struct loop_cmd *c)
 		break;
 	case LOOP_CMD_DISABLE:
 		lv->quit = true;
-		if (L->seq.state == LOOP_HOLD) {
-			loop_fail(L, LOOP_END_STOPPED, LOOP_CAUSE_DISABLE, NULL);
+		/* the run's end, whatever it was doing (a stop under way too) */
+		loop_fail(L, LOOP_END_STOPPED, LOOP_CAUSE_DISABLE, NULL);
+		if (L->seq.state == LOOP_HOLD)
 			L->seq.state = LOOP_ENDED;
-		} else {
+		else
 			live_stop(L);
-		}
 		break;
 	case LOOP_CMD_SOURCE:
 		if (!at_rest(L) || !c->src) {
@@ -399,7 +400,8 @@ void STRAND_RT loop_live_commands(struct loop *L)
 		loop_request_stop(L, 2, LOOP_CAUSE_ESTOP);
 	i = atomic_load_explicit(lv->cfg.signal, memory_order_relaxed);
 	if (i)
-		loop_request_stop(L, i >= 2 ? 2 : 1, i >= 2 ? LOOP_CAUSE_IMMEDIATE : LOOP_CAUSE_SIGNAL);
+		loop_request_stop(L, i >= 2 ? 2 : 1,
+				  i >= 2 ? LOOP_CAUSE_IMMEDIATE : LOOP_CAUSE_SIGNAL);
 	for (i = 0; i < LOOP_LIVE_CMDS_PER_TICK && hal_ring_pop(lv->cfg.cmds, &lv->cmd); i++)
 		take(L, &lv->cmd);
 }
@@ -582,6 +584,7 @@ void STRAND_RT loop_live_tick_end(struct loop *L)
 	L->seq.state = LOOP_HOLD;
 	L->cfg.max_ticks = 0;
 	L->trig.cur_rec = NULL;
+	L->trig.jr = NULL; /* the owner closes it once it sees the segment over */
 	lv->seg_first = -1;
 	jog_clear(L);
 }

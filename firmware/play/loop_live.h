@@ -29,7 +29,8 @@
  * direction while it ramps), and never exceeds the speed from which it can
  * stop on its position limit within amax (the braking curve, in whole
  * ticks: see jog_vmax in loop_live.c), so it arrives on the limit and
- * stays there. A jog lapses (f = 0) when no refresh came for
+ * stays there. A rig found outside a position limit holds there and may be
+ * jogged or moved back, never further out (loop_safety.c: outside_ok). A jog lapses (f = 0) when no refresh came for
  * deadman_ticks.
  */
 #ifndef STRAND_LOOP_LIVE_H
@@ -40,6 +41,7 @@
 #include <stdint.h>
 
 #include "frames.h"
+#include "journal/journal.h"
 #include "loop.h"
 
 /* Outputs a live rig may have: a move's pose travels inside a command. */
@@ -87,6 +89,8 @@ struct loop_cmd {
 	uint32_t nframes;    /* PLAY step: frames[0..nframes) */
 	struct frame_item frames[LOOP_LIVE_FRAME_ITEMS];
 	struct play_source *src; /* SOURCE */
+	struct journal *jr;  /* PLAY: the segment's journal, or NULL (the owner's,
+			      * open and serviced until the segment is over) */
 };
 
 struct loop_ack {

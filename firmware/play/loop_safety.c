@@ -268,6 +268,20 @@ static enum loop_cause STRAND_RT limit_cause(enum lim_kind k)
 }
 
 /*
+ * A live loop may find the rig outside a position limit (a drive moved by
+ * hand, limits made tighter): it holds there and may move back, never
+ * further out (loop_live.h). Any other loop refused to start there.
+ */
+static bool STRAND_RT outside_ok(const struct loop *L, uint32_t i, enum lim_kind k)
+{
+	double x = move_q2d(L->val[i]), p = move_q2d(L->prev[i]);
+
+	if (!L->live)
+		return false;
+	return (k == LIM_MIN && x >= p) || (k == LIM_MAX && x <= p);
+}
+
+/*
  * This tick's setpoints against the outputs' limits, with the predicate
  * strand check verified the timeline with (plan/limit.h), over the
  * setpoints the outputs were really sent: the pre-roll, bridges and stops
@@ -291,7 +305,8 @@ void STRAND_RT loop_limits(struct loop *L)
 			continue;
 		lim_measure(&lo->meter, &L->stencil, L->val[i], &me);
 		nh = lim_test(&L->stencil, &lo->lim, &me, hit);
-		for (h = 0; h < nh && hit[h].kind == LIM_STOP; h++)
+		for (h = 0; h < nh && (hit[h].kind == LIM_STOP || outside_ok(L, i, hit[h].kind));
+		     h++)
 			;
 		if (h == nh || hit[h].kind == LIM_STOP)
 			continue;

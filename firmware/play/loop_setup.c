@@ -48,8 +48,8 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_JOURNAL] = "journal cannot record the frame",
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
 	[LOOP_CAUSE_CHASE] = "chase",
-	[LOOP_CAUSE_DISABLE] = "drives disabled",
 	[LOOP_CAUSE_BOARD] = "another board",
+	[LOOP_CAUSE_DISABLE] = "drives disabled",
 };
 
 const char *loop_state_name(enum loop_state s)
@@ -59,7 +59,7 @@ const char *loop_state_name(enum loop_state s)
 
 const char *loop_cause_name(enum loop_cause c)
 {
-	return c <= LOOP_CAUSE_BOARD ? cause_names[c] : "?";
+	return c <= LOOP_CAUSE_DISABLE ? cause_names[c] : "?";
 }
 
 /* ---- the block ---- */

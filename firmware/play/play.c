@@ -25,13 +25,14 @@ static uint32_t journal_unit(enum src_unit u)
 	return u == SRC_UNIT_TURNS ? JOURNAL_UNIT_TURNS : JOURNAL_UNIT_PLAIN;
 }
 
-static int open_journal(struct play *p, struct play_source *src, char *err, size_t errsize)
+int play_journal_open(struct journal *jr, const char *path, const struct rig *rig,
+		      const struct play_source *src, uint32_t mode, int64_t total,
+		      int64_t wall_ns, char *err, size_t errsize)
 {
 	struct journal_info ji;
 	const char **names;
-	uint32_t *units, i, n = p->rig.nout;
+	uint32_t *units, i, n = rig->nout;
 	double fps = (double)src->timing.num / src->timing.den;
-	int64_t total = loop_result(p->L)->total_frames;
 	int rc;
 
 	names = calloc(n ? n : 1, sizeof(*names));
@@ -43,18 +44,16 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 		return -ENOMEM;
 	}
 	for (i = 0; i < n; i++) {
-		names[i] = p->rig.out[i].channel;
-		units[i] = journal_unit(p->rig.out[i].unit);
+		names[i] = rig->out[i].channel;
+		units[i] = journal_unit(rig->out[i].unit);
 	}
 	memset(&ji, 0, sizeof(ji));
 	ji.scene = src->name;
 	ji.rate_num = src->timing.num;
 	ji.rate_den = src->timing.den;
 	ji.tick_hz = src->timing.tick_hz;
-	ji.mode = (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
-		  (p->extclk ? JOURNAL_MODE_CHASE : 0) |
-		  (p->o.loop.mode == LOOP_MODE_STEP && p->o.loop.shutter ? JOURNAL_MODE_GOMO : 0);
-	ji.start_wall_ns = hal_clock_wall(&p->clk);
+	ji.mode = mode;
+	ji.start_wall_ns = wall_ns;
 	ji.nout = n;
 	ji.out_name = names;
 	ji.out_unit = units;
@@ -63,16 +62,29 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.capacity = total >= 0 ? total : JOURNAL_UNBOUNDED;
 	if (total == 0)
 		ji.capacity = 1;
-	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (p->rig.ntrig ? p->rig.ntrig : 1));
+	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (rig->ntrig ? rig->ntrig : 1));
 	/* a tick's edges are FIRED after every one of them was armed */
-	ji.behind = p->rig.ntrig ? p->rig.ntrig : 1;
-	rc = journal_open(&p->jr, p->o.journal_path, &ji);
+	ji.behind = rig->ntrig ? rig->ntrig : 1;
+	rc = journal_open(jr, path, &ji);
 	free(names);
 	free(units);
-	if (rc) {
-		snprintf(err, errsize, "journal %s: %s", p->o.journal_path, strerror(-rc));
+	if (rc)
+		snprintf(err, errsize, "journal %s: %s", path, strerror(-rc));
+	return rc;
+}
+
+static int open_journal(struct play *p, struct play_source *src, char *err, size_t errsize)
+{
+	int rc = play_journal_open(&p->jr, p->o.journal_path, &p->rig, src,
+				   (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
+				   (p->extclk ? JOURNAL_MODE_CHASE : 0) |
+				   (p->o.loop.mode == LOOP_MODE_STEP && p->o.loop.shutter ?
+				    JOURNAL_MODE_GOMO : 0),
+				   loop_result(p->L)->total_frames, hal_clock_wall(&p->clk), err,
+				   errsize);
+
+	if (rc)
 		return rc;
-	}
 	p->has_journal = true;
 	return 0;
 }
@@ -532,11 +544,9 @@ void play_press_estop(struct play *p)
 	atomic_store(&p->press, true);
 }
 
-/* Why a run ended, in words: r of res, on rig at tm; ls the lockstep that
- * stopped it (LOOP_CAUSE_BOARD), or NULL. */
-static void describe(const struct rig *rig, const struct mot_timing *tm,
-		     const struct loop_result *res, const struct loop_report *r,
-		     const struct lockstep *ls, char *buf, size_t size)
+void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
+			  const struct loop_result *res, const struct loop_report *r,
+			  const struct lockstep *ls, char *buf, size_t size)
 {
 	int32_t o = r->out;
 	const char *why;
@@ -561,7 +571,8 @@ static void describe(const struct rig *rig, const struct mot_timing *tm,
 		break;
 	case LOOP_CAUSE_ESTOP:
 		if (!r->device) /* no input's: a live session's e-stop command */
-			snprintf(buf, size, "e-stop (commanded) %s; drives disabled, latched", when);
+			snprintf(buf, size, "e-stop (commanded) %s; drives disabled, latched",
+				 when);
 		else if (r->has_edge)
 			snprintf(buf, size, "e-stop: input '%s' (line %d) %s, acted on %.1f us after "
 				 "the edge; drives disabled, latched", r->device ? r->device : "?",
@@ -586,15 +597,17 @@ static void describe(const struct rig *rig, const struct mot_timing *tm,
 	case LOOP_CAUSE_IN_POSITION:
 		snprintf(buf, size, "%s: device '%s' channel %d (%s): %.6g %s beyond the bound %.6g %s %s",
 			 loop_cause_name(r->cause), r->device ? r->device : "?", r->channel,
-			 rig_out_name(rig, o), rig_out_file_units(rig, o, fabs(r->value)), rig_out_unit(rig, o),
-			 rig_out_file_units(rig, o, r->bound), rig_out_unit(rig, o), when);
+			 rig_out_name(rig, o), rig_out_file_units(rig, o, fabs(r->value)),
+			 rig_out_unit(rig, o), rig_out_file_units(rig, o, r->bound),
+			 rig_out_unit(rig, o), when);
 		break;
 	case LOOP_CAUSE_LIMIT_POS:
 	case LOOP_CAUSE_LIMIT_VEL:
 	case LOOP_CAUSE_LIMIT_ACC:
 		snprintf(buf, size, "%s: %s (device '%s' channel %d): %.6g beyond %.6g %s%s %s",
-			 loop_cause_name(r->cause), rig_out_name(rig, o), r->device ? r->device : "?",
-			 r->channel, rig_out_file_units(rig, o, r->value), rig_out_file_units(rig, o, r->bound),
+			 loop_cause_name(r->cause), rig_out_name(rig, o),
+			 r->device ? r->device : "?", r->channel,
+			 rig_out_file_units(rig, o, r->value), rig_out_file_units(rig, o, r->bound),
 			 rig_out_unit(rig, o),
 			 r->cause == LOOP_CAUSE_LIMIT_VEL ? "/s" :
 			 r->cause == LOOP_CAUSE_LIMIT_ACC ? "/s^2" : "", when);
@@ -620,14 +633,14 @@ static void describe(const struct rig *rig, const struct mot_timing *tm,
 				 "within its limits", r->device ? r->device : "?",
 				 chase_event_name((enum chase_event)r->detail), when);
 		break;
-	case LOOP_CAUSE_DISABLE:
-		snprintf(buf, size, "drives disabled %s; every axis brought to rest first", when);
-		break;
 	case LOOP_CAUSE_BOARD:
 		why = ls ? ls_stop_reason(ls, &level) : NULL;
 		snprintf(buf, size, "%s; here %s %s", why ? why : "another board stopped",
 			 r->end == LOOP_END_ESTOP || level == 2 ? "every drive disabled at once" :
 			 "every axis brought to rest within its limits", when);
+		break;
+	case LOOP_CAUSE_DISABLE:
+		snprintf(buf, size, "drives disabled %s; every axis brought to rest first", when);
 		break;
 	default:
 		snprintf(buf, size, "ended (%d)", (int)r->end);
@@ -635,21 +648,15 @@ static void describe(const struct rig *rig, const struct mot_timing *tm,
 	}
 }
 
-void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
-			  const struct loop_result *res, char *buf, size_t size)
+void play_describe(const struct play *p, char *buf, size_t size)
 {
-	describe(rig, tm, res, &res->rep, NULL, buf, size);
+	play_describe_report(p, &loop_result(p->L)->rep, buf, size);
 }
 
 void play_describe_report(const struct play *p, const struct loop_report *r, char *buf,
 			  size_t size)
 {
-	describe(&p->rig, p->tm, loop_result(p->L), r, p->ls, buf, size);
-}
-
-void play_describe(const struct play *p, char *buf, size_t size)
-{
-	play_describe_report(p, &loop_result(p->L)->rep, buf, size);
+	play_report_describe(&p->rig, p->tm, loop_result(p->L), r, p->ls, buf, size);
 }
 
 /* What the chase did: lock, rate, stops and cues, the schedule's phase. */

@@ -51,7 +51,8 @@ static json_t *status_obj(struct dispatch *d, const struct live_snap *s)
 	}
 	o = json_pack("{s:s, s:s, s:s, s:I, s:o, s:I, s:s, s:I, s:I, s:{s:o, s:o, s:o, s:I, s:I},"
 		      " s:I, s:I, s:I, s:b, s:o}",
-		      "state", live_state_name(s->state), "loop", s->loop_state ? s->loop_state : "",
+		      "state", live_state_name(s->state),
+		      "loop", s->loop_state ? s->loop_state : "",
 		      "reason", s->reason, "tick", (json_int_t)s->tick,
 		      "t", jnum(s->t_ns / 1e9), "frame", (json_int_t)s->frame, "timecode", tc,
 		      "fired", (json_int_t)s->fired, "total", (json_int_t)s->total,
@@ -122,7 +123,8 @@ static json_t *info_obj(struct dispatch *d)
 	int64_t first, last;
 	const char *name, *path;
 	struct keys_ctx k = { json_object() };
-	json_t *outs = json_array();
+	json_t *outs = json_array(), *spaces = json_array();
+	const char *targets[LOOP_LIVE_OUT_MAX];
 
 	for (i = 0; i < n; i++)
 		json_array_append_new(outs, json_pack("{s:s, s:s, s:o, s:o, s:o, s:o, s:b, s:b}",
@@ -131,10 +133,14 @@ static json_t *info_obj(struct dispatch *d)
 			"amax", jnum(info[i].amax), "jog", info[i].jog, "teach", info[i].teach));
 	live_keys(d->lv, add_key, &k);
 	live_span(d->lv, &first, &last, &num, &den, &hz, &name, &path);
-	return json_pack("{s:s, s:s, s:I, s:I, s:I, s:I, s:I, s:o, s:o}", "scene", name,
+	n = live_jog_targets(d->lv, targets, LOOP_LIVE_OUT_MAX);
+	for (i = 0; i < n; i++)
+		json_array_append_new(spaces, json_string(targets[i]));
+	return json_pack("{s:s, s:s, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o}", "scene", name,
 			 "file", path, "first", (json_int_t)first, "last", (json_int_t)last,
 			 "fps_num", (json_int_t)num, "fps_den", (json_int_t)den,
-			 "tick_hz", (json_int_t)hz, "outputs", outs, "keys", k.keys);
+			 "tick_hz", (json_int_t)hz, "outputs", outs, "keys", k.keys,
+			 "jog_targets", spaces);
 }
 
 /* ---- the lease ---- */
@@ -221,6 +227,7 @@ static int admit(struct dispatch *d, uint64_t client, bool ws, struct rpc_req *r
 	int rc;
 
 	*res = NULL;
+	r->arrival_ns = hal_mono_ns();
 	r->client = d->holder ? d->holder : client;
 	if (rpc_controls(r->method)) {
 		if (d->holder && !holds(d, client, r)) {
@@ -336,7 +343,7 @@ static int run(struct dispatch *d, const struct rpc_req *r, json_t **res, char *
 		*res = info_obj(d);
 		return 0;
 	case RPC_PING:
-		rc = live_ping(lv, &lat, msg, size);
+		rc = live_ping(lv, r->arrival_ns, &lat, msg, size);
 		if (!rc)
 			*res = json_pack("{s:f}", "latency_us", lat / 1e3);
 		break;

@@ -68,6 +68,10 @@ static bool listed(const char *list, const char *key)
 	size_t n = strlen(key);
 	const char *p = list;
 
+	/* an empty name is no word (and strstr finds it everywhere: the
+	 * fuzzer's hang of a server by {"params": {"": 0}}) */
+	if (!n)
+		return false;
 	while (list && (p = strstr(p, key))) {
 		if ((p == list || p[-1] == ' ') && (p[n] == ' ' || !p[n]))
 			return true;
@@ -210,18 +214,20 @@ static int params(struct rpc_err *e, json_t *p, struct rpc_req *r)
 				return fail(e, RPC_INVALID_PARAMS, "'space' %s: local or world",
 					    r->space);
 			if (!listed("x y z rx ry rz truck boom dolly tilt pan roll", r->axis))
-				return fail(e, RPC_INVALID_PARAMS, "'axis' %s: x, y, z, rx, ry, rz, "
-					    "truck, boom, dolly, tilt, pan or roll", r->axis);
+				return fail(e, RPC_INVALID_PARAMS, "'axis' %s: x, y, z, rx, ry, "
+					    "rz, truck, boom, dolly, tilt, pan or roll", r->axis);
 		} else if (json_is_integer(v)) {
 			if (json_integer_value(v) < 0 || json_integer_value(v) >= LOOP_LIVE_OUT_MAX)
 				return fail(e, RPC_INVALID_PARAMS, "'output' %lld: 0 to %d",
-					    (long long)json_integer_value(v), LOOP_LIVE_OUT_MAX - 1);
+					    (long long)json_integer_value(v),
+					    LOOP_LIVE_OUT_MAX - 1);
 			r->out = (int32_t)json_integer_value(v);
 		} else if (v) {
 			if (text(e, v, "output", r->name, sizeof(r->name)))
 				return -1;
 		} else {
-			return fail(e, RPC_INVALID_PARAMS, "missing parameter 'output' (or 'node')");
+			return fail(e, RPC_INVALID_PARAMS,
+				    "missing parameter 'output' (or 'node')");
 		}
 		if (!r->space[0] && (json_object_get(p, "space") || json_object_get(p, "axis")))
 			return fail(e, RPC_INVALID_PARAMS, "'space' and 'axis' go with 'node'");

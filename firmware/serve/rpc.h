@@ -66,6 +66,7 @@ struct rpc_req {
 	char id[80];          /* the id as JSON text ("1", "\"a\"", "null") */
 	char lease[40];       /* "" when not given */
 	uint64_t client;      /* who sends it: the lease holder's id (dispatch) */
+	int64_t arrival_ns;   /* hal_mono_ns() when the server had it whole (dispatch) */
 	/* jog */
 	int32_t out;          /* -1: by name */
 	char name[RPC_NAME_MAX]; /* jog's channel, load/save's file, teach's node */

@@ -497,6 +497,25 @@ static void tick(lws_sorted_usec_list_t *sul)
 
 /* ---- requests ---- */
 
+/* A message's next bytes; past RPC_MAX_BYTES it is marked oversized and
+ * the rest dropped. 0, or -1 out of memory (the connection goes). */
+static int body_add(struct client *c, const void *in, size_t len)
+{
+	char *b;
+
+	if (c->oversized || c->blen + len > RPC_MAX_BYTES) {
+		c->oversized = true;
+		return 0;
+	}
+	b = realloc(c->body, c->blen + len + 1);
+	if (!b)
+		return -1;
+	c->body = b;
+	memcpy(c->body + c->blen, in, len);
+	c->blen += len;
+	return 0;
+}
+
 /* A message: its answer now, or NULL when the command thread answers
  * (*queued) or nobody does (a notification). */
 static char *handle(struct server *s, struct client *c, const char *buf, size_t len,
@@ -576,20 +595,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
 	case LWS_CALLBACK_HTTP_BODY:
 		if (!c->rpc)
 			return 0;
-		if (c->blen + len > RPC_MAX_BYTES) {
-			c->oversized = true;
-			return 0;
-		}
-		{
-			char *b = realloc(c->body, c->blen + len + 1);
-
-			if (!b)
-				return -1;
-			c->body = b;
-			memcpy(c->body + c->blen, in, len);
-			c->blen += len;
-		}
-		return 0;
+		return body_add(c, in, len);
 	case LWS_CALLBACK_HTTP_BODY_COMPLETION:
 		if (!c->rpc)
 			return 0;
@@ -647,17 +653,8 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
 			c->blen = 0;
 			c->oversized = false;
 		}
-		if (c->blen + len > RPC_MAX_BYTES) {
-			c->oversized = true;
-		} else {
-			char *b = realloc(c->body, c->blen + len + 1);
-
-			if (!b)
-				return -1;
-			c->body = b;
-			memcpy(c->body + c->blen, in, len);
-			c->blen += len;
-		}
+		if (body_add(c, in, len))
+			return -1;
 		if (!lws_is_final_fragment(wsi) || lws_remaining_packet_payload(wsi))
 			return 0;
 		if (c->oversized)

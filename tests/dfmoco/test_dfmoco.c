@@ -114,7 +114,7 @@ static void start(struct fixture *f, bool tcp, unsigned port)
 	assert_non_null(fp);
 	fputs(scene, fp);
 	fclose(fp);
-	o.journal = f->journal;
+	o.journal_file = f->journal;
 	o.rt.cpu = -1;
 	o.rt.name = "strand-rt";
 	if (live_open(&f->lv, f->path, &o, err, sizeof(err)))

@@ -145,8 +145,16 @@ static void rest(struct fixture *f, struct live_snap *s)
 	wait_for(f, at_rest, NULL, s, "the rig at rest");
 }
 
-/* A channel of a scene at a frame, as the session's source evaluates it. */
+/* A channel of a scene at a frame, as the session's source evaluates it,
+ * in the file's units. */
+static double channel_at(const char *path, const char *channel, int64_t frame);
+
 static double scene_at(const char *path, const char *channel, int64_t frame)
+{
+	return channel_at(path, channel, frame);
+}
+
+static double channel_at(const char *path, const char *channel, int64_t frame)
 {
 	struct scene_file sf;
 	struct scene_built b;
@@ -168,7 +176,7 @@ static double scene_at(const char *path, const char *channel, int64_t frame)
 	source_scene_free(&ss);
 	scene_built_free(&b);
 	scene_file_free(&sf);
-	return (double)v * (360.0 / 4294967296.0);
+	return (double)v * ((info.unit == SRC_UNIT_TURNS ? 360.0 : 1.0) / 4294967296.0);
 }
 
 static void ok(int rc, const char *msg)
@@ -196,7 +204,7 @@ static void test_states_jog_goto_play(void **state)
 	assert_non_null(strstr(msg, "enable"));
 	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
 	expect_state(&f, LIVE_ENABLED, &s);
-	ok(live_ping(f.lv, &lat, msg, sizeof(msg)), msg);
+	ok(live_ping(f.lv, 0, &lat, msg, sizeof(msg)), msg);
 
 	/* one jog command and no refresh: the dead-man ends it; the axis
 	 * comes to rest having ramped for at most 250 ms (+ a tick) and
@@ -441,9 +449,11 @@ static void two_joint_scene(const char *path, const char *devices, const char *o
 		"     limits: {min: -90, max: 90, velocity: 60, acceleration: 240}}\n"
 		"strands:\n"
 		"  - {node: a, interpolation: hermite, ease: {in: 12, out: 12},\n"
-		"     keys: [{frame: 0, angle: 0}, {frame: 36, angle: 40}, {frame: 72, angle: 0}]}\n"
+		"     keys: [{frame: 0, angle: 0}, {frame: 36, angle: 40},\n"
+		"            {frame: 72, angle: 0}]}\n"
 		"  - {node: b, interpolation: hermite, ease: {in: 12, out: 12},\n"
-		"     keys: [{frame: 0, angle: 0}, {frame: 48, angle: -20}, {frame: 72, angle: 0}]}\n"
+		"     keys: [{frame: 0, angle: 0}, {frame: 48, angle: -20},\n"
+		"            {frame: 72, angle: 0}]}\n"
 		"devices:\n%s  - {name: io, driver: sim}\n"
 		"outputs:\n%s"
 		"triggers:\n"
@@ -465,6 +475,45 @@ static void test_restart_sim(void **state)
 	open_scene(&f, path, false, 250);
 	unlink(path);
 	restart_cycles(&f, "sim");
+	close_fixture(&f);
+}
+
+/* A rig found outside a position limit (a's 10..170, the twin at 0): it
+ * holds, a jog further out does not move it, a jog back in does, and
+ * nothing faults. */
+static void test_outside_limits(void **state)
+{
+	struct fixture f;
+	struct live_snap s;
+	char path[160], msg[512];
+	int i;
+
+	snprintf(path, sizeof(path), "/tmp/strand-live-out-%d.yaml", (int)getpid());
+	two_joint_scene(path, "  - {name: drives, driver: sim}\n",
+			"  - {channel: a.angle, device: drives, axis: 0, counts_per_unit: 1000,\n"
+			"     limits: {min: 10, max: 170, velocity: 90, acceleration: 360}}\n"
+			"  - {channel: b.angle, device: drives, axis: 1, counts_per_unit: 1000}\n");
+	open_scene(&f, path, false, 250);
+	unlink(path);
+	ok(live_enable(f.lv, msg, sizeof(msg)), msg);
+	expect_state(&f, LIVE_ENABLED, &s);
+	for (i = 0; i < 6; i++) { /* outwards, 300 ms */
+		ok(live_jog(f.lv, 3, 0, -0.5, i + 1, msg, sizeof(msg)), msg);
+		nanosleep(&(struct timespec){ .tv_nsec = 50000000 }, NULL);
+	}
+	rest(&f, &s);
+	printf("BOUND outside the limit: a jogged outwards stays at %.9f deg (0)\n", s.out[0].sp);
+	assert_int_equal(s.state, LIVE_ENABLED);
+	assert_true(s.out[0].sp == 0);
+	for (i = 0; i < 6; i++) { /* back in */
+		ok(live_jog(f.lv, 3, 0, 0.5, i + 7, msg, sizeof(msg)), msg);
+		nanosleep(&(struct timespec){ .tv_nsec = 50000000 }, NULL);
+	}
+	rest(&f, &s);
+	printf("BOUND outside the limit: a jogged back in to %.3f deg, no fault\n", s.out[0].sp);
+	assert_int_equal(s.state, LIVE_ENABLED);
+	assert_true(s.out[0].sp > 1);
+	ok(live_disable(f.lv, msg, sizeof(msg)), msg);
 	close_fixture(&f);
 }
 
@@ -532,7 +581,8 @@ static const char space_scene[] =
 	"  - {name: crane, pivot: [0, 1, 0]}\n"
 	"  - {name: tip, parent: crane, pivot: [0.5, 1, 0]}\n"
 	"strands:\n"
-	"  - {node: crane, keys: [{frame: 0, rotate: [0, 30, 0]}, {frame: 48, rotate: [0, 30, 0]}]}\n"
+	"  - {node: crane, keys: [{frame: 0, rotate: [0, 30, 0]},\n"
+	"                        {frame: 48, rotate: [0, 30, 0]}]}\n"
 	"camera:\n"
 	"  keys:\n"
 	"    - {frame: 0, eye: [1, 1.5, 3], look_at: [0, 0.5, 0], twist: 10}\n"
@@ -703,6 +753,49 @@ static void test_space_jog(void **state)
 	assert_true(moved(&a, &b, 8) < -0.05);
 	assert_true(fabs(moved(&a, &b, 6)) <= 1e-6 && fabs(moved(&a, &b, 7)) <= 1e-6);
 
+	/* the camera keyed where the rig holds it: at frame 24 the scene's
+	 * camera is there (the eye exactly, its angles through look_at within
+	 * 1e-5 deg), the file's comments and other keys as they were */
+	{
+		static const char *const cam[6] = { "camera.x", "camera.y", "camera.z",
+						     "camera.pan", "camera.tilt", "camera.roll" };
+		const char *camera = "camera";
+		char *text;
+
+		ok(live_teach(f.lv, 24, &camera, 1, msg, sizeof(msg)), msg);
+		text = slurp(f.path, NULL);
+		assert_non_null(strstr(text, "{frame: 24, eye: ["));
+		assert_non_null(strstr(text, "{frame: 48, eye: [1, 1.5, 3]"));
+		free(text);
+		for (i = 0; i < 6; i++) {
+			double v = channel_at(f.path, cam[i], 24);
+
+			printf("BOUND taught %s at 24: %.9f, the rig's %.9f (1e-5)\n", cam[i], v,
+			       b.out[i].sp);
+			assert_true(fabs(v - b.out[i].sp) <= 1e-5);
+		}
+	}
+
+	/* a jog of the camera whose client goes ends at once, not at the
+	 * dead-man's time */
+	{
+		int64_t lat, t0;
+
+		ok(live_jog_space(f.lv, 9, "camera", "world", "x", 0.3, ++seq, msg, sizeof(msg)),
+		   msg);
+		nanosleep(&(struct timespec){ .tv_nsec = 100000000 }, NULL);
+		live_client_gone(f.lv, 9);
+		ok(live_ping(f.lv, 0, &lat, msg, sizeof(msg)), msg);
+		live_snapshot(f.lv, &b);
+		t0 = b.tick;
+		rest(&f, &b);
+		/* 0.15 units/s braked at 2 units/s^2: 75 ticks; the dead-man
+		 * alone would take 250 more */
+		printf("BOUND a client gone: at rest %lld ticks later (< 200)\n",
+		       (long long)(b.tick - t0));
+		assert_true(b.tick - t0 < 200);
+	}
+
 	/* what is not the camera or a free node is refused, by name */
 	assert_int_equal(live_jog_space(f.lv, 9, "nothing", "local", "x", 0.5, ++seq, msg,
 					sizeof(msg)), -ENOENT);
@@ -717,6 +810,7 @@ int main(void)
 		cmocka_unit_test(test_jog_limit),
 		cmocka_unit_test(test_teach),
 		cmocka_unit_test(test_space_jog),
+		cmocka_unit_test(test_outside_limits),
 		cmocka_unit_test(test_restart_sim),
 		cmocka_unit_test(test_restart_canopen),
 		cmocka_unit_test_teardown(test_restart_modbus, stop_peer),

@@ -6,11 +6,13 @@ python3-selenium. The simulated robot arm in virtual time. Every safety
 rule of the server has a check here: a missing token, a foreign Origin, a
 second controller, a dead-man timeout mid-jog, a client that stops
 reading, a teach that breaks the scene (refused, file unchanged)."""
-import asyncio, json, os, shutil, socket, subprocess, sys, tempfile, time
+import asyncio
+import csv, json, os, shutil, socket, subprocess, sys, tempfile, time
 
 import websockets
 
 STRAND, OUT = sys.argv[1], sys.argv[2]
+SIMDRIVE = os.path.join(os.path.dirname(STRAND), "strand-simdrive")
 os.makedirs(OUT, exist_ok=True)
 failed = 0
 
@@ -30,9 +32,10 @@ def free_port():
     return p
 
 
-def start(scene, *args):
+def start(scene, *args, sim=True):
     port = free_port()
-    p = subprocess.Popen([STRAND, "serve", scene, "--sim", "--clock", "virtual",
+    p = subprocess.Popen([STRAND, "serve"] + ([scene] if scene else []) +
+                         (["--sim"] if sim else []) + ["--clock", "virtual",
                           "--listen", "127.0.0.1:%d" % port] + list(args),
                          stderr=subprocess.PIPE, text=True)
     line = p.stderr.readline()
@@ -232,6 +235,185 @@ async def origin_token(port, tport, token):
           "curl with the token: status")
 
 
+MB_SCENE = """scene: mb
+timing: {tick_hz: 1000, frame_rate: 24, frames: [0, 72]}
+nodes:
+  - {name: a, joint: {type: revolute, axis: y},
+     limits: {min: -170, max: 170, velocity: 90, acceleration: 360}}
+strands:
+  - {node: a, keys: [{frame: 0, angle: 0}, {frame: 72, angle: 40}]}
+devices:
+  - name: drives
+    driver: modbus
+    modbus:
+      tcp: {host: 127.0.0.1, port: %d}
+      unit: 1
+      response_timeout_ms: 5000
+      enable: {coil: 0}
+      axes:
+        - {register: 0, type: int32, actual: {register: 100}}
+  - {name: io, driver: sim}
+outputs:
+  - {channel: a.angle, device: drives, axis: 0, counts_per_unit: 1000}
+triggers:
+  - {name: camera, device: io, line: 0, pulse_ms: 2}
+"""
+
+
+async def estop_during_enable(tmp):
+    """A command that takes long (an enable whose Modbus drive answers each
+    request 1.5 s late) holds up neither the status nor another client's
+    e-stop, which gives the start up."""
+    scene = os.path.join(tmp, "mb.yaml")
+    open(scene, "w").write(MB_SCENE % free_port())
+    drive = subprocess.Popen([SIMDRIVE, scene, "--late-after", "1", "--late-ms", "1500"],
+                             stdout=subprocess.PIPE, text=True)
+    try:
+        if "serving" not in drive.stdout.readline():
+            check(False, "strand-simdrive serves the slow drive")
+            return
+        p, port = start(scene, sim=False)
+        try:
+            async with websockets.connect(url(port)) as a, websockets.connect(url(port)) as b:
+                A, B = Client(a), Client(b)
+                await a.send(json.dumps(rpc("enable", None, 1)))
+                await asyncio.sleep(0.3)
+                t0 = time.time()
+                r = await B.call("estop")
+                took = time.time() - t0
+                check("result" in r and took < 0.25,
+                      "an e-stop while an enable waits on a slow drive: answered in %.0f ms"
+                      % (took * 1e3))
+                st = await B.wait(lambda s: s["state"] == "e-stopped", "e-stopped", 0.5)
+                check(time.time() - t0 < 0.5,
+                      "the state shows it while the enable still waits: %.0f ms"
+                      % ((time.time() - t0) * 1e3))
+                while True:
+                    m = json.loads(await asyncio.wait_for(a.recv(), 20))
+                    if m.get("id") == 1:
+                        break
+                st = (await A.call("status"))["result"]
+                check("error" in m and st["state"] == "e-stopped",
+                      "the enable gave up, the e-stop latched (%s)"
+                      % m.get("error", {}).get("message", "")[:70])
+        finally:
+            stop(p)
+    finally:
+        drive.terminate()
+        drive.wait()
+
+
+async def no_scene(tmp):
+    """strand serve without a scene: a client loads one of the data folder."""
+    data = os.path.join(tmp, "data")
+    os.makedirs(data)
+    shutil.copy("examples/robot_arm.yaml", os.path.join(data, "arm.yaml"))
+    open(os.path.join(data, "bad.yaml"), "w").write("scene: bad\ntiming: {tick_hz: 0}\n")
+    journals = os.path.join(tmp, "journals")
+    os.makedirs(journals)
+    p, port = start(None, "--data", data, "--journal", journals)
+    try:
+        code, text = curl(port, rpc("enable"))
+        check("no scene" in json.loads(text).get("error", {}).get("message", ""),
+              "no scene yet: enable refused, saying so")
+        code, text = curl(port, rpc("load", {"file": "bad.yaml"}))
+        msg = json.loads(text).get("error", {}).get("message", "")
+        check("bad.yaml:" in msg, "a bad scene's file:line:column reaches the client (%s)"
+              % msg[-60:])
+        code, text = curl(port, rpc("load", {"file": "arm.yaml"}))
+        code, text = curl(port, rpc("info"))
+        check(json.loads(text)["result"]["scene"] == "robot-arm", "then a scene is loaded")
+        code, text = curl(port, rpc("enable"))
+        check("result" in json.loads(text), "and the drives enable")
+        # a play segment's journal: every frame fired, read by strand journal
+        code, text = curl(port, rpc("play", {"from": 0, "to": 10}))
+        t0 = time.time()
+        while time.time() - t0 < 10:
+            st = json.loads(curl(port, rpc("status"))[1])["result"]
+            if st["loop"] == "hold" and st["fired"] == 11:
+                break
+            time.sleep(0.1)
+        time.sleep(0.1)
+        files = os.listdir(journals)
+        rows = subprocess.run([STRAND, "journal", os.path.join(journals, files[0])],
+                              capture_output=True, text=True).stdout.splitlines() if files else []
+        check(len(files) == 1 and len(rows) == 12 and st["journal"] == 11,
+              "the segment's journal (--journal): %s, %d frames read back, status says %d"
+              % (files, len(rows) - 1, st["journal"]))
+        # go-motion (step mode's shutter): its segment's journal has each
+        # frame's exposure, opening with the trigger's edge and lasting half
+        # a frame (180 degrees: 1000 / 24 / 2 = 20.8 ticks, so 20 or 21)
+        code, text = curl(port, rpc("play", {"from": 20, "to": 22, "shutter": 180}))
+        check("shutter is go-motion" in json.loads(text).get("error", {}).get("message", ""),
+              "a shutter without step mode is refused")
+        code, text = curl(port, rpc("play", {"mode": "step", "from": 20, "to": 22,
+                                             "shutter": 180, "settle": 20, "exposure": 20}))
+        t0 = time.time()
+        while "result" in json.loads(text) and time.time() - t0 < 20:
+            st = json.loads(curl(port, rpc("status"))[1])["result"]
+            if st["loop"] == "hold" and st["fired"] == 3:
+                break
+            time.sleep(0.1)
+        time.sleep(0.1)
+        files = sorted(f for f in os.listdir(journals) if f.endswith("-2.journal"))
+        rows = list(csv.DictReader(subprocess.run(
+            [STRAND, "journal", os.path.join(journals, files[0])], capture_output=True,
+            text=True).stdout.splitlines())) if files else []
+        ok = len(rows) == 3 and all(int(r.get("open_tick", -1)) == int(r["tick"]) and
+                                    20 <= int(r.get("close_tick", -1)) - int(r["open_tick"]) <= 21
+                                    for r in rows)
+        check(ok, "go-motion through play's shutter: %s, %d frames with their exposures (%s)"
+              % (files, len(rows), ", ".join("%s-%s" % (r.get("open_tick"), r.get("close_tick"))
+                                             for r in rows)))
+    finally:
+        stop(p)
+        check(p.returncode == 0, "strand serve without a scene stops on SIGINT, exit 0")
+
+
+def png_pixels(path):
+    """(width, height, rows of RGB tuples) of an 8-bit non-interlaced PNG."""
+    import struct, zlib
+    data = open(path, "rb").read()
+    pos, idat, w = 8, b"", 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
+            bpp = {2: 3, 6: 4}[ctype]
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, rows, prev = zlib.decompress(idat), [], bytearray(w * bpp)
+    for y in range(h):
+        row = y * (w * bpp + 1)
+        f, line = raw[row], bytearray(raw[row + 1:row + 1 + w * bpp])
+        for i in range(len(line)):
+            a = line[i - bpp] if i >= bpp else 0
+            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                pred = a if pa <= pb and pa <= pc else b if pb <= pc else c
+                line[i] = (line[i] + pred) & 255
+        rows.append([tuple(line[x * bpp:x * bpp + 3]) for x in range(w)])
+        prev = line
+    return w, h, rows
+
+
+def screenshot_content(path, what):
+    """The console drawn: the e-stop's red, the panels' dark grey, and some
+    thousands of colours (text, plots), not a blank or an error page."""
+    w, h, rows = png_pixels(path)
+    red = sum(1 for r in rows for p in r if p[0] > 200 and p[1] < 110 and p[2] < 110)
+    colours = len({p for r in rows[::4] for p in r[::4]})
+    check(red > 1500 and colours > 100,
+          "screenshot %s (%dx%d): the e-stop's red on %d pixels, %d colours"
+          % (what, w, h, red, colours))
+
+
 def browser(port, scene):
     from selenium import webdriver
     from selenium.webdriver.common.by import By
@@ -283,13 +465,24 @@ def browser(port, scene):
         until(lambda: "hold" in state() and d.find_element(By.ID, "v0").text != v0,
               "a jog from the keyboard moves output 1")
         check(d.find_element(By.ID, "v0").text != v0,
-              "browser: keyboard jog moved output 1 (%s -> %s)" % (v0, d.find_element(By.ID, "v0").text))
+              "browser: keyboard jog moved output 1 (%s -> %s)"
+              % (v0, d.find_element(By.ID, "v0").text))
+        # at frame 48's pose (base at 60 degrees until frame 96), base keyed
+        # there at frame 72
+        d.find_element(By.ID, "frame").clear()
+        d.find_element(By.ID, "frame").send_keys("48")
+        d.find_element(By.ID, "goto").click()
+        until(lambda: "FRAME 48 " in d.find_element(By.ID, "tc").text.upper() and "hold" in state(),
+              "at frame 48 (%s; %s)" % (d.find_element(By.ID, "tc").text,
+                                        d.find_element(By.ID, "log").text[:120]))
+        before = open(scene).read().count("{frame: 72, angle:")
         d.find_element(By.ID, "tframe").clear()
-        d.find_element(By.ID, "tframe").send_keys("200")
-        d.find_element(By.ID, "tnode").send_keys("arm2")
+        d.find_element(By.ID, "tframe").send_keys("72")
+        d.find_element(By.ID, "tnode").send_keys("base")
         d.find_element(By.ID, "teach").click()
         until(lambda: "key" in d.find_element(By.ID, "tmsg").text, "teach answered")
-        check("frame: 200" in open(scene).read(), "browser: a taught key is in the file ('%s')"
+        check(open(scene).read().count("{frame: 72, angle:") == before + 1,
+              "browser: a taught key is in the file ('%s')"
               % d.find_element(By.ID, "tmsg").text)
         d.save_screenshot(os.path.join(OUT, "serve-desktop.png"))
         d.find_element(By.ID, "estop").click()
@@ -302,8 +495,7 @@ def browser(port, scene):
         check(est.is_displayed() and est.location["y"] < 200,
               "browser: on a phone's width the e-stop stays in view")
         for f in ("serve-desktop.png", "serve-phone.png"):
-            sz = os.path.getsize(os.path.join(OUT, f))
-            check(sz > 20000, "screenshot %s has content (%d bytes)" % (f, sz))
+            screenshot_content(os.path.join(OUT, f), f)
     finally:
         d.quit()
         shutil.rmtree(prof, ignore_errors=True)
@@ -321,9 +513,10 @@ def main():
     try:
         asyncio.run(origin_token(port, tport, token))
         asyncio.run(ws_tests(port, scene))
-        if os.environ.get("SERVE_SLOW", "0") == "1":
-            asyncio.run(slow_client(port))
-        if os.environ.get("SERVE_BROWSER", "0") == "1":
+        asyncio.run(slow_client(port))
+        asyncio.run(estop_during_enable(tmp))
+        asyncio.run(no_scene(tmp))
+        if os.environ.get("SERVE_BROWSER", "1") == "1":
             browser(port, scene)
     finally:
         stop(p)
