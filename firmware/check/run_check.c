@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "channels.h"
+#include "plan/gomo.h"
 
 static void on_violation(void *ctx, const struct lim_violation *v)
 {
@@ -33,6 +34,8 @@ int run_check_options(const struct lim_run *r, char *msg, size_t size)
 		why = "--loop or --ping-pong, not both";
 	else if (r->passes && !r->loop && !r->ping_pong)
 		why = "--passes goes with --loop or --ping-pong";
+	else if (r->shutter && !r->step)
+		why = "--shutter is go-motion, for --mode step";
 	else if (!r->step && r->to < r->from)
 		return snprintf(msg, size, "--from %lld is after --to %lld", (long long)r->from,
 				(long long)r->to), -EINVAL;
@@ -41,6 +44,17 @@ int run_check_options(const struct lim_run *r, char *msg, size_t size)
 	if (!why)
 		return 0;
 	snprintf(msg, size, "%s", why);
+	return -EINVAL;
+}
+
+int run_check_shutter(const struct mot_timing *t, mot_q32 s, char *msg, size_t size)
+{
+	if (!s || !gomo_shutter_check(t, s))
+		return 0;
+	snprintf(msg, size, "--shutter: an exposure of %.6g ms is shorter than two ticks (%.6g ms "
+		 "at tick_hz %u): go-motion needs the scene's speed",
+		 (double)s / 4294967296.0 * t->den / t->num * 1000, 2000.0 / t->tick_hz,
+		 t->tick_hz);
 	return -EINVAL;
 }
 
@@ -85,6 +99,7 @@ void run_check_line(char *buf, size_t size, const struct run_check *c,
 	const char *unit = unit_name(ch->unit);
 	const char *per = v->kind == LIM_VEL ? "/s" : v->kind == LIM_ACC ? "/s^2" : "";
 	const char *back = v->dir < 0 ? " (backwards)" : "";
+	const char *gomo = v->gomo ? "go-motion " : "";
 	double worst = lim_file_units(ch->unit, v->worst);
 	double limit = lim_file_units(ch->unit, v->limit);
 	char where[160];
@@ -94,25 +109,27 @@ void run_check_line(char *buf, size_t size, const struct run_check *c,
 	switch (v->seg) {
 	case LIM_SEG_RUNUP:
 		if (v->kind == LIM_MIN || v->kind == LIM_MAX) {
-			snprintf(buf, size, "%s: the run-up into frame %.10g%s starts at %.7g %s, "
-				 "beyond limit %.7g %s; start from a frame where it moves slower",
-				 ch->name, v->frame_first, back, worst, unit, limit, unit);
+			snprintf(buf, size, "%s: the %srun-up into frame %.10g%s starts at %.7g %s, "
+				 "beyond limit %.7g %s; %s", ch->name, gomo, v->frame_first, back,
+				 worst, unit, limit, unit, v->gomo ?
+				 "it moves too fast there to come up to its speed from rest inside "
+				 "its limits" : "start from a frame where it moves slower");
 			return;
 		}
-		snprintf(where, sizeof(where), "in the run-up into frame %.10g%s", v->frame_first,
-			 back);
+		snprintf(where, sizeof(where), "in the %srun-up into frame %.10g%s", gomo,
+			 v->frame_first, back);
 		break;
 	case LIM_SEG_POSTROLL:
-		snprintf(where, sizeof(where), "in the post-roll after frame %.10g%s",
-			 v->frame_last, back);
+		snprintf(where, sizeof(where), "in the %s after frame %.10g%s",
+			 v->gomo ? "go-motion run-out" : "post-roll", v->frame_last, back);
 		break;
 	case LIM_SEG_FRAME:
 		snprintf(where, sizeof(where), "at frames %.10g to %.10g (step mode)", v->frame_first,
 			 v->frame_last);
 		break;
 	default:
-		snprintf(where, sizeof(where), "frames %.10g to %.10g%s", v->frame_first,
-			 v->frame_last, back);
+		snprintf(where, sizeof(where), "frames %.10g to %.10g%s%s", v->frame_first,
+			 v->frame_last, back, v->gomo ? " (go-motion exposure)" : "");
 		break;
 	}
 	if (v->kind == LIM_STOP)

@@ -30,6 +30,10 @@ struct run_check {
  * ("--ping-pong needs at least two frames"). */
 int run_check_options(const struct lim_run *r, char *msg, size_t size);
 
+/* Go-motion's shutter (plan/gomo.h) against the scene's timing: every
+ * exposure must hold two ticks. 0, or -EINVAL with the reason in msg. */
+int run_check_shutter(const struct mot_timing *t, mot_q32 s, char *msg, size_t size);
+
 /* [init] The run over ss (the rig: its outputs and triggers, NULL: none)
  * into c; run's lead and tail are set from the rig's triggers. 0, or a
  * negative errno (-ENOMEM; -ENOENT: an output's channel is not the

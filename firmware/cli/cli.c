@@ -12,6 +12,7 @@
 #include "check/run_check.h"
 #include "exitcode.h"
 #include "opt.h"
+#include "plan/gomo.h"
 #include "play/rt.h"
 
 int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
@@ -117,6 +118,24 @@ int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run 
 	char msg[160];
 
 	return run_check_options(r, msg, sizeof(msg)) ? cli_usage(cmd, err, "%s", msg) : -1;
+}
+
+int cli_shutter_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, mot_q32 *s)
+{
+	double a;
+
+	if (!opt_double(arg, 0, 360, &a) || !gomo_shutter_of_angle(a, s))
+		return cli_usage(cmd, err, "--shutter %s: a shutter angle in degrees, above 0 and "
+				 "at most 360", arg);
+	return -1;
+}
+
+int cli_shutter_usage(const struct cli_cmd *cmd, FILE *err, const struct mot_timing *t,
+		      mot_q32 s)
+{
+	char msg[200];
+
+	return run_check_shutter(t, s, msg, sizeof(msg)) ? cli_usage(cmd, err, "%s", msg) : -1;
 }
 
 int cli_rt_option(const struct cli_cmd *cmd, FILE *err, const char *name, const char *arg,

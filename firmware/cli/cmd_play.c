@@ -39,7 +39,7 @@ enum {
 	OPT_PASSES, OPT_DURATION, OPT_SETTLE, OPT_EXPOSURE, OPT_TIMEOUT, OPT_JOURNAL,
 	OPT_NO_JOURNAL, OPT_TELEMETRY, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK,
 	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET, OPT_CHASE, OPT_TC_OFFSET,
-	OPT_FREEWHEEL, OPT_NODE, OPT_PTP_SOCKET, OPT_PTP_FREE,
+	OPT_FREEWHEEL, OPT_NODE, OPT_PTP_SOCKET, OPT_PTP_FREE, OPT_SHUTTER,
 };
 
 /* ptp4l's management socket where linuxptp puts it by default. */
@@ -75,6 +75,7 @@ static const struct option play_options[] = {
 	{ "node", required_argument, NULL, OPT_NODE },
 	{ "ptp-socket", required_argument, NULL, OPT_PTP_SOCKET },
 	{ "ptp-free-running", no_argument, NULL, OPT_PTP_FREE },
+	{ "shutter", required_argument, NULL, OPT_SHUTTER },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -233,6 +234,8 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	case OPT_PTP_FREE:
 		c->ptp_free_running = true;
 		return -1;
+	case OPT_SHUTTER:
+		return cli_shutter_arg(c->cmd, c->err, arg, &c->o.loop.shutter);
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
 	}
@@ -345,15 +348,23 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 	struct lim_run run = {
 		.from = c->o.loop.from, .to = c->o.loop.to, .loop = c->o.loop.loop,
 		.ping_pong = c->o.loop.ping_pong, .passes = c->o.loop.passes, .step = c->step,
+		.shutter = c->o.loop.shutter,
 	};
 	char line[512];
 	uint32_t pools;
 	int rc;
 
 	if (c->step && fl->n) {
-		/* step mode shoots the frames it lists: their poses */
+		/* step mode shoots the frames it lists: their poses, or their
+		 * go-motion on the timeline the loop runs it on */
 		run.from = frames_min(fl);
 		run.to = frames_max(fl);
+	}
+	run.expose_first = run.from;
+	run.expose_last = run.to;
+	if (c->step && c->o.loop.shutter) {
+		run.from = c->o.loop.from;
+		run.to = c->o.loop.to;
 	}
 	rc = run_check(&lc, ss, rig, &run);
 	if (rc) {
@@ -540,7 +551,10 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 				     .loop = c.o.loop.loop, .ping_pong = c.o.loop.ping_pong,
 				     .passes = c.o.loop.passes, .step = c.step };
 
+		r.shutter = c.o.loop.shutter;
 		rc = cli_limits_usage(cmd, err, &r);
+		if (rc < 0)
+			rc = cli_shutter_usage(cmd, err, &src.s.timing, c.o.loop.shutter);
 		if (rc >= 0)
 			goto out;
 	}
@@ -588,6 +602,13 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			goto out;
 		}
 		c.o.loop.frames = &fl;
+		/* go-motion runs the scene's own motion over its span and the
+		 * frames shot, and beyond them at the speed of their ends
+		 * (plan/timeline.h); check_first walks the same */
+		c.o.loop.from = frames_min(&fl) < src.s.frame_first ? frames_min(&fl) :
+								      src.s.frame_first;
+		c.o.loop.to = frames_max(&fl) > src.s.frame_last ? frames_max(&fl) :
+								   src.s.frame_last;
 	}
 	rc = check_first(&c, path, &src, rig, &fl);
 	if (rc)
@@ -668,6 +689,10 @@ const struct cli_cmd cmd_play = {
 		"  --exposure MS         step mode: hold still this long after it (100), unless a\n"
 		"                        camera_ready input paces the shots\n"
 		"  --timeout S           step mode: for in position and camera ready (10)\n"
+		"  --shutter ANGLE       step mode: go-motion. Each frame f runs the scene's motion\n"
+		"                        from f - s/2 to f + s/2 (s = ANGLE/360 of a frame) with\n"
+		"                        the trigger at its start, after a run-up from rest and\n"
+		"                        before a run-out to rest, both within the limits\n"
 		"  --journal FILE        the frame journal (default SCENE-YYYYmmdd-HHMMSS.journal)\n"
 		"  --no-journal          no journal\n"
 		"  --telemetry FILE      JSON lines of the loop's state, ten a second\n"

@@ -13,12 +13,12 @@
 
 #include "cli.h"
 #include "exitcode.h"
+#include "live_opts.h"
 #include "live/live.h"
 #include "serve/server.h"
 
 enum {
-	OPT_SIM = 256, OPT_LISTEN, OPT_TOKEN_FILE, OPT_DATA, OPT_CLOCK, OPT_PRIORITY, OPT_CPU,
-	OPT_NO_MLOCK, OPT_FORCE, OPT_DEADMAN, OPT_LAT_HIST, OPT_JOURNAL,
+	OPT_SIM = 256, OPT_LISTEN, OPT_TOKEN_FILE, OPT_DATA, OPT_FORCE, OPT_LAT_HIST, OPT_JOURNAL,
 };
 
 static const struct option serve_options[] = {
@@ -26,12 +26,8 @@ static const struct option serve_options[] = {
 	{ "listen", required_argument, NULL, OPT_LISTEN },
 	{ "token-file", required_argument, NULL, OPT_TOKEN_FILE },
 	{ "data", required_argument, NULL, OPT_DATA },
-	{ "clock", required_argument, NULL, OPT_CLOCK },
-	{ "priority", required_argument, NULL, OPT_PRIORITY },
-	{ "cpu", required_argument, NULL, OPT_CPU },
-	{ "no-mlock", no_argument, NULL, OPT_NO_MLOCK },
 	{ "force", no_argument, NULL, OPT_FORCE },
-	{ "deadman", required_argument, NULL, OPT_DEADMAN },
+	CLI_LIVE_OPTIONS,
 	{ "latency-hist", required_argument, NULL, OPT_LAT_HIST },
 	{ "journal", required_argument, NULL, OPT_JOURNAL },
 	{ "help", no_argument, NULL, 'h' },
@@ -43,56 +39,31 @@ struct cli {
 	FILE *err;
 	struct live_opts o;
 	char addr[64];
-	int port;
+	unsigned port;
 	const char *token_file;
 };
 
 static int on_opt(void *ctx, int opt, const char *arg)
 {
 	struct cli *c = ctx;
-	long long v;
-	double d;
-	const char *colon;
+	int rc = cli_live_opt(c->cmd, c->err, opt, arg, &c->o);
 
+	if (rc != -2)
+		return rc;
 	switch (opt) {
 	case OPT_SIM:
 		c->o.sim = true;
 		return -1;
 	case OPT_LISTEN:
-		colon = strrchr(arg, ':');
-		if (!colon || colon == arg || (size_t)(colon - arg) >= sizeof(c->addr) ||
-		    !opt_long(colon + 1, 1, 65535, &v))
-			return cli_usage(c->cmd, c->err, "--listen %s: ADDRESS:PORT", arg);
-		if (arg[0] == '[' && colon[-1] == ']')
-			snprintf(c->addr, sizeof(c->addr), "%.*s", (int)(colon - arg - 2), arg + 1);
-		else
-			snprintf(c->addr, sizeof(c->addr), "%.*s", (int)(colon - arg), arg);
-		c->port = (int)v;
-		return -1;
+		return cli_listen_arg(c->cmd, c->err, arg, c->addr, sizeof(c->addr), &c->port);
 	case OPT_TOKEN_FILE:
 		c->token_file = arg;
 		return -1;
 	case OPT_DATA:
 		c->o.data_dir = arg;
 		return -1;
-	case OPT_CLOCK:
-		if (strcmp(arg, "real") && strcmp(arg, "virtual"))
-			return cli_usage(c->cmd, c->err, "--clock %s: real or virtual", arg);
-		/* a person or a browser watches: every tick at the wall's pace */
-		c->o.virtual_clock = c->o.pace_all = !strcmp(arg, "virtual");
-		return -1;
-	case OPT_PRIORITY:
-	case OPT_CPU:
-	case OPT_NO_MLOCK:
-		return cli_rt_option(c->cmd, c->err, opt == OPT_PRIORITY ? "priority" :
-					      opt == OPT_CPU ? "cpu" : "no-mlock", arg, &c->o.rt);
 	case OPT_FORCE:
 		c->o.force = true;
-		return -1;
-	case OPT_DEADMAN:
-		if (!opt_double(arg, 10, 10000, &d))
-			return cli_usage(c->cmd, c->err, "--deadman %s: 10 to 10000 ms", arg);
-		c->o.deadman_ms = d;
 		return -1;
 	case OPT_LAT_HIST:
 		c->o.lat_hist = arg;
@@ -160,11 +131,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	memset(&c, 0, sizeof(c));
 	c.cmd = cmd;
 	c.err = err;
-	c.o.rt.priority = 80;
-	c.o.rt.cpu = -1;
-	c.o.rt.lock_memory = true;
-	c.o.rt.pm_qos = true;
-	c.o.rt.name = "strand-rt";
+	cli_live_defaults(&c.o);
 	snprintf(c.addr, sizeof(c.addr), "127.0.0.1");
 	c.port = 7125;
 	rc = cli_options(cmd, argc, argv, out, err, "h", serve_options, on_opt, &c, &first);

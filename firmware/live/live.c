@@ -177,6 +177,22 @@ int live_scene_check(struct live *lv, struct live_scene *s, struct lim_run *run,
 	return rc;
 }
 
+/* ---- the journal ---- */
+
+/* The session's journal (o.journal_file), as strand play opens its own,
+ * without an end: every run's shots go into it. */
+static int journal_up(struct live *lv, char *err, size_t errsize)
+{
+	int rc = play_journal_open(&lv->sess_jr, lv->o.journal_file, &lv->rig, &lv->sc->src.s,
+				   JOURNAL_MODE_STEP |
+				   (lv->o.journal_gomo ? JOURNAL_MODE_GOMO : 0), -1,
+				   hal_clock_wall(&lv->clk), err, errsize);
+
+	if (!rc)
+		lv->has_sess_jr = true;
+	return rc;
+}
+
 /* ---- open and close ---- */
 
 static int data_dir_of(struct live *lv, const char *scene)
@@ -330,6 +346,8 @@ int live_open(struct live **out, const char *scene, const struct live_opts *o, c
 	rc = scene ? live_scene_open(&lv->sc, scene, err, errsize) : 0;
 	if (!rc && scene)
 		rc = live_rig_up(lv, err, errsize);
+	if (!rc && lv->o.journal_file && lv->sc)
+		rc = journal_up(lv, err, errsize);
 	if (rc) {
 		live_close(lv);
 		return rc;
@@ -356,6 +374,8 @@ void live_close(struct live *lv)
 	}
 	loop_free(lv->L);
 	live_rig_down(lv);
+	if (lv->has_sess_jr)
+		journal_close(&lv->sess_jr);
 	live_scene_free(lv->sc);
 	free(lv->st_buf);
 	free(lv->st);
@@ -421,6 +441,8 @@ static void take_sample(struct live *lv, const struct loop_live_status *st)
 	}
 	/* a run's loop counts from the commands it took itself */
 	s->cmd_seen = st->cmd_seq > lv->seq_run ? st->cmd_seq : lv->seq_run;
+	if (lv->has_sess_jr)
+		s->journal_frames = atomic_load(&lv->sess_jr.written);
 	s->taken_ns = hal_mono_ns();
 	lv->seg_active = st->seg_first >= 0;
 	lv->seen_seq = st->cmd_seq;
@@ -431,6 +453,10 @@ int live_service(struct live *lv)
 {
 	bool any = false;
 
+	/* chunks mapped ahead of the loop (journal.h); its error stops the
+	 * run at the next shot, which the report then names */
+	if (lv->has_sess_jr)
+		journal_service(&lv->sess_jr, hal_mono_ns());
 	/* the status ring's consumer is this thread alone; a run's start
 	 * sets the ring up before it sets running */
 	while (lv->running && hal_ring_pop(&lv->status, lv->st)) {
@@ -527,6 +553,24 @@ void live_snapshot(struct live *lv, struct live_snap *s)
 	s->generation = lv->generation;
 	s->cmd_sent = atomic_load(&lv->cmd_sent);
 	pthread_mutex_unlock(&lv->snap_mu);
+}
+
+int64_t live_counts(struct live *lv, uint32_t i, double v)
+{
+	const struct rig_out *o = &lv->rig.out[i];
+	double core = o->unit == SRC_UNIT_TURNS ? v / 360.0 : v;
+	mot_q32 q;
+
+	if (!sd_to_q32(core, &q))
+		q = core < 0 ? MOT_Q32_MIN : MOT_Q32_MAX;
+	return hal_scale_counts(&o->scale, q, NULL);
+}
+
+double live_units(struct live *lv, uint32_t i, int64_t counts)
+{
+	const struct rig_out *o = &lv->rig.out[i];
+
+	return rig_file_units(o->unit, (double)(counts - o->scale.offset) / o->scale.per_unit_d);
 }
 
 uint32_t live_outputs(struct live *lv, struct live_out_info *out, uint32_t max)

@@ -58,6 +58,10 @@ struct live_opts {
 	bool force;           /* play and teach what strand check rejects */
 	struct rt_opts rt;
 	const char *journal;  /* a folder for each play segment's journal, or NULL */
+	const char *journal_file; /* one journal of the whole session's shots (strand
+				   * dfmoco), or NULL; journal is then unused */
+	bool journal_gomo;    /* journal_file's records hold go-motion's exposures
+			       * (JOURNAL_MODE_GOMO) */
 	const char *lat_hist; /* each run's wake-up latency histogram, or NULL */
 	const char *data_dir; /* where load and save find scene files */
 	double deadman_ms;    /* a jog lapses without a refresh (250) */
@@ -74,6 +78,26 @@ struct live_play {
 	int64_t passes;
 	double duration_s;    /* 0: none */
 	double settle_ms, exposure_ms, timeout_s; /* step mode (200, 100, 10) */
+	double shutter;       /* step mode: go-motion, a shutter angle in degrees
+			       * (plan/gomo.h); 0: none */
+};
+
+/*
+ * Go-motion through poses a front end gives, rather than the scene's (a
+ * motion-control protocol's: DFMoco's bf and go). The rig runs in a
+ * straight line from where it would stand a fraction `shutter` of the way
+ * back to the previous pose to as far towards the next, centred on `at`,
+ * at a constant speed on each side, in exposure_ms: go-motion's exposure
+ * (plan/gomo.h) on a path through the three poses (scene/source_path.h),
+ * with its run-up and run-out, checked against the limits first.
+ */
+struct live_gomo {
+	int64_t frame;        /* the journal's frame number, 1 to 2^31 - 2 */
+	uint32_t exposure_ms; /* the shutter's time, 1 to 3600000: the motion takes this long */
+	uint32_t shutter;     /* the fraction of a frame interval, in thousandths: 1 to 1000 */
+	/* per output, its device's counts: the poses at the previous frame,
+	 * this one and the next */
+	const int64_t *prev, *at, *next;
 };
 
 /* Teach: which strands take a key from the rig's pose. */
@@ -107,7 +131,8 @@ struct live_snap {
 	const char *loop_state; /* the loop's: hold, jog, move, pre-roll, play, ... */
 	int64_t lat_max_ns, lat_min_ns, lat_avg_ns, overruns;
 	uint64_t lat_n;
-	int64_t journal_frames; /* the last segment's journal's records, -1: none */
+	int64_t journal_frames; /* the session journal's records (journal_file), else
+				 * the last segment's, -1: none */
 	uint32_t nout;
 	struct loop_live_out out[LOOP_LIVE_OUT_MAX]; /* file units */
 	uint64_t serial;        /* counts the samples taken in */
@@ -132,6 +157,11 @@ int live_service(struct live *lv);
 
 /* Copy out the newest status. */
 void live_snapshot(struct live *lv, struct live_snap *s);
+
+/* Output i's value in file units as its device's counts, and back
+ * (rig/scale.h): what a protocol that counts steps speaks. */
+int64_t live_counts(struct live *lv, uint32_t i, double v);
+double live_units(struct live *lv, uint32_t i, int64_t counts);
 
 /* The scene's outputs and frames, for a console. */
 uint32_t live_outputs(struct live *lv, struct live_out_info *out, uint32_t max);
@@ -174,6 +204,15 @@ int live_step(struct live *lv, int dir, char *msg, size_t size);
 int live_move(struct live *lv, const double *pose, uint32_t n, char *msg, size_t size);
 int live_play(struct live *lv, const struct live_play *p, char *msg, size_t size);
 int live_stop(struct live *lv, char *msg, size_t size);
+/* Go-motion through g's poses: checked (every output within its limits
+ * over the run-up, exposure and run-out: -EDOM, the first violation in
+ * msg), then the rig moves to where the run-up starts and waits there,
+ * armed, for live_gomo_go. *delay_ms: from the go to the exposure's first
+ * tick (the run-up lasts exactly that, within a tick). At rest only. */
+int live_gomo(struct live *lv, const struct live_gomo *g, int64_t *delay_ms, char *msg,
+	      size_t size);
+/* The armed go-motion runs: -EBUSY when none is armed (yet). */
+int live_gomo_go(struct live *lv, char *msg, size_t size);
 /* At once, from any thread, never waiting (async-signal-safe). */
 void live_estop(struct live *lv);
 int live_reset(struct live *lv, char *msg, size_t size);

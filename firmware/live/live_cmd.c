@@ -8,6 +8,10 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "check/run_check.h"
+#include "plan/gomo.h"
+#include "plan/runup.h"
+#include "plan/timeline.h"
 #include "play/frames.h"
 #include "scene/num.h"
 
@@ -262,6 +266,17 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 		snprintf(msg, size, "passes goes with loop or ping_pong");
 		return -EINVAL;
 	}
+	if (p->shutter && !p->step) {
+		snprintf(msg, size, "shutter is go-motion, for step mode");
+		return -EINVAL;
+	}
+	if (p->shutter && !gomo_shutter_of_angle(p->shutter, &cfg->shutter)) {
+		snprintf(msg, size, "shutter %g: an angle in degrees, above 0 and at most 360",
+			 p->shutter);
+		return -ERANGE;
+	}
+	if (run_check_shutter(&s->timing, cfg->shutter, msg, size))
+		return -ERANGE;
 	if (p->passes < 0 || p->passes > INT32_MAX) {
 		snprintf(msg, size, "passes %lld: 1 to 2147483647", (long long)p->passes);
 		return -ERANGE;
@@ -319,7 +334,14 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 	}
 	/* held to exactly what strand check verifies, as strand play is */
 	run = (struct lim_run){ .from = from, .to = to, .loop = p->loop, .ping_pong = p->ping_pong,
-				.passes = p->passes, .step = p->step };
+				.passes = p->passes, .step = p->step, .shutter = cfg->shutter,
+				.expose_first = from, .expose_last = to };
+	if (cfg->shutter) {
+		/* go-motion runs the scene's own motion over its span and the
+		 * frames shot (as strand play does) */
+		cfg->from = run.from = from < s->frame_first ? from : s->frame_first;
+		cfg->to = run.to = to > s->frame_last ? to : s->frame_last;
+	}
 	rc = live_scene_check(lv, lv->sc, &run, msg, size);
 	if (!rc)
 		rc = live_journal_open(lv, &c, msg, size);
@@ -338,6 +360,223 @@ static int play(struct live *lv, const struct live_play *p, char *msg, size_t si
 int live_play(struct live *lv, const struct live_play *p, char *msg, size_t size)
 {
 	return SCENE_LOCKED(lv, play(lv, p, msg, size));
+}
+
+/* ---- go-motion through a front end's poses ---- */
+
+/* The path through g's poses at frames g->frame - 1, g->frame and
+ * g->frame + 1, at shutter / exposure_ms frames a second (thousandths per
+ * ms): its shutter fraction of a frame then lasts exposure_ms exactly. */
+static int gomo_path(struct live *lv, const struct live_gomo *g, char *msg, size_t size)
+{
+	const struct mot_timing *t = &lv->sc->src.s.timing;
+	const int64_t *pose[3] = { g->prev, g->at, g->next };
+	uint32_t i, k, n = lv->rig.nout;
+	int rc;
+
+	if (g->frame < 1 || g->frame > INT32_MAX - 1) {
+		snprintf(msg, size, "frame %lld: 1 to 2147483646", (long long)g->frame);
+		return -ERANGE;
+	}
+	if (g->shutter < 1 || g->shutter > 1000) {
+		snprintf(msg, size, "shutter %u: thousandths of a frame, 1 to 1000", g->shutter);
+		return -ERANGE;
+	}
+	if (g->exposure_ms < 1 || g->exposure_ms > 3600000) {
+		snprintf(msg, size, "exposure %u ms: 1 ms to an hour", g->exposure_ms);
+		return -ERANGE;
+	}
+	for (i = 0; i < n; i++) {
+		lv->path_names[i] = lv->rig.out[i].channel;
+		lv->path_units[i] = lv->rig.out[i].unit;
+	}
+	rc = source_path_init(&lv->path, "go-motion", n, lv->path_names, lv->path_units,
+			      g->shutter, g->exposure_ms, t->tick_hz, g->frame - 1, 3);
+	if (rc) {
+		snprintf(msg, size, "go-motion: an exposure of %u ms with a shutter of %u "
+			 "thousandths is faster than a frame a tick", g->exposure_ms, g->shutter);
+		return -ERANGE;
+	}
+	for (i = 0; i < n; i++)
+		for (k = 0; k < 3; k++) {
+			double v = live_units(lv, i, pose[k][i]);
+			double core = lv->rig.out[i].unit == SRC_UNIT_TURNS ? v / 360.0 : v;
+
+			if (lv->rig.out[i].vel_mode) {
+				lv->path.keys[k][i] = 0; /* a speed holds still */
+				continue;
+			}
+			if (!isfinite(v) || !sd_to_q32(core, &lv->path.keys[k][i])) {
+				snprintf(msg, size, "%s: %lld counts are outside the core's range",
+					 lv->rig.out[i].channel, (long long)pose[k][i]);
+				return -ERANGE;
+			}
+		}
+	return 0;
+}
+
+static void first_violation(void *ctx, const struct lim_violation *v)
+{
+	struct run_check *c = ctx;
+
+	if (c->res.violations == 1)
+		c->first = *v;
+}
+
+/* The go-motion's run-up in ticks, as the loop will plan it (its ramps,
+ * at least the triggers' lead: loop_gomo_plan), and strand check's walk
+ * of the whole frame (run-up, exposure, run-out): 0, or -EDOM with the
+ * first violation in msg. */
+static int gomo_plan(struct live *lv, const struct live_gomo *g, mot_q32 s, int64_t *ticks,
+		     char *msg, size_t size)
+{
+	const struct mot_timing *t = &lv->path.s.timing;
+	uint32_t i, n = lv->rig.nout, sat = 0;
+	struct lim_channel ch[LOOP_LIVE_OUT_MAX];
+	bool extend[LOOP_LIVE_OUT_MAX];
+	mot_q32 mem[TIMELINE_WORDS(LOOP_LIVE_OUT_MAX)], x0[LOOP_LIVE_OUT_MAX], x1[LOOP_LIVE_OUT_MAX];
+	struct run_check c = { .ch = ch, .n = n };
+	struct lim_run run = { .from = g->frame - 1, .to = g->frame + 1, .step = true,
+			       .shutter = s, .expose_first = g->frame, .expose_last = g->frame };
+	struct timeline tl;
+	int64_t k0, k1, lead = 0;
+	char line[LIVE_MSG];
+	int rc;
+
+	for (i = 0; i < lv->rig.ntrig; i++)
+		if (-lv->rig.trig[i].offset > lead)
+			lead = -lv->rig.trig[i].offset;
+	for (i = 0; i < n; i++) {
+		const struct rig_out *o = &lv->rig.out[i];
+
+		ch[i] = (struct lim_channel){ .name = o->channel, .src = i, .unit = o->unit,
+					      .lim = { o->min, o->max, o->vmax, o->amax,
+						       o->vel_mode } };
+		extend[i] = timeline_extends(o->unit);
+	}
+	if (gomo_window(t, g->frame, s, &k0, &k1)) {
+		snprintf(msg, size, "go-motion: an exposure of %u ms is shorter than two ticks",
+			 g->exposure_ms);
+		return -ERANGE;
+	}
+	/* the loop's run-up: the longest ramp into the exposure's first tick */
+	timeline_init(&tl, &lv->path.s, n, extend, g->frame - 1, g->frame + 1, mem, &sat);
+	timeline_eval(&tl, k0, x0, &sat);
+	timeline_eval(&tl, k0 + 1, x1, &sat);
+	*ticks = lead;
+	for (i = 0; i < n; i++) {
+		struct runup_ramp r;
+		mot_q32 start;
+
+		if (!runup_plan(&r, x0[i], x1[i], t->tick_hz, lv->rig.out[i].amax, &start) &&
+		    r.n > *ticks)
+			*ticks = r.n;
+	}
+	/* the walk, the loop's lead included */
+	run.lead = lead;
+	rc = lim_check(&lv->path.s, ch, n, &run, first_violation, &c, &c.res);
+	if (!rc && (sat || c.res.sat))
+		rc = -ERANGE;
+	if (rc) {
+		snprintf(msg, size, "go-motion: %s", rc == -ERANGE ? "its arithmetic saturates" :
+			 strerror(-rc));
+		return rc;
+	}
+	if (!c.res.violations)
+		return 0;
+	run_check_line(line, sizeof(line), &c, &c.first);
+	snprintf(msg, size, "go-motion: %u limit violation%s, the first: %s", c.res.violations,
+		 c.res.violations == 1 ? "" : "s", line);
+	return -EDOM;
+}
+
+static int gomo(struct live *lv, const struct live_gomo *g, int64_t *delay_ms, char *msg,
+		size_t size)
+{
+	const struct mot_timing *t = &lv->sc->src.s.timing;
+	struct loop_cmd c = { .kind = LOOP_CMD_PLAY };
+	struct loop_cfg *cfg = &c.cfg;
+	struct loop_ack a;
+	int64_t ticks;
+	mot_q32 s;
+	int rc;
+
+	if (lv->state != LIVE_ENABLED || !lv->running || lv->snap.state != LIVE_ENABLED ||
+	    lv->snap.cmd_seen < lv->path_seq) {
+		snprintf(msg, size, "go-motion: the drives are %s: %s",
+			 live_state_name(lv->snap.state), lv->running ?
+			 "wait until they are at rest" : "enable them first");
+		return lv->running ? -EBUSY : -EPERM;
+	}
+	rc = gomo_path(lv, g, msg, size);
+	if (rc)
+		return rc;
+	/* thousandths of a frame in Q32.32, rounded to nearest */
+	s = (mot_q32)(((uint64_t)g->shutter << 32) + 500) / 1000;
+	if (gomo_shutter_check(&lv->path.s.timing, s)) {
+		snprintf(msg, size, "go-motion: an exposure of %u ms is shorter than two ticks",
+			 g->exposure_ms);
+		return -ERANGE;
+	}
+	rc = gomo_plan(lv, g, s, &ticks, msg, size);
+	if (rc && !(rc == -EDOM && lv->o.force))
+		return rc;
+	/* whole milliseconds from the go, and a run-up as long */
+	*delay_ms = (ticks * 1000 + t->tick_hz - 1) / t->tick_hz;
+	cfg->mode = LOOP_MODE_STEP;
+	cfg->from = g->frame - 1;
+	cfg->to = g->frame + 1;
+	cfg->shutter = s;
+	cfg->gomo_src = &lv->path.s;
+	cfg->gomo_wait = true;
+	cfg->gomo_runup_ticks = (*delay_ms * t->tick_hz + 999) / 1000;
+	cfg->in_position_timeout_ticks = 10 * (int64_t)t->tick_hz;
+	cfg->ready_timeout_ticks = cfg->in_position_timeout_ticks;
+	c.nframes = 1;
+	c.frames[0] = (struct frame_item){ g->frame, g->frame, 1 };
+	rc = live_journal_open(lv, &c, msg, size);
+	if (rc)
+		return rc;
+	rc = live_send(lv, &c, &a, msg, size);
+	lv->path_seq = c.seq;
+	if (!rc) {
+		lv->goto_frame = -1;
+		lv->gomo_armed = true;
+		lv->jr_seq = c.seq;
+	} else {
+		live_journal_close(lv); /* not taken: the loop never had it */
+	}
+	return rc;
+}
+
+int live_gomo(struct live *lv, const struct live_gomo *g, int64_t *delay_ms, char *msg,
+	      size_t size)
+{
+	return SCENE_LOCKED(lv, gomo(lv, g, delay_ms, msg, size));
+}
+
+static int gomo_go(struct live *lv, char *msg, size_t size)
+{
+	struct loop_cmd c = { .kind = LOOP_CMD_GO };
+	struct loop_ack a;
+	int rc;
+
+	if (!lv->gomo_armed) {
+		snprintf(msg, size, "go: no go-motion is armed");
+		return -EBUSY;
+	}
+	rc = live_send(lv, &c, &a, msg, size);
+	if (rc == -EBUSY)
+		snprintf(msg, size, "go: the go-motion is not armed yet (%s)",
+			 lv->snap.loop_state ? lv->snap.loop_state : "moving");
+	if (!rc)
+		lv->gomo_armed = false;
+	return rc;
+}
+
+int live_gomo_go(struct live *lv, char *msg, size_t size)
+{
+	return LOCKED(lv, gomo_go(lv, msg, size));
 }
 
 static int stop(struct live *lv, char *msg, size_t size)
@@ -368,6 +607,7 @@ static int reset(struct live *lv, char *msg, size_t size)
 		snprintf(msg, size, "%s: nothing to reset", live_state_name(lv->state));
 		return lv->state == LIVE_ENABLED ? 0 : -EBUSY;
 	}
+	live_drain_inputs(lv);
 	if (live_estop_input(lv, msg, size))
 		return -EPERM;
 	atomic_store(&lv->estop_req, false);

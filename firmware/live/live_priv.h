@@ -27,6 +27,7 @@
 #include "play/loop.h"
 #include "rig/rig.h"
 #include "rig/rig_auto.h"
+#include "scene/source_path.h"
 #include "scene/source_scene.h"
 
 #define LIVE_CMD_RING 16
@@ -121,6 +122,19 @@ struct live {
 	uint64_t seen_seq;       /* snap_mu: the newest sample's command */
 	struct live_snap snap;   /* snap_mu */
 	uint64_t serial;
+
+	/* the session's journal (o.journal_file): every run's shots in it,
+	 * handed to the loop with each play as a segment's is */
+	struct journal sess_jr;
+	bool has_sess_jr;
+	/* go-motion through a front end's poses (live_gomo): the loop reads
+	 * the path while it runs the segment, live_gomo writes it at rest */
+	struct source_path path;
+	const char *path_names[LOOP_LIVE_OUT_MAX];
+	enum src_unit path_units[LOOP_LIVE_OUT_MAX];
+	bool gomo_armed;         /* a live_gomo's segment, not yet told to go */
+	uint64_t path_seq;       /* the command that runs the path: until a sample
+				  * at rest has seen it, the loop may read it */
 };
 
 /* live.c */
@@ -151,6 +165,8 @@ int live_run_start(struct live *lv, char *msg, size_t size);
 void live_run_end(struct live *lv);
 /* A command to the loop and its answer: 0, or a negative errno. */
 int live_send(struct live *lv, struct loop_cmd *c, struct loop_ack *a, char *msg, size_t size);
+/* The inputs' queued edges taken (no loop runs): their levels are now's. */
+void live_drain_inputs(struct live *lv);
 /* Where the e-stop inputs stand: true when one is asserted (named in msg). */
 bool live_estop_input(struct live *lv, char *msg, size_t size);
 
@@ -163,7 +179,8 @@ void live_publish_scene(struct live *lv);
 void live_space_follow(struct live *lv);
 
 /* live_run.c (mu held): the segment's journal opened for a play (0 when
- * there is none to keep) into c->jr, and closed. */
+ * there is none to keep) into c->jr, and closed; with a session journal
+ * (o.journal_file) that one goes into c->jr instead and stays open. */
 int live_journal_open(struct live *lv, struct loop_cmd *c, char *msg, size_t size);
 void live_journal_close(struct live *lv);
 

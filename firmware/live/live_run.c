@@ -41,8 +41,10 @@ static void *rt_main(void *arg)
 }
 
 /* Edges the inputs queued while no loop read them: an e-stop pressed and
- * released before must not stop the next run (its level does, if held). */
-static void drain_inputs(struct live *lv)
+ * released before must not stop the next run (its level does, if held);
+ * and a level read after them is the input's now (a simulated input's
+ * level moves only as its edges are taken). */
+void live_drain_inputs(struct live *lv)
 {
 	struct hal_edge ev[32];
 	int64_t now = hal_clock_now(&lv->clk);
@@ -76,7 +78,7 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 	uint32_t i;
 	int rc;
 
-	drain_inputs(lv);
+	live_drain_inputs(lv);
 	if (live_estop_input(lv, msg, size))
 		return -EPERM;
 	for (i = 0; i < lv->rig.naxes; i++) {
@@ -92,6 +94,8 @@ int live_run_start(struct live *lv, char *msg, size_t size)
 	memset(&cfg, 0, sizeof(cfg));
 	cfg.live = true;
 	cfg.force = lv->o.force;
+	/* on the virtual clock time waits for the journal's service */
+	cfg.wait_for_journal = lv->clk.is_virtual;
 	cfg.status_every = lv->sc->src.s.timing.tick_hz / lv->o.status_hz;
 	if (cfg.status_every < 1)
 		cfg.status_every = 1;
@@ -243,6 +247,10 @@ int live_journal_open(struct live *lv, struct loop_cmd *c, char *msg, size_t siz
 	time_t now;
 	int rc;
 
+	if (lv->has_sess_jr) { /* the session's: open for as long as it lasts */
+		c->jr = &lv->sess_jr;
+		return 0;
+	}
 	if (lv->has_jr) {
 		bool over;
 
@@ -266,8 +274,9 @@ int live_journal_open(struct live *lv, struct loop_cmd *c, char *msg, size_t siz
 		return -ENAMETOOLONG;
 	}
 	rc = play_journal_open(&lv->jr, path, &lv->rig, src,
-			       c->cfg.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0, -1,
-			       hal_clock_wall(&lv->clk), msg, size);
+			       (c->cfg.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
+			       (c->cfg.mode == LOOP_MODE_STEP && c->cfg.shutter ?
+				JOURNAL_MODE_GOMO : 0), -1, hal_clock_wall(&lv->clk), msg, size);
 	if (rc)
 		return rc;
 	lv->has_jr = true;

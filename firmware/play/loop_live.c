@@ -225,6 +225,10 @@ static int STRAND_RT take_play(struct loop *L, const struct loop_cmd *c, int32_t
 	cfg->in_position_timeout_ticks = in->in_position_timeout_ticks;
 	cfg->ready_timeout_ticks = in->ready_timeout_ticks;
 	cfg->max_ticks = in->max_ticks ? L->tick + in->max_ticks : 0;
+	cfg->shutter = in->mode == LOOP_MODE_STEP ? in->shutter : 0;
+	cfg->gomo_src = in->gomo_src;
+	cfg->gomo_wait = in->gomo_wait;
+	cfg->gomo_runup_ticks = in->gomo_runup_ticks;
 	for (i = 0; i < c->nframes; i++)
 		lv->items[i] = c->frames[i];
 	lv->fl.n = c->nframes;
@@ -232,6 +236,12 @@ static int STRAND_RT take_play(struct loop *L, const struct loop_cmd *c, int32_t
 	if (!seg_total(L, &total))
 		return LOOP_CMD_INVALID;
 	if (cfg->mode == LOOP_MODE_STEP) {
+		/* the owner checked the shutter against the timing (two ticks) */
+		if (cfg->shutter) {
+			if (cfg->gomo_src && cfg->gomo_src->timing.tick_hz != L->tm->tick_hz)
+				return LOOP_CMD_INVALID;
+			loop_gomo_setup(L);
+		}
 		memset(&L->step.fit, 0, sizeof(L->step.fit));
 		L->step.frame = -1;
 		L->seq.state = LOOP_STEP_NEXT;
@@ -369,6 +379,9 @@ static void STRAND_RT take(struct loop *L, const struct loop_cmd *c)
 		L->tm = &c->src->timing;
 		break;
 	case LOOP_CMD_NOP:
+		break;
+	case LOOP_CMD_GO:
+		code = loop_gomo_go(L) ? LOOP_CMD_BUSY : LOOP_CMD_OK;
 		break;
 	default:
 		code = LOOP_CMD_INVALID;

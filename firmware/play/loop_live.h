@@ -60,6 +60,7 @@ enum loop_cmd_kind {
 	LOOP_CMD_DISABLE, /* a controlled stop, then the run ends */
 	LOOP_CMD_SOURCE,  /* a new source (a taught scene), at rest only */
 	LOOP_CMD_NOP,     /* answered, nothing done (a probe of the latency) */
+	LOOP_CMD_GO,      /* a go-motion frame waiting armed runs up (loop_gomo_go) */
 };
 
 /* Why the loop refused a command (struct loop_ack.code), 0 when taken. */
@@ -83,7 +84,8 @@ struct loop_cmd {
 			      * refresh (its dead-man runs on); none under way: ignored */
 	mot_q32 pose[LOOP_LIVE_OUT_MAX]; /* MOVE */
 	int64_t frame;       /* MOVE: the frame whose pose it is, -1 */
-	struct loop_cfg cfg; /* PLAY: mode, from, to, loop, ping_pong, passes, times */
+	struct loop_cfg cfg; /* PLAY: mode, from, to, loop, ping_pong, passes, times, and
+			      * go-motion's shutter, gomo_src, gomo_wait, gomo_runup_ticks */
 	uint32_t nframes;    /* PLAY step: frames[0..nframes) */
 	struct frame_item frames[LOOP_LIVE_FRAME_ITEMS];
 	struct play_source *src; /* SOURCE */

@@ -82,6 +82,11 @@ struct loop_seq {
 	int64_t mv_j;
 	int64_t ru_ticks, ru_j; /* the run-up: the longest ramp, the step it is at */
 	bool braked;            /* this tick was a stop's step (loop_rest_step) */
+	/* go-motion: the frame's exposure in scene ticks, the run ticks it
+	 * opened and closed at (-1: not yet), and its poses there */
+	int64_t gomo_first, gomo_last;
+	int64_t gomo_open_tick, gomo_close_tick;
+	mot_q32 *gomo_open, *gomo_close;
 	mot_q32 *target;        /* a pose: where a move goes (a ramp's start, a frame) */
 	mot_q32 *ru_end;        /* a pose: the pass's first, where the ramps end */
 	double *vmax, *amax;    /* per output, as the move planner takes them */
@@ -93,6 +98,7 @@ struct loop_pulse {
 	int64_t edge_k;            /* PLAY: the scene tick its edge rises at */
 	int64_t fall_tick;         /* run tick the pulse ends at */
 	struct journal_rec *armed; /* this tick's record, until it is FIRED */
+	struct journal_rec *rec;   /* go-motion: this frame's, for its exposure */
 	bool pending;              /* a frame left in this pass */
 	bool active;               /* the line is asserted */
 };
@@ -239,6 +245,14 @@ void loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to);
 bool loop_more_passes(const struct loop *L);
 /* [rt] Every output one tick closer to rest; true when all are there. */
 bool loop_rest_step(struct loop *L);
+/* [init or rt] Go-motion's timeline: frames cfg.from..cfg.to of its source. */
+void loop_gomo_setup(struct loop *L);
+/* [rt] Go-motion frame step.frame: its exposure, the run-up into it, and in
+ * seq.target where the run-up starts: 0, or -1 with the output in *bad when
+ * that is outside its position limits. */
+int loop_gomo_plan(struct loop *L, int32_t *bad);
+/* [rt] The run-up begins at run tick t0, every trigger's edge set. */
+void loop_gomo_start(struct loop *L, int64_t t0);
 
 /* ---- loop_chase.c ---- */
 
@@ -257,6 +271,11 @@ void loop_triggers(struct loop *L, int64_t due);
 void loop_triggers_off(struct loop *L);
 /* [rt] A pulse is under way. */
 bool loop_pulses_active(const struct loop *L);
+/* [rt] A trigger's edge still to come in this frame or pass. */
+bool loop_pulses_pending(const struct loop *L);
+/* [rt] Go-motion: the exposure's ticks and poses into this frame's
+ * records, once the exposure has ended and they exist. */
+void loop_gomo_journal(struct loop *L);
 
 /* ---- loop_tick.c ---- */
 

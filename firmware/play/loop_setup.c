@@ -13,6 +13,7 @@
 #include <stdlib.h>
 
 #include "motion/arena.h"
+#include "plan/gomo.h"
 #include "hal/rt.h"
 
 static const char *const state_names[] = {
@@ -25,6 +26,8 @@ static const char *const state_names[] = {
 	[LOOP_ENDED] = "ended",		 [LOOP_CUE] = "cue",
 	[LOOP_HOLD] = "hold",		 [LOOP_JOG] = "jog",
 	[LOOP_MOVE] = "move",
+	[LOOP_GOMO_ARMED] = "armed",	 [LOOP_GOMO_RUNUP] = "go-motion run-up",
+	[LOOP_GOMO_EXPOSE] = "go-motion exposure", [LOOP_GOMO_RUNOUT] = "go-motion run-out",
 };
 
 static const char *const cause_names[] = {
@@ -51,7 +54,7 @@ static const char *const cause_names[] = {
 
 const char *loop_state_name(enum loop_state s)
 {
-	return s <= LOOP_MOVE ? state_names[s] : "?";
+	return s <= LOOP_GOMO_RUNOUT ? state_names[s] : "?";
 }
 
 const char *loop_cause_name(enum loop_cause c)
@@ -125,6 +128,8 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig, uint32_t t
 	mot_q32 *prev = CARVE(a, mot_q32, n);
 	mot_q32 *target = CARVE(a, mot_q32, n);
 	mot_q32 *ru_end = CARVE(a, mot_q32, n);
+	mot_q32 *gomo_open = CARVE(a, mot_q32, n);
+	mot_q32 *gomo_close = CARVE(a, mot_q32, n);
 	mot_q32 *tl_mem = CARVE(a, mot_q32, TIMELINE_WORDS(n));
 	mot_q32 *rings = CARVE(a, mot_q32, (size_t)n * LIM_METER_LEN(st.h));
 	bool *extend = CARVE(a, bool, n);
@@ -152,6 +157,8 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig, uint32_t t
 	L->prev = prev;
 	L->seq.target = target;
 	L->seq.ru_end = ru_end;
+	L->seq.gomo_open = gomo_open;
+	L->seq.gomo_close = gomo_close;
 	L->seq.mv.ch = mv_ch;
 	L->seq.vmax = vmax;
 	L->seq.amax = amax;
@@ -267,6 +274,17 @@ static int plan_step(struct loop *L, char *err, size_t errsize)
 		snprintf(err, errsize, "--frames: more shots times %u triggers than a run counts",
 			 L->rig->ntrig);
 		return -EINVAL;
+	}
+	if (cfg->shutter) {
+		const struct play_source *g = cfg->gomo_src ? cfg->gomo_src : L->src;
+
+		if (g->timing.tick_hz != L->tm->tick_hz ||
+		    gomo_shutter_check(&g->timing, cfg->shutter)) {
+			snprintf(err, errsize, "go-motion: the shutter opens for less than two ticks, "
+				 "or its motion has another tick rate than the run");
+			return -EINVAL;
+		}
+		loop_gomo_setup(L);
 	}
 	L->seq.state = LOOP_STEP_NEXT;
 	return 0;

@@ -77,7 +77,9 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 {
 	int rc = play_journal_open(&p->jr, p->o.journal_path, &p->rig, src,
 				   (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
-				   (p->extclk ? JOURNAL_MODE_CHASE : 0),
+				   (p->extclk ? JOURNAL_MODE_CHASE : 0) |
+				   (p->o.loop.mode == LOOP_MODE_STEP && p->o.loop.shutter ?
+				    JOURNAL_MODE_GOMO : 0),
 				   loop_result(p->L)->total_frames, hal_clock_wall(&p->clk), err,
 				   errsize);
 

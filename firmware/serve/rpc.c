@@ -29,7 +29,8 @@ static const char *const method_params[RPC_NMETHODS] = {
 	[RPC_GOTO] = "frame",
 	[RPC_STEP] = "dir",
 	[RPC_MOVE] = "pose",
-	[RPC_PLAY] = "mode from to frames loop ping_pong passes duration settle exposure timeout",
+	[RPC_PLAY] = "mode from to frames loop ping_pong passes duration settle exposure timeout "
+		     "shutter",
 	[RPC_LOAD] = "file",
 	[RPC_SAVE] = "file",
 	[RPC_TEACH] = "frame nodes",
@@ -179,6 +180,7 @@ static int play_params(struct rpc_err *e, json_t *p, struct rpc_req *r)
 	    num(e, p, "settle", 0, 1e12, false, &pl->settle_ms) ||
 	    num(e, p, "exposure", 0, 1e12, false, &pl->exposure_ms) ||
 	    num(e, p, "timeout", 1e-9, 1e9, false, &pl->timeout_s) ||
+	    num(e, p, "shutter", 1e-9, 360, false, &pl->shutter) ||
 	    str(e, p, "frames", false, r->frames, sizeof(r->frames)))
 		return -1;
 	pl->frames = r->frames[0] ? r->frames : NULL;

@@ -6,7 +6,8 @@ python3-selenium. The simulated robot arm in virtual time. Every safety
 rule of the server has a check here: a missing token, a foreign Origin, a
 second controller, a dead-man timeout mid-jog, a client that stops
 reading, a teach that breaks the scene (refused, file unchanged)."""
-import asyncio, json, os, shutil, socket, subprocess, sys, tempfile, time
+import asyncio
+import csv, json, os, shutil, socket, subprocess, sys, tempfile, time
 
 import websockets
 
@@ -339,6 +340,31 @@ async def no_scene(tmp):
         check(len(files) == 1 and len(rows) == 12 and st["journal"] == 11,
               "the segment's journal (--journal): %s, %d frames read back, status says %d"
               % (files, len(rows) - 1, st["journal"]))
+        # go-motion (step mode's shutter): its segment's journal has each
+        # frame's exposure, opening with the trigger's edge and lasting half
+        # a frame (180 degrees: 1000 / 24 / 2 = 20.8 ticks, so 20 or 21)
+        code, text = curl(port, rpc("play", {"from": 20, "to": 22, "shutter": 180}))
+        check("shutter is go-motion" in json.loads(text).get("error", {}).get("message", ""),
+              "a shutter without step mode is refused")
+        code, text = curl(port, rpc("play", {"mode": "step", "from": 20, "to": 22,
+                                             "shutter": 180, "settle": 20, "exposure": 20}))
+        t0 = time.time()
+        while "result" in json.loads(text) and time.time() - t0 < 20:
+            st = json.loads(curl(port, rpc("status"))[1])["result"]
+            if st["loop"] == "hold" and st["fired"] == 3:
+                break
+            time.sleep(0.1)
+        time.sleep(0.1)
+        files = sorted(f for f in os.listdir(journals) if f.endswith("-2.journal"))
+        rows = list(csv.DictReader(subprocess.run(
+            [STRAND, "journal", os.path.join(journals, files[0])], capture_output=True,
+            text=True).stdout.splitlines())) if files else []
+        ok = len(rows) == 3 and all(int(r.get("open_tick", -1)) == int(r["tick"]) and
+                                    20 <= int(r.get("close_tick", -1)) - int(r["open_tick"]) <= 21
+                                    for r in rows)
+        check(ok, "go-motion through play's shutter: %s, %d frames with their exposures (%s)"
+              % (files, len(rows), ", ".join("%s-%s" % (r.get("open_tick"), r.get("close_tick"))
+                                             for r in rows)))
     finally:
         stop(p)
         check(p.returncode == 0, "strand serve without a scene stops on SIGINT, exit 0")
