@@ -175,13 +175,12 @@ $(call test_bin,$(1)): $(BUILD)/san/$(1:.c=.o) $(TEST_COMMON_OBJ) $(BUILD)/san/l
 endef
 $(foreach t,$(TEST_SRC),$(eval $(call test_link,$(t))))
 
+# The motion core's tests side by side (pure computation), the rest one
+# after the other (mk/unit.sh).
+UNIT_PAR := $(foreach t,$(wildcard tests/motion/test_*.c),$(call test_bin,$(t)))
 unit: $(TEST_BIN)
-	$(Q)fail=0; for t in $(TEST_BIN); do \
-		t0=$$(date +%s%N); \
-		if ! $$t > $$t.log 2>&1; then echo "FAIL $$t (log: $$t.log)"; tail -n 30 $$t.log; fail=1; \
-		else echo "PASS $$(basename $$t)  $$(grep -h '^BOUND' $$t.log | wc -l) bounds checked," \
-			"$$(( ($$(date +%s%N) - t0) / 1000000 )) ms"; fi; \
-	done; exit $$fail
+	$(Q)sh mk/unit.sh $(shell nproc 2>/dev/null || echo 2) $(UNIT_PAR) -- \
+		$(filter-out $(UNIT_PAR),$(TEST_BIN))
 
 # test: unit and the checks of mk/*.mk, with a summary (mk/test.mk)
 

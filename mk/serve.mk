@@ -46,3 +46,6 @@ bench: bench-serve
 bench-serve: $(BUILD)/strand | $(BUILD)/.deps-serve $(BUILD)/.deps-bench-play
 	$(Q)/usr/bin/python3 bench/serve_bench.py $(BUILD)/strand examples/robot_arm.yaml \
 		$(BUILD)/bench-serve
+
+# built in make test's parallel build (mk/test.mk)
+TEST_PREBUILD += $(BUILD)/fuzz/fuzz_rpc
