@@ -23,7 +23,8 @@ Q       := $(if $(V),,@)
 MAKEFLAGS += --no-builtin-rules
 
 # ---- Debian packages -------------------------------------------------------
-DEB_BUILD := gcc make pkg-config libc6-dev libyaml-dev libjansson-dev libexpat1-dev
+DEB_BUILD := gcc make pkg-config libc6-dev libyaml-dev libjansson-dev libexpat1-dev \
+             libwebsockets-dev
 DEB_TEST  := libcmocka-dev
 DEB_CROSS := gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross \
              libc6-dev-armhf-cross qemu-user gcc-arm-none-eabi binutils-arm-none-eabi
@@ -81,7 +82,7 @@ FW_SAN_OBJ := $(LIB_SRC:%.c=$(BUILD)/san/%.o) $(CLI_LIB_SRC:%.c=$(BUILD)/san/%.o
 # No fused multiply-add contraction: the loader's double arithmetic must round
 # the same way on x86_64, aarch64 and armhf. '=': pkg-config is asked when a
 # recipe runs, after mk/deps.sh has installed the libraries.
-FW_PKGS     := yaml-0.1 jansson expat
+FW_PKGS     := yaml-0.1 jansson expat libwebsockets
 FW_CFLAGS   = -std=gnu11 $(WARN) -Werror -ffp-contract=off \
               $(shell pkg-config --cflags $(FW_PKGS) 2>/dev/null)
 FW_LIBS     = $(shell pkg-config --libs $(FW_PKGS) 2>/dev/null) -lm -lpthread
@@ -174,13 +175,12 @@ $(call test_bin,$(1)): $(BUILD)/san/$(1:.c=.o) $(TEST_COMMON_OBJ) $(BUILD)/san/l
 endef
 $(foreach t,$(TEST_SRC),$(eval $(call test_link,$(t))))
 
+# The motion core's tests side by side (pure computation), the rest one
+# after the other (mk/unit.sh).
+UNIT_PAR := $(foreach t,$(wildcard tests/motion/test_*.c),$(call test_bin,$(t)))
 unit: $(TEST_BIN)
-	$(Q)fail=0; for t in $(TEST_BIN); do \
-		t0=$$(date +%s%N); \
-		if ! $$t > $$t.log 2>&1; then echo "FAIL $$t (log: $$t.log)"; tail -n 30 $$t.log; fail=1; \
-		else echo "PASS $$(basename $$t)  $$(grep -h '^BOUND' $$t.log | wc -l) bounds checked," \
-			"$$(( ($$(date +%s%N) - t0) / 1000000 )) ms"; fi; \
-	done; exit $$fail
+	$(Q)sh mk/unit.sh $(shell nproc 2>/dev/null || echo 2) $(UNIT_PAR) -- \
+		$(filter-out $(UNIT_PAR),$(TEST_BIN))
 
 # test: unit and the checks of mk/*.mk, with a summary (mk/test.mk)
 

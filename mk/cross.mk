@@ -59,6 +59,9 @@ $(BUILD)/cross/$(1)/digest: $(DIGEST_SRC) $(MOTION_SRC:%.c=$(BUILD)/cross/$(1)/%
 endef
 $(foreach v,$(CROSS_VARIANTS),$(eval $(call cross_variant,$(v))))
 
+# built in make test's parallel build, before the steps
+TEST_PREBUILD += $(foreach v,$(CROSS_VARIANTS),$(BUILD)/cross/$(v)/digest)
+
 check-cross: $(CROSS_VARIANTS:%=$(BUILD)/cross/%/digest) | $(BUILD)/.deps-cross
 	$(Q)sh mk/check-cross.sh $(foreach v,$(CROSS_VARIANTS),\
 		'$(v)=$(strip $(cross_run.$(v)) $(BUILD)/cross/$(v)/digest)')

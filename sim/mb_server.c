@@ -51,6 +51,7 @@ struct mbs {
 	int64_t t0_ns;            /* wall clock of the first write, without a heartbeat */
 	int64_t *prev;            /* nch: the last targets, for the velocity feed-forward */
 	int64_t prev_tick;
+	bool rebase;              /* enabled again: the client's ticks count afresh */
 };
 
 /* The plant never catches up more than this at once (a stalled client). */
@@ -72,8 +73,14 @@ static void model_enable(struct mbs *sd, bool on)
 {
 	struct hal_axis *ax = sim_drive_axis(sd->c->drive);
 
-	if (on && !sd->enabled)
+	if (on && !sd->enabled) {
 		hal_axis_start(ax);
+		/* a client enables its drive for each run of its loop, whose
+		 * ticks (the heartbeat, or the wall clock since its first
+		 * write) start again: the plant goes on from the next write */
+		sd->rebase = true;
+		sd->t0_ns = 0;
+	}
 	else if (!on && sd->enabled)
 		hal_axis_disable(ax);
 	sd->enabled = on;
@@ -90,6 +97,11 @@ static void model_targets(struct mbs *sd, const int64_t *val, int64_t tick)
 		if (!sd->t0_ns)
 			sd->t0_ns = now;
 		tick = (now - sd->t0_ns) * sd->c->tick_hz / 1000000000;
+	}
+	if (sd->rebase) {
+		sd->rebase = false;
+		sd->tick = tick - 1;
+		sd->prev_tick = tick;
 	}
 	advance(sd, tick);
 	dt = tick - sd->prev_tick;

@@ -34,6 +34,7 @@ struct sim_drive {
 	bool started;
 	struct hal_fault fault; /* first fault; code 0 while healthy */
 	int64_t *trace;
+	double *trace_x; /* NULL: targets only */
 	int64_t trace_ticks, traced, trace_first;
 	struct sim_chan ch[];
 };
@@ -52,10 +53,22 @@ static int STRAND_RT sd_start(struct hal_axis *ax)
 	uint32_t i;
 
 	for (i = 0; i < ax->nch; i++) {
-		d->ch[i].w.powered = true;
-		d->ch[i].w.disabled_tick = -1;
+		struct sim_chan *c = &d->ch[i];
+
+		c->w.powered = true;
+		c->w.disabled_tick = -1;
+		/* a drive enabled (again) holds where it stands: its target is
+		 * there, at rest, until the first setpoint; what it followed
+		 * before a stop is gone with the power */
+		c->w.v = 0;
+		c->r = c->w.x;
+		c->w.target = c->p.velocity_mode ? 0 : (int64_t)llround(c->w.x);
+		c->rdot = 0;
+		c->prev_cmd_v = 0;
 	}
 	d->started = true;
+	/* a new run counts its ticks from 0 again: the next input() steps */
+	d->tick = INT64_MIN;
 	return 0;
 }
 
@@ -175,6 +188,8 @@ static int STRAND_RT sd_commit(struct hal_axis *ax, int64_t tick)
 		if (d->traced < d->trace_ticks && tick - d->trace_first == d->traced) {
 			for (i = 0; i < ax->nch; i++)
 				d->trace[d->traced * ax->nch + i] = d->ch[i].w.target;
+			for (i = 0; d->trace_x && i < ax->nch; i++)
+				d->trace_x[d->traced * ax->nch + i] = d->ch[i].w.x;
 			d->traced++;
 		}
 	}
@@ -312,6 +327,16 @@ void sim_drive_trace(struct sim_drive *d, int64_t *buf, int64_t ticks)
 	d->trace = buf;
 	d->trace_ticks = ticks;
 	d->traced = 0;
+}
+
+void sim_drive_trace_actual(struct sim_drive *d, double *buf)
+{
+	d->trace_x = buf;
+}
+
+int64_t sim_drive_trace_first(const struct sim_drive *d)
+{
+	return d->trace_first;
 }
 
 int64_t sim_drive_traced(const struct sim_drive *d)

@@ -95,6 +95,12 @@ void sim_drive_inject(struct sim_drive *d, uint32_t ch, int64_t at_tick, enum si
  * for up to ticks ticks from the first commit. */
 void sim_drive_trace(struct sim_drive *d, int64_t *buf, int64_t ticks);
 int64_t sim_drive_traced(const struct sim_drive *d); /* ticks recorded */
+/* The tick of the trace's first record (once there is one). */
+int64_t sim_drive_trace_first(const struct sim_drive *d);
+/* [init] With sim_drive_trace: also where each channel stood when each
+ * tick's targets came (counts, nch per tick), into buf as long as the
+ * trace's. */
+void sim_drive_trace_actual(struct sim_drive *d, double *buf);
 
 /* What channel ch saw; any thread once the loop has ended. */
 const struct sim_drive_watch *sim_drive_watch(const struct sim_drive *d, uint32_t ch);

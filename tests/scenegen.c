@@ -331,6 +331,21 @@ static void run_options(struct scenegen *g, struct tu_rng *r)
 		snprintf(g->run, sizeof(g->run), " --ping-pong --passes 3");
 	} else if (what == 2) {
 		snprintf(g->run, sizeof(g->run), " --loop --passes 2");
+	} else if (what == 3) {
+		/* go-motion over a few frames, with a shutter that opens for
+		 * two ticks or more at the scene's rates */
+		static const double angles[] = { 180, 360, 90, 270, 172.8 };
+		double angle = angles[pick(r, 5)];
+		double least = 720.0 * g->num / ((double)g->den * g->tick_hz) * 1.01;
+
+		if (angle < least)
+			angle = 360;
+		if (angle < least)
+			return;
+		a = g->first + (int64_t)pick(r, (uint32_t)(span < 1000000 ? span + 1 : 1000000));
+		b = a + (int64_t)pick(r, 8);
+		snprintf(g->run, sizeof(g->run), " --mode step --shutter %g --from %lld --to %lld",
+			 angle, (long long)a, (long long)(b > g->last ? g->last : b));
 	}
 }
 

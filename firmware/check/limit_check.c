@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "plan/gomo.h"
 #include "plan/move.h"
 #include "plan/pass.h"
 #include "plan/runup.h"
@@ -45,6 +46,7 @@ struct walk {
 	/* the segment being walked */
 	enum lim_segment seg;
 	struct pass_span sp;
+	bool gomo;        /* a go-motion frame's */
 };
 
 const char *lim_kind_name(enum lim_kind k)
@@ -72,6 +74,7 @@ static void close_run(struct walk *w, uint32_t i, enum lim_kind k)
 	v.kind = k;
 	v.seg = w->seg;
 	v.dir = w->sp.dir;
+	v.gomo = w->gomo;
 	v.worst = r->worst;
 	v.limit = r->limit;
 	v.tick_first = r->first;
@@ -218,10 +221,14 @@ static void runup(struct walk *w, struct timeline *tl)
 		}
 		if (w->ramp[i].n > ticks)
 			ticks = w->ramp[i].n;
-		/* at rest where the ramp starts, as the pre-roll or bridge leaves it */
+		/* at rest where the ramp starts, as the pre-roll, a bridge or a
+		 * go-motion frame's move leaves it */
 		lim_meter_reset(&w->meter[i], &w->st, w->meter[i].ring, w->start[i], true);
 		w->x[i] = w->prev[i] = w->start[i];
 	}
+	/* go-motion waits at rest for a trigger that fires early (gomo.h) */
+	if (w->gomo && ticks < w->run->lead)
+		ticks = w->run->lead;
 	if (ticks > WALK_MAX) {
 		for (i = 0; i < w->n; i++)
 			position(w, i, 0, w->start[i]);
@@ -295,6 +302,32 @@ static void frames(struct walk *w)
 	close_all(w);
 }
 
+/* Go-motion: each frame exposed, a pass over the ticks of its exposure on
+ * the timeline of the run's range (gomo.h). */
+static int gomo(struct walk *w)
+{
+	const struct lim_run *r = w->run;
+	int64_t lo = r->from < r->to ? r->from : r->to, hi = r->from ^ r->to ^ lo;
+	int64_t f0 = r->expose_first < r->expose_last ? r->expose_first : r->expose_last;
+	int64_t f1 = r->expose_first ^ r->expose_last ^ f0, f;
+	struct timeline tl;
+	uint32_t sat = 0;
+
+	/* step mode's frames go either way (240..0): the same range */
+	timeline_init(&tl, w->src, w->n, w->extend, lo, hi, w->tl_mem, &sat);
+	saturated(w, sat, (double)lo);
+	w->gomo = true;
+	for (f = f0; f <= f1; f++) {
+		w->sp = (struct pass_span){ .dir = 1, .first = f, .last = f, .lo = f, .hi = f };
+		if (gomo_window(w->t, f, r->shutter, &w->sp.begin, &w->sp.end))
+			return -EINVAL;
+		runup(w, &tl);
+		scene(w, &tl);
+		postroll(w);
+	}
+	return 0;
+}
+
 static void pass(struct walk *w, int64_t p)
 {
 	const struct lim_run *r = w->run;
@@ -362,7 +395,9 @@ int lim_check(struct play_source *src, const struct lim_channel *ch, uint32_t n,
 	}
 	if (rc)
 		goto out;
-	if (run->step) {
+	if (run->step && run->shutter) {
+		rc = gomo(&w);
+	} else if (run->step) {
 		frames(&w);
 	} else {
 		pass(&w, 0);

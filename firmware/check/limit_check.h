@@ -22,8 +22,13 @@
  * The pre-roll, the bridges between passes and step mode's moves go from
  * rest to rest within the limits by construction (move.h) between poses the
  * walk has checked; step mode's poses at the frames are checked for the
- * position limits. A run of consecutive samples breaking the same limit is
- * one violation: an interval with its worst value.
+ * position limits. Go-motion (step mode with a shutter, plan/gomo.h) is a
+ * short pass per frame: its run-up from rest (padded to the triggers' lead,
+ * as the loop pads it), the scene's ticks of the exposure and the run-out
+ * to rest, each walked as a pass is, on the timeline of the run's range
+ * (its ends go on at their speed, timeline.h). A run of consecutive samples
+ * breaking the same limit is one violation: an interval with its worst
+ * value.
  */
 #ifndef STRAND_LIMIT_CHECK_H
 #define STRAND_LIMIT_CHECK_H
@@ -49,6 +54,10 @@ struct lim_run {
 	int64_t passes;        /* with loop or ping_pong; 0: no end */
 	int64_t lead, tail;    /* ticks: the triggers' earliest and latest offsets */
 	bool step;             /* step mode: the frames' poses, at rest */
+	mot_q32 shutter;       /* step mode: go-motion, this fraction of a frame (gomo.h);
+				* 0: none */
+	int64_t expose_first, expose_last; /* go-motion: the frames exposed; from..to is
+					    * the range whose timeline they run on */
 };
 
 enum lim_segment { LIM_SEG_SCENE, LIM_SEG_RUNUP, LIM_SEG_POSTROLL, LIM_SEG_FRAME };
@@ -58,6 +67,7 @@ struct lim_violation {
 	enum lim_kind kind;
 	enum lim_segment seg;
 	int dir;                   /* the pass's direction (-1: a ping-pong's way back) */
+	bool gomo;                 /* a go-motion frame's run-up, exposure or run-out */
 	double worst;              /* value, velocity, acceleration or stopping point, core units */
 	double limit;              /* the limit it breaks (signed like worst) */
 	int64_t tick_first, tick_last;  /* scene ticks (LIM_SEG_SCENE), else steps of the segment */
@@ -77,7 +87,8 @@ typedef void (*lim_report_fn)(void *ctx, const struct lim_violation *v);
 /*
  * Walk the run over src (its channels are selected here: the caller selects
  * its own again afterwards) and report each violation as it closes. 0, or
- * -ENOMEM. Not real-time: it allocates its state.
+ * -ENOMEM; -EINVAL for a go-motion frame whose exposure holds fewer than
+ * two ticks (gomo_window). Not real-time: it allocates its state.
  */
 int lim_check(struct play_source *src, const struct lim_channel *ch, uint32_t n,
 	      const struct lim_run *run, lim_report_fn report, void *ctx, struct lim_result *res);

@@ -9,7 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check/run_check.h"
 #include "exitcode.h"
+#include "opt.h"
+#include "plan/gomo.h"
+#include "play/rt.h"
 
 int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
 {
@@ -107,4 +111,48 @@ int cli_scene_args(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, 
 	*path = argv[first];
 	rc = cli_open_scene(*path, sf, b, err);
 	return rc ? rc : -1;
+}
+
+int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run *r)
+{
+	char msg[160];
+
+	return run_check_options(r, msg, sizeof(msg)) ? cli_usage(cmd, err, "%s", msg) : -1;
+}
+
+int cli_shutter_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, mot_q32 *s)
+{
+	double a;
+
+	if (!opt_double(arg, 0, 360, &a) || !gomo_shutter_of_angle(a, s))
+		return cli_usage(cmd, err, "--shutter %s: a shutter angle in degrees, above 0 and "
+				 "at most 360", arg);
+	return -1;
+}
+
+int cli_shutter_usage(const struct cli_cmd *cmd, FILE *err, const struct mot_timing *t,
+		      mot_q32 s)
+{
+	char msg[200];
+
+	return run_check_shutter(t, s, msg, sizeof(msg)) ? cli_usage(cmd, err, "%s", msg) : -1;
+}
+
+int cli_rt_option(const struct cli_cmd *cmd, FILE *err, const char *name, const char *arg,
+		  struct rt_opts *rt)
+{
+	long long v;
+
+	if (!strcmp(name, "no-mlock")) {
+		rt->lock_memory = false;
+	} else if (!strcmp(name, "priority")) {
+		if (!opt_long(arg, 0, 99, &v))
+			return cli_usage(cmd, err, "--priority %s: 0 to 99", arg);
+		rt->priority = (int)v;
+	} else {
+		if (!opt_long(arg, 0, 1023, &v))
+			return cli_usage(cmd, err, "--cpu %s: a CPU number", arg);
+		rt->cpu = (int)v;
+	}
+	return -1;
 }

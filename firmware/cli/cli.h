@@ -34,6 +34,26 @@ int cli_main(int argc, char **argv, FILE *out, FILE *err);
 int cli_usage(const struct cli_cmd *cmd, FILE *err, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
+struct lim_run;
+struct rt_opts;
+
+/* --priority N, --cpu N or --no-mlock (name without the dashes) of strand
+ * play and strand serve into rt: -1, or the usage error's exit code. */
+int cli_rt_option(const struct cli_cmd *cmd, FILE *err, const char *name, const char *arg,
+		  struct rt_opts *rt);
+
+/* The run's options against each other (check/run_check.h): -1 when they
+ * agree, else the usage error's exit code, said on err. */
+int cli_limits_usage(const struct cli_cmd *cmd, FILE *err, const struct lim_run *r);
+/* --shutter ANGLE (degrees, 0 < ANGLE <= 360) into *s, the fraction of a
+ * frame go-motion exposes (plan/gomo.h): -1, or the usage error's exit
+ * code, said on err. */
+int cli_shutter_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, mot_q32 *s);
+/* The shutter against the scene's timing (run_check_shutter): -1, or the
+ * usage error's exit code. */
+int cli_shutter_usage(const struct cli_cmd *cmd, FILE *err, const struct mot_timing *t,
+		      mot_q32 s);
+
 /* A scene file's error as the one line `file:line:column: message` (or
  * `file: message` when it has no position), and the exit code it means. */
 int cli_scene_error(FILE *err, const char *path, const struct load_err *e);
@@ -69,6 +89,6 @@ struct loop_report;
 int cli_play_exit(const struct loop_report *r);
 
 extern const struct cli_cmd cmd_check, cmd_export, cmd_plot, cmd_info, cmd_play, cmd_journal,
-	cmd_import;
+	cmd_import, cmd_serve, cmd_dfmoco;
 
 #endif /* STRAND_CLI_H */

@@ -17,9 +17,9 @@
 #include <unistd.h>
 
 #include "check/pools.h"
+#include "check/run_check.h"
 #include "cli.h"
 #include "exitcode.h"
-#include "limits.h"
 #include "play/frames.h"
 #include "play/play.h"
 #include "rig/rig_auto.h"
@@ -39,7 +39,7 @@ enum {
 	OPT_PASSES, OPT_DURATION, OPT_SETTLE, OPT_EXPOSURE, OPT_TIMEOUT, OPT_JOURNAL,
 	OPT_NO_JOURNAL, OPT_TELEMETRY, OPT_CLOCK, OPT_PRIORITY, OPT_CPU, OPT_NO_MLOCK,
 	OPT_FORCE, OPT_CAMERA_LOG, OPT_LAT_HIST, OPT_QUIET, OPT_CHASE, OPT_TC_OFFSET,
-	OPT_FREEWHEEL, OPT_NODE, OPT_PTP_SOCKET, OPT_PTP_FREE,
+	OPT_FREEWHEEL, OPT_NODE, OPT_PTP_SOCKET, OPT_PTP_FREE, OPT_SHUTTER,
 };
 
 /* ptp4l's management socket where linuxptp puts it by default. */
@@ -75,6 +75,7 @@ static const struct option play_options[] = {
 	{ "node", required_argument, NULL, OPT_NODE },
 	{ "ptp-socket", required_argument, NULL, OPT_PTP_SOCKET },
 	{ "ptp-free-running", no_argument, NULL, OPT_PTP_FREE },
+	{ "shutter", required_argument, NULL, OPT_SHUTTER },
 	{ "help", no_argument, NULL, 'h' },
 	{ NULL, 0, NULL, 0 },
 };
@@ -196,18 +197,10 @@ static int on_opt(void *ctx, int opt, const char *arg)
 		c->o.virtual_clock = !strcmp(arg, "virtual");
 		return -1;
 	case OPT_PRIORITY:
-		if (!opt_long(arg, 0, 99, &v))
-			return cli_usage(c->cmd, c->err, "--priority %s: 0 to 99", arg);
-		c->o.rt.priority = (int)v;
-		return -1;
 	case OPT_CPU:
-		if (!opt_long(arg, 0, 1023, &v))
-			return cli_usage(c->cmd, c->err, "--cpu %s: a CPU number", arg);
-		c->o.rt.cpu = (int)v;
-		return -1;
 	case OPT_NO_MLOCK:
-		c->o.rt.lock_memory = false;
-		return -1;
+		return cli_rt_option(c->cmd, c->err, opt == OPT_PRIORITY ? "priority" :
+					      opt == OPT_CPU ? "cpu" : "no-mlock", arg, &c->o.rt);
 	case OPT_FORCE:
 		c->o.loop.force = true;
 		return -1;
@@ -241,6 +234,8 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	case OPT_PTP_FREE:
 		c->ptp_free_running = true;
 		return -1;
+	case OPT_SHUTTER:
+		return cli_shutter_arg(c->cmd, c->err, arg, &c->o.loop.shutter);
 	default:
 		return cli_usage(c->cmd, c->err, "unknown option");
 	}
@@ -341,22 +336,6 @@ static void default_journal(char *buf, size_t size, const char *scene)
 }
 
 /* The histogram as cyclictest -h writes its own: "us count" lines. */
-static int write_hist(const char *path, const struct lat_stats *s)
-{
-	FILE *f = fopen(path, "w");
-	uint32_t i;
-
-	if (!f)
-		return -errno;
-	fprintf(f, "# strand wake-up latency, 1 us buckets\n");
-	for (i = 0; i < LAT_HIST_US; i++)
-		if (s->hist[i])
-			fprintf(f, "%06u %06u\n", i, s->hist[i]);
-	fprintf(f, "# Total: %lld\n# Overflow: %lld\n# Max Latencies: %.3f\n", (long long)s->n,
-		(long long)s->overflow, s->n ? s->max_ns / 1000.0 : 0.0);
-	return fclose(f) ? -errno : 0;
-}
-
 /*
  * strand check's walk over what this run will play, with the limits its
  * rig holds each channel to (an automatic rig's derived ones included),
@@ -365,21 +344,29 @@ static int write_hist(const char *path, const struct lat_stats *s)
 static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 		       const struct rig_desc *rig, struct frame_list *fl)
 {
-	struct cli_limits lc = { .out = NULL };
+	struct run_check lc = { .out = NULL };
 	struct lim_run run = {
 		.from = c->o.loop.from, .to = c->o.loop.to, .loop = c->o.loop.loop,
 		.ping_pong = c->o.loop.ping_pong, .passes = c->o.loop.passes, .step = c->step,
+		.shutter = c->o.loop.shutter,
 	};
 	char line[512];
 	uint32_t pools;
 	int rc;
 
 	if (c->step && fl->n) {
-		/* step mode shoots the frames it lists: their poses */
+		/* step mode shoots the frames it lists: their poses, or their
+		 * go-motion on the timeline the loop runs it on */
 		run.from = frames_min(fl);
 		run.to = frames_max(fl);
 	}
-	rc = cli_limits_run(&lc, ss, rig, &run);
+	run.expose_first = run.from;
+	run.expose_last = run.to;
+	if (c->step && c->o.loop.shutter) {
+		run.from = c->o.loop.from;
+		run.to = c->o.loop.to;
+	}
+	rc = run_check(&lc, ss, rig, &run);
 	if (rc) {
 		fprintf(c->err, "strand play: %s\n", strerror(-rc));
 		rc = STRAND_EXIT_INTERNAL;
@@ -398,7 +385,7 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 			path, pools, pools == 1 ? "" : "s", line, path);
 		rc = STRAND_EXIT_VIOLATION;
 	} else if (lc.res.violations && !c->o.loop.force) {
-		cli_limits_line(line, sizeof(line), &lc, &lc.first);
+		run_check_line(line, sizeof(line), &lc, &lc.first);
 		fprintf(c->err,
 			"%s: strand check finds %u limit violation%s, the first: %s.\n"
 			"strand play refuses it ('strand check %s' with the same options lists "
@@ -406,7 +393,7 @@ static int check_first(struct cli *c, const char *path, struct source_scene *ss,
 			path, lc.res.violations, lc.res.violations == 1 ? "" : "s", line, path);
 		rc = STRAND_EXIT_VIOLATION;
 	}
-	cli_limits_free(&lc);
+	run_check_free(&lc);
 	return rc;
 }
 
@@ -564,7 +551,10 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 				     .loop = c.o.loop.loop, .ping_pong = c.o.loop.ping_pong,
 				     .passes = c.o.loop.passes, .step = c.step };
 
+		r.shutter = c.o.loop.shutter;
 		rc = cli_limits_usage(cmd, err, &r);
+		if (rc < 0)
+			rc = cli_shutter_usage(cmd, err, &src.s.timing, c.o.loop.shutter);
 		if (rc >= 0)
 			goto out;
 	}
@@ -612,6 +602,13 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			goto out;
 		}
 		c.o.loop.frames = &fl;
+		/* go-motion runs the scene's own motion over its span and the
+		 * frames shot, and beyond them at the speed of their ends
+		 * (plan/timeline.h); check_first walks the same */
+		c.o.loop.from = frames_min(&fl) < src.s.frame_first ? frames_min(&fl) :
+								      src.s.frame_first;
+		c.o.loop.to = frames_max(&fl) > src.s.frame_last ? frames_max(&fl) :
+								   src.s.frame_last;
 	}
 	rc = check_first(&c, path, &src, rig, &fl);
 	if (rc)
@@ -652,7 +649,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		play_describe(&p, msg, sizeof(msg));
 		fprintf(err, "strand play: %s\n", msg);
 	}
-	if (c.lat_hist && write_hist(c.lat_hist, &loop_result(p.L)->lat))
+	if (c.lat_hist && lat_write_hist(c.lat_hist, &loop_result(p.L)->lat))
 		fprintf(err, "strand play: %s: %s\n", c.lat_hist, strerror(errno));
 	/* the reason is on err already when the run did not finish */
 	if (!c.quiet)
@@ -692,6 +689,10 @@ const struct cli_cmd cmd_play = {
 		"  --exposure MS         step mode: hold still this long after it (100), unless a\n"
 		"                        camera_ready input paces the shots\n"
 		"  --timeout S           step mode: for in position and camera ready (10)\n"
+		"  --shutter ANGLE       step mode: go-motion. Each frame f runs the scene's motion\n"
+		"                        from f - s/2 to f + s/2 (s = ANGLE/360 of a frame) with\n"
+		"                        the trigger at its start, after a run-up from rest and\n"
+		"                        before a run-out to rest, both within the limits\n"
 		"  --journal FILE        the frame journal (default SCENE-YYYYmmdd-HHMMSS.journal)\n"
 		"  --no-journal          no journal\n"
 		"  --telemetry FILE      JSON lines of the loop's state, ten a second\n"

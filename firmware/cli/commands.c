@@ -10,7 +10,9 @@
 
 /* Every subcommand, in the order `strand --help` lists them. */
 static const struct cli_cmd *const commands[] = {
-	&cmd_check, &cmd_export, &cmd_plot, &cmd_info, &cmd_play, &cmd_journal, &cmd_import,
+	&cmd_check, &cmd_export, &cmd_plot, &cmd_info, &cmd_play, &cmd_serve, &cmd_dfmoco,
+	&cmd_journal,
+	&cmd_import,
 	NULL,
 };
 

@@ -66,7 +66,10 @@
 #include "hal/rt.h" /* STRAND_RT */
 
 #define JOURNAL_MAGIC "STRANDJ1"
-#define JOURNAL_VERSION 2 /* 1: no byte order or layout in the header (read too) */
+/* 3: a go-motion journal's records end with their exposure (struct
+ * journal_gomo); 2: the same without go-motion; 1: no byte order or layout
+ * in the header. All three are read. */
+#define JOURNAL_VERSION 3
 #define JOURNAL_NAME_MAX 48
 #define JOURNAL_OUT_MAX 4096 /* outputs a journal holds at most */
 /* journal_info.capacity of a run without an end; the header says -1 */
@@ -81,6 +84,7 @@
 /* The header's mode: bits. */
 #define JOURNAL_MODE_STEP 1  /* step mode (else continuous) */
 #define JOURNAL_MODE_CHASE 2 /* --chase: records hold the source's frame */
+#define JOURNAL_MODE_GOMO 4  /* go-motion: records hold their exposure's poses too */
 
 enum journal_state {
 	JOURNAL_EMPTY = 0,
@@ -100,7 +104,7 @@ struct journal_out {
 	uint32_t pad;
 };
 
-/* Version 2. Version 1 is the same up to scene[], then out[] at once. */
+/* Versions 2 and 3. Version 1 is the same up to scene[], then out[] at once. */
 struct journal_hdr {
 	char magic[8];
 	uint32_t version;
@@ -134,6 +138,30 @@ struct journal_rec {
 	int64_t sp[];     /* nout setpoints, Q32.32 core units */
 };
 
+/* What a record of a go-motion journal (JOURNAL_MODE_GOMO, plan/gomo.h)
+ * holds after its nout setpoints: its exposure's first and last tick (run
+ * ticks, written once the exposure has ended: -1 until then) and the
+ * setpoints there, nout at open_tick, then nout at close_tick. */
+struct journal_gomo {
+	int64_t open_tick, close_tick;
+	int64_t sp[];
+};
+
+static inline struct journal_gomo *journal_gomo_of(struct journal_rec *r, uint32_t nout)
+{
+	return (struct journal_gomo *)(r->sp + nout);
+}
+
+/* The bytes of a record with nout outputs in a journal of this mode. */
+static inline size_t journal_rec_bytes(uint32_t nout, uint32_t mode)
+{
+	size_t b = sizeof(struct journal_rec) + nout * sizeof(int64_t);
+
+	if (mode & JOURNAL_MODE_GOMO)
+		b += sizeof(struct journal_gomo) + 2 * (size_t)nout * sizeof(int64_t);
+	return b;
+}
+
 /* The record's layout as this build lays it out: the offsets of its
  * fields and the sizes it rests on, one byte each. A reader built with
  * another ABI (other alignments, another size of double) computes another
@@ -158,6 +186,7 @@ struct journal {
 	int fd;
 	uint32_t hdr_bytes;
 	uint32_t rec_bytes;
+	uint32_t mode;      /* the header's: JOURNAL_MODE_* */
 	uint32_t per_chunk; /* records per chunk */
 	long page;
 	int64_t capacity;   /* records at most; JOURNAL_UNBOUNDED: no end */

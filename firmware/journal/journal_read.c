@@ -52,9 +52,10 @@ static int check_header(const char *path, const struct journal_hdr *hh, off_t si
 	}
 	/* the version is the first number: in the other byte order it reads
 	 * reversed, in either version */
-	if ((v != 1 && v != JOURNAL_VERSION) || (v == JOURNAL_VERSION &&
-						  hh->byte_order != JOURNAL_BYTE_ORDER)) {
-		if (__builtin_bswap32(v) == 1 || __builtin_bswap32(v) == JOURNAL_VERSION)
+	if (v < 1 || v > JOURNAL_VERSION || (v >= 2 && hh->byte_order != JOURNAL_BYTE_ORDER)) {
+		uint32_t bv = __builtin_bswap32(v);
+
+		if (bv >= 1 && bv <= JOURNAL_VERSION)
 			snprintf(msg, msgsize, "%s: a strand journal written on a machine of the other "
 				 "byte order (%s-endian); read it with strand on such a machine", path,
 				 __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ ? "big" : "little");
@@ -65,21 +66,21 @@ static int check_header(const char *path, const struct journal_hdr *hh, off_t si
 			snprintf(msg, msgsize, "%s: not a strand journal", path);
 		return -EBADMSG;
 	}
-	if (v == JOURNAL_VERSION && hh->layout != journal_layout()) {
+	if (v >= 2 && hh->layout != journal_layout()) {
 		snprintf(msg, msgsize, "%s: a strand journal whose records are laid out otherwise "
 			 "(layout 0x%08x, this build's 0x%08x: another architecture's ABI); read "
 			 "it with strand on the machine that wrote it", path, hh->layout,
 			 journal_layout());
 		return -EBADMSG;
 	}
-	if (v == JOURNAL_VERSION && hh->probe != JOURNAL_PROBE) {
+	if (v >= 2 && hh->probe != JOURNAL_PROBE) {
 		snprintf(msg, msgsize, "%s: a strand journal whose doubles are not this machine's "
 			 "IEEE 754 format; read it with strand on the machine that wrote it", path);
 		return -EBADMSG;
 	}
 	if (hh->nout > JOURNAL_OUT_MAX ||
 	    hh->hdr_bytes < out_offset(v) + hh->nout * sizeof(hh->out[0]) ||
-	    hh->rec_bytes != sizeof(struct journal_rec) + hh->nout * sizeof(int64_t) ||
+	    hh->rec_bytes != journal_rec_bytes(hh->nout, v >= 3 ? hh->mode : 0) ||
 	    !hh->rate_num || !hh->rate_den) {
 		snprintf(msg, msgsize, "%s: not a strand journal", path);
 		return -EBADMSG;
@@ -93,6 +94,7 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 	const struct journal_out *o;
 	struct journal_rec *r = NULL;
 	struct timecode tc, src_tc;
+	bool gomo;
 	struct stat st;
 	int fd, err = 0;
 	uint32_t i;
@@ -129,17 +131,25 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 		goto out;
 	}
 	o = (const struct journal_out *)((const char *)h + out_offset(h->version));
+	gomo = h->version >= 3 && (h->mode & JOURNAL_MODE_GOMO);
 	timecode_init(&tc, h->rate_num, h->rate_den);
 	/* the source counts at most 30 labels a second (play.c) */
 	timecode_init(&src_tc, (double)h->rate_num / h->rate_den > 30.5 ? h->rate_num / 2 :
 			       h->rate_num, h->rate_den);
 	fprintf(out, "frame,timecode,%stick,trigger,state,due_ns,mono_ns,late_us,wall,ferr,"
-		"ferr_channel", h->mode & JOURNAL_MODE_CHASE ? "source_tc," : "");
+		"ferr_channel%s", h->mode & JOURNAL_MODE_CHASE ? "source_tc," : "",
+		gomo ? ",open_tick,close_tick" : "");
 	for (i = 0; i < h->nout; i++)
 		fprintf(out, ",%.*s", JOURNAL_NAME_MAX, o[i].name);
+	/* go-motion: the setpoints where the exposure opened and closed */
+	for (i = 0; gomo && i < h->nout; i++)
+		fprintf(out, ",%.*s@open", JOURNAL_NAME_MAX, o[i].name);
+	for (i = 0; gomo && i < h->nout; i++)
+		fprintf(out, ",%.*s@close", JOURNAL_NAME_MAX, o[i].name);
 	fputc('\n', out);
 	for (off = h->hdr_bytes; off + (off_t)h->rec_bytes <= st.st_size; off += h->rec_bytes) {
 		char tcs[48], wall[48];
+		struct journal_gomo *g;
 		uint32_t state;
 
 		if (pread(fd, r, h->rec_bytes, off) != (ssize_t)h->rec_bytes) {
@@ -177,8 +187,19 @@ int journal_csv(const char *path, FILE *out, char *msg, unsigned msgsize)
 				JOURNAL_NAME_MAX, o[r->ferr_out].name);
 		else
 			fputc(',', out);
+		g = gomo ? journal_gomo_of(r, h->nout) : NULL;
+		if (g && g->close_tick >= 0)
+			fprintf(out, ",%lld,%lld", (long long)g->open_tick, (long long)g->close_tick);
+		else if (g)
+			fputs(",,", out); /* the exposure had not ended */
 		for (i = 0; i < h->nout; i++)
 			fprintf(out, ",%.10g", to_file_units(r->sp[i], o[i].unit));
+		for (i = 0; g && i < 2 * h->nout; i++) {
+			if (g->close_tick >= 0)
+				fprintf(out, ",%.10g", to_file_units(g->sp[i], o[i % h->nout].unit));
+			else
+				fputc(',', out);
+		}
 		fputc('\n', out);
 	}
 	if (!err && ferror(out)) {

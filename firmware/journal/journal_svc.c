@@ -118,7 +118,8 @@ int journal_open(struct journal *j, const char *path, const struct journal_info 
 	j->page = sysconf(_SC_PAGESIZE);
 	hdr_bytes = round_up(sizeof(*h) + info->nout * sizeof(h->out[0]), (size_t)j->page);
 	j->hdr_bytes = (uint32_t)hdr_bytes;
-	j->rec_bytes = (uint32_t)(sizeof(struct journal_rec) + info->nout * sizeof(int64_t));
+	j->rec_bytes = (uint32_t)journal_rec_bytes(info->nout, info->mode);
+	j->mode = info->mode;
 	j->per_chunk = CHUNK_BYTES / j->rec_bytes;
 	if (j->per_chunk < 1)
 		j->per_chunk = 1;

@@ -55,9 +55,14 @@ int STRAND_RT move_plan(struct move *m, struct move_ch *ch, uint32_t n, const mo
 			continue;
 		}
 		/* T >= this channel's shortest time, so the root is real (up to
-		 * rounding) and the cruise speed is within vmax */
-		disc = a * a * T * T - 4 * a * d;
-		ch[i].v = (a * T - sqrt(fmax(disc, 0))) / 2;
+		 * rounding) and the cruise speed is within vmax. The smaller root
+		 * of v^2 - a T v + a d = 0 as 2 d / (T + sqrt(T^2 - 4 d / a)):
+		 * (a T - sqrt(a^2 T^2 - 4 a d)) / 2 loses its digits to
+		 * cancellation when a T is far above v (a step curve's rig, whose
+		 * acceleration limit is huge: 1.4e-4 above vmax, beyond the limit
+		 * check's tolerance) */
+		disc = T * T - 4 * d / a;
+		ch[i].v = 2 * d / (T + sqrt(fmax(disc, 0)));
 		ch[i].ta = ch[i].v / a;
 	}
 	return rc;

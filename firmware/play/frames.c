@@ -106,7 +106,7 @@ void frames_free(struct frame_list *fl)
 	fl->n = 0;
 }
 
-int64_t frames_count(const struct frame_list *fl)
+int64_t STRAND_RT frames_count(const struct frame_list *fl)
 {
 	int64_t total = 0;
 	uint32_t i;

@@ -2,6 +2,9 @@
 /* latency.c - loop timing statistics (see latency.h). */
 #include "latency.h"
 
+#include <errno.h>
+#include <stdio.h>
+
 #include <string.h>
 
 void lat_reset(struct lat_stats *s)
@@ -30,4 +33,20 @@ double lat_percentile_us(const struct lat_stats *s, double q)
 			return i;
 	}
 	return (double)s->max_ns / 1000.0;
+}
+
+int lat_write_hist(const char *path, const struct lat_stats *s)
+{
+	FILE *f = fopen(path, "w");
+	uint32_t i;
+
+	if (!f)
+		return -errno;
+	fprintf(f, "# strand wake-up latency, 1 us buckets\n");
+	for (i = 0; i < LAT_HIST_US; i++)
+		if (s->hist[i])
+			fprintf(f, "%06u %06u\n", i, s->hist[i]);
+	fprintf(f, "# Total: %lld\n# Overflow: %lld\n# Max Latencies: %.3f\n", (long long)s->n,
+		(long long)s->overflow, s->n ? s->max_ns / 1000.0 : 0.0);
+	return fclose(f) ? -errno : 0;
 }

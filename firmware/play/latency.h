@@ -65,4 +65,8 @@ static inline void STRAND_RT lat_add(struct lat_stats *s, int64_t tick, int64_t 
  * whole us (truncated, as cyclictest files them); -1 without samples. */
 double lat_percentile_us(const struct lat_stats *s, double q);
 
+/* [init] The histogram as cyclictest writes one ("us count" lines, its
+ * summary comments) into path: 0 or a negative errno. */
+int lat_write_hist(const char *path, const struct lat_stats *s);
+
 #endif /* STRAND_LATENCY_H */

@@ -29,6 +29,13 @@
  *   step         for each frame: MOVE to its exact pose -> SETTLE (every
  *                drive in position for the settle time) -> the trigger ->
  *                EXPOSE (exposure time, or the camera-ready edge)
+ *   go-motion    step mode with a shutter (plan/gomo.h), for each frame:
+ *                MOVE to where its run-up starts -> SETTLE -> (ARMED, until
+ *                told to go, when cfg.gomo_wait) -> GOMO_RUNUP (runup.h,
+ *                at least the triggers' lead long) -> GOMO_EXPOSE (the
+ *                scene's ticks of the exposure; the trigger rises at its
+ *                first, moved by its offset) -> GOMO_RUNOUT (to rest at the
+ *                acceleration limits, as the post-roll) -> EXPOSE
  *
  * A move that covers no distance takes no tick. Frame f's trigger in PLAY
  * rises when the scene tick is FORMULAS.md section 5's tick for f plus the
@@ -139,6 +146,15 @@ enum loop_state {
 	LOOP_STOPPING,
 	LOOP_ENDED,
 	LOOP_CUE,          /* --chase: at rest, waiting for the source (loop_chase.c) */
+	/* live mode (loop_live.h) */
+	LOOP_HOLD,
+	LOOP_JOG,
+	LOOP_MOVE,
+	/* go-motion (loop.h, "Sequence") */
+	LOOP_GOMO_ARMED,   /* at the run-up's start, settled, waiting for loop_gomo_go */
+	LOOP_GOMO_RUNUP,
+	LOOP_GOMO_EXPOSE,
+	LOOP_GOMO_RUNOUT,
 };
 
 enum loop_end {
@@ -169,6 +185,7 @@ enum loop_cause {
 	LOOP_CAUSE_SATURATION,  /* fixed-point arithmetic saturated */
 	LOOP_CAUSE_CHASE,       /* the chased source: detail is its enum chase_event */
 	LOOP_CAUSE_BOARD,       /* another board of a lockstep run (play/lockstep) */
+	LOOP_CAUSE_DISABLE,     /* live mode: the drives were disabled */
 };
 
 /* What ended the run, for the message at the edge. */
@@ -197,12 +214,24 @@ struct loop_cfg {
 	bool loop, ping_pong;
 	int64_t passes;    /* with loop or ping_pong: passes to play, 0 = no end */
 	const struct frame_list *frames; /* step mode */
+	/* step mode: go-motion with this shutter, a Q32.32 fraction of a frame
+	 * (plan/gomo.h), 0: none. The exposures run on the timeline of frames
+	 * from..to (the ends go on at their speed, plan/timeline.h) of
+	 * gomo_src, or of the run's source when it is NULL (the same tick
+	 * rate); gomo_wait: each frame waits, settled at its run-up's start,
+	 * for loop_gomo_go(); gomo_runup_ticks: the run-up lasts this long at
+	 * least (a front end that said how long it takes: DFMoco's bf) */
+	mot_q32 shutter;
+	struct play_source *gomo_src;
+	bool gomo_wait;
+	int64_t gomo_runup_ticks;
 	int64_t settle_ticks, exposure_ticks;
 	int64_t in_position_timeout_ticks, ready_timeout_ticks;
 	bool force;        /* clamp setpoints beyond the limits instead of stopping */
 	int64_t max_ticks; /* controlled stop after this many ticks, 0 = none */
 	uint32_t status_every; /* ticks between status samples (>= 1) */
 	bool wait_for_journal; /* virtual clock: wait for the journal's service */
+	bool live;         /* no run planned: loop_live_init makes it a live loop */
 };
 
 /* A status sample, pushed into the status ring. */
@@ -267,6 +296,11 @@ void loop_free(struct loop *L);
 
 /* [rt] Run ticks until the run ends. t0: when tick 0 is due. */
 void loop_run(struct loop *L, int64_t t0);
+
+/* [rt] A go-motion frame waiting in LOOP_GOMO_ARMED runs up from this
+ * tick on: 0, or -EAGAIN when none waits. The loop's thread only (a
+ * front end reaches it through its commands). */
+int loop_gomo_go(struct loop *L);
 
 /* [rt] One tick: k is due at due_ns and the loop woke at now_ns; false
  * once the run has ended. */

@@ -8,6 +8,7 @@
  */
 #include "loop_priv.h"
 #include "hal/rt.h"
+#include "plan/gomo.h"
 
 #include <math.h>
 
@@ -112,4 +113,62 @@ bool STRAND_RT loop_rest_step(struct loop *L)
 				       o->amax, L->tm->tick_hz);
 	}
 	return rest;
+}
+
+/* ---- go-motion (plan/gomo.h) ---- */
+
+void STRAND_RT loop_gomo_setup(struct loop *L)
+{
+	const struct loop_cfg *c = &L->cfg;
+	struct play_source *src = c->gomo_src ? c->gomo_src : L->src;
+	int64_t lo = c->from < c->to ? c->from : c->to, hi = c->from ^ c->to ^ lo;
+
+	timeline_init(&L->seq.tl, src, L->n, L->seq.extend, lo, hi, L->seq.tl_mem, &L->sat);
+}
+
+int STRAND_RT loop_gomo_plan(struct loop *L, int32_t *bad)
+{
+	struct loop_seq *s = &L->seq;
+	uint32_t i;
+
+	/* the shutter was checked against the timing before the run: the
+	 * window holds two ticks (a failure here is arithmetic gone wrong) */
+	if (gomo_window(&s->tl.src->timing, L->step.frame, L->cfg.shutter, &s->gomo_first,
+			&s->gomo_last))
+		L->sat |= MOT_SAT_OVERFLOW;
+	s->gomo_open_tick = s->gomo_close_tick = -1;
+	for (i = 0; i < L->rig->ntrig; i++) {
+		L->trig.pulse[i].rec = NULL;
+		L->trig.pulse[i].pending = false;
+	}
+	/* a pass over the exposure's ticks: the run-up into its first */
+	s->dir = 1;
+	s->scene_begin = s->gomo_first;
+	if (loop_entry_plan(L, bad))
+		return -1;
+	/* the ramps may end later: a trigger that fires early (a negative
+	 * offset) rises during the run-up, never before it */
+	if (s->ru_ticks < s->lead)
+		s->ru_ticks = s->lead;
+	if (s->ru_ticks < L->cfg.gomo_runup_ticks)
+		s->ru_ticks = L->cfg.gomo_runup_ticks;
+	return 0;
+}
+
+void STRAND_RT loop_gomo_start(struct loop *L, int64_t t0)
+{
+	struct loop_seq *s = &L->seq;
+	uint32_t i;
+
+	s->state = LOOP_GOMO_RUNUP;
+	s->ru_j = -1;
+	/* the exposure's first tick is t0 + ru_ticks; each edge is moved by
+	 * its trigger's offset from there, as in a pass */
+	for (i = 0; i < L->rig->ntrig; i++) {
+		struct loop_pulse *t = &L->trig.pulse[i];
+
+		t->next_frame = L->step.frame;
+		t->pending = true;
+		t->edge_k = t0 + s->ru_ticks + L->rig->trig[i].offset;
+	}
 }

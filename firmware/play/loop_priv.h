@@ -51,6 +51,13 @@ struct loop_out {
 	 * tick's speed until a stop begins */
 	double stop_v;
 	int64_t sent;           /* counts sent last tick */
+	/* this tick's feedback, as loop_feedback read it after the devices'
+	 * input (a CANopen drive's answer to the last SYNC is current only
+	 * until the next is sent): where the drive is, in counts, and the
+	 * following error, core units */
+	int64_t act;
+	double fe;
+	bool has_fb;
 	struct hal_setpoint sp; /* this tick's, in counts */
 	struct runup_ramp ru;   /* its ramp into the pass */
 	struct lim_bounds lim;  /* its limits, as the predicate takes them */
@@ -75,6 +82,11 @@ struct loop_seq {
 	int64_t mv_j;
 	int64_t ru_ticks, ru_j; /* the run-up: the longest ramp, the step it is at */
 	bool braked;            /* this tick was a stop's step (loop_rest_step) */
+	/* go-motion: the frame's exposure in scene ticks, the run ticks it
+	 * opened and closed at (-1: not yet), and its poses there */
+	int64_t gomo_first, gomo_last;
+	int64_t gomo_open_tick, gomo_close_tick;
+	mot_q32 *gomo_open, *gomo_close;
 	mot_q32 *target;        /* a pose: where a move goes (a ramp's start, a frame) */
 	mot_q32 *ru_end;        /* a pose: the pass's first, where the ramps end */
 	double *vmax, *amax;    /* per output, as the move planner takes them */
@@ -86,6 +98,7 @@ struct loop_pulse {
 	int64_t edge_k;            /* PLAY: the scene tick its edge rises at */
 	int64_t fall_tick;         /* run tick the pulse ends at */
 	struct journal_rec *armed; /* this tick's record, until it is FIRED */
+	struct journal_rec *rec;   /* go-motion: this frame's, for its exposure */
 	bool pending;              /* a frame left in this pass */
 	bool active;               /* the line is asserted */
 };
@@ -148,6 +161,7 @@ struct loop {
 	struct loop_step step;
 	int64_t *limited;         /* n: the result's, written here */
 	struct loop_result *res;
+	struct loop_live *live;   /* NULL but in live mode (loop_live.c) */
 	struct chase *chase;      /* NULL: the loop's own time */
 	struct loop_safety safety; /* last: the edge buffer is large and seldom used */
 };
@@ -172,18 +186,15 @@ static inline double STRAND_RT loop_speed(const struct loop *L, uint32_t i)
 	return (move_q2d(L->val[i]) - move_q2d(L->prev[i])) * L->tm->tick_hz;
 }
 
-/* [rt] Output i's following error (what was sent minus where the drive
- * is), core units, into *fe; false when there is none to measure: a
- * velocity channel, a disabled device, no feedback this tick. */
+/* [rt] Output i's following error this tick (what was sent last tick minus
+ * where the drive is, as loop_feedback read it), core units, into *fe;
+ * false when there is none to measure: a velocity channel, a disabled
+ * device, no feedback this tick. */
 static inline bool STRAND_RT loop_ferror(const struct loop *L, uint32_t i, double *fe)
 {
-	const struct rig_out *o = &L->rig->out[i];
-	int64_t act;
-
-	if (o->vel_mode || L->safety.dev_off[o->dev] ||
-	    !hal_axis_actual(L->rig->axes[o->dev], o->ch, &act))
+	if (!L->out[i].has_fb || L->safety.dev_off[L->rig->out[i].dev])
 		return false;
-	*fe = hal_scale_delta_units(&o->scale, L->out[i].sent - act);
+	*fe = L->out[i].fe;
 	return true;
 }
 
@@ -234,6 +245,14 @@ void loop_move_plan(struct loop *L, const mot_q32 *from, const mot_q32 *to);
 bool loop_more_passes(const struct loop *L);
 /* [rt] Every output one tick closer to rest; true when all are there. */
 bool loop_rest_step(struct loop *L);
+/* [init or rt] Go-motion's timeline: frames cfg.from..cfg.to of its source. */
+void loop_gomo_setup(struct loop *L);
+/* [rt] Go-motion frame step.frame: its exposure, the run-up into it, and in
+ * seq.target where the run-up starts: 0, or -1 with the output in *bad when
+ * that is outside its position limits. */
+int loop_gomo_plan(struct loop *L, int32_t *bad);
+/* [rt] The run-up begins at run tick t0, every trigger's edge set. */
+void loop_gomo_start(struct loop *L, int64_t t0);
 
 /* ---- loop_chase.c ---- */
 
@@ -252,5 +271,26 @@ void loop_triggers(struct loop *L, int64_t due);
 void loop_triggers_off(struct loop *L);
 /* [rt] A pulse is under way. */
 bool loop_pulses_active(const struct loop *L);
+/* [rt] A trigger's edge still to come in this frame or pass. */
+bool loop_pulses_pending(const struct loop *L);
+/* [rt] Go-motion: the exposure's ticks and poses into this frame's
+ * records, once the exposure has ended and they exist. */
+void loop_gomo_journal(struct loop *L);
+
+/* ---- loop_tick.c ---- */
+
+/* [rt] The ordinary status sample of this tick into *s. */
+void loop_status_fill(const struct loop *L, struct loop_status *s);
+
+/* ---- loop_live.c (live mode only) ---- */
+
+/* [rt] The commands waiting, at the start of a tick. */
+void loop_live_commands(struct loop *L);
+/* [rt] This tick's setpoints in HOLD, JOG and MOVE. */
+void loop_live_sequence(struct loop *L);
+/* [rt] A segment that ended goes back to HOLD; what ends the run stays. */
+void loop_live_tick_end(struct loop *L);
+/* [rt] The live status sample. */
+void loop_live_status(struct loop *L);
 
 #endif /* STRAND_LOOP_PRIV_H */

@@ -234,10 +234,14 @@ void STRAND_RT loop_feedback(struct loop *L, double *worst, int32_t *worst_out)
 	}
 	for (i = 0; i < L->n; i++) {
 		const struct rig_out *o = &r->out[i];
+		struct loop_out *lo = &L->out[i];
 		double fe, bound;
 
-		if (!loop_ferror(L, i, &fe))
+		lo->has_fb = !o->vel_mode && !L->safety.dev_off[o->dev] &&
+			     hal_axis_actual(r->axes[o->dev], o->ch, &lo->act);
+		if (!lo->has_fb)
 			continue;
+		fe = lo->fe = hal_scale_delta_units(&o->scale, lo->sent - lo->act);
 		if (fabs(fe) > *worst) {
 			*worst = fabs(fe);
 			*worst_out = (int32_t)i;
@@ -264,6 +268,20 @@ static enum loop_cause STRAND_RT limit_cause(enum lim_kind k)
 }
 
 /*
+ * A live loop may find the rig outside a position limit (a drive moved by
+ * hand, limits made tighter): it holds there and may move back, never
+ * further out (loop_live.h). Any other loop refused to start there.
+ */
+static bool STRAND_RT outside_ok(const struct loop *L, uint32_t i, enum lim_kind k)
+{
+	double x = move_q2d(L->val[i]), p = move_q2d(L->prev[i]);
+
+	if (!L->live)
+		return false;
+	return (k == LIM_MIN && x >= p) || (k == LIM_MAX && x <= p);
+}
+
+/*
  * This tick's setpoints against the outputs' limits, with the predicate
  * strand check verified the timeline with (plan/limit.h), over the
  * setpoints the outputs were really sent: the pre-roll, bridges and stops
@@ -287,7 +305,8 @@ void STRAND_RT loop_limits(struct loop *L)
 			continue;
 		lim_measure(&lo->meter, &L->stencil, L->val[i], &me);
 		nh = lim_test(&L->stencil, &lo->lim, &me, hit);
-		for (h = 0; h < nh && hit[h].kind == LIM_STOP; h++)
+		for (h = 0; h < nh && (hit[h].kind == LIM_STOP || outside_ok(L, i, hit[h].kind));
+		     h++)
 			;
 		if (h == nh || hit[h].kind == LIM_STOP)
 			continue;

@@ -5,6 +5,7 @@
  * the plan into the first pass. Every function here is [init], but for
  * the two name tables, which any thread may read.
  */
+#include "loop_live.h"
 #include "loop_priv.h"
 
 #include <errno.h>
@@ -12,6 +13,7 @@
 #include <stdlib.h>
 
 #include "motion/arena.h"
+#include "plan/gomo.h"
 #include "hal/rt.h"
 
 static const char *const state_names[] = {
@@ -22,6 +24,10 @@ static const char *const state_names[] = {
 	[LOOP_STEP_MOVE] = "move",	 [LOOP_STEP_SETTLE] = "settle",
 	[LOOP_STEP_EXPOSE] = "expose",	 [LOOP_STOPPING] = "stopping",
 	[LOOP_ENDED] = "ended",		 [LOOP_CUE] = "cue",
+	[LOOP_HOLD] = "hold",		 [LOOP_JOG] = "jog",
+	[LOOP_MOVE] = "move",
+	[LOOP_GOMO_ARMED] = "armed",	 [LOOP_GOMO_RUNUP] = "go-motion run-up",
+	[LOOP_GOMO_EXPOSE] = "go-motion exposure", [LOOP_GOMO_RUNOUT] = "go-motion run-out",
 };
 
 static const char *const cause_names[] = {
@@ -43,16 +49,17 @@ static const char *const cause_names[] = {
 	[LOOP_CAUSE_SATURATION] = "arithmetic saturated",
 	[LOOP_CAUSE_CHASE] = "chase",
 	[LOOP_CAUSE_BOARD] = "another board",
+	[LOOP_CAUSE_DISABLE] = "drives disabled",
 };
 
 const char *loop_state_name(enum loop_state s)
 {
-	return s <= LOOP_CUE ? state_names[s] : "?";
+	return s <= LOOP_GOMO_RUNOUT ? state_names[s] : "?";
 }
 
 const char *loop_cause_name(enum loop_cause c)
 {
-	return c <= LOOP_CAUSE_BOARD ? cause_names[c] : "?";
+	return c <= LOOP_CAUSE_DISABLE ? cause_names[c] : "?";
 }
 
 /* ---- the block ---- */
@@ -121,6 +128,8 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig, uint32_t t
 	mot_q32 *prev = CARVE(a, mot_q32, n);
 	mot_q32 *target = CARVE(a, mot_q32, n);
 	mot_q32 *ru_end = CARVE(a, mot_q32, n);
+	mot_q32 *gomo_open = CARVE(a, mot_q32, n);
+	mot_q32 *gomo_close = CARVE(a, mot_q32, n);
 	mot_q32 *tl_mem = CARVE(a, mot_q32, TIMELINE_WORDS(n));
 	mot_q32 *rings = CARVE(a, mot_q32, (size_t)n * LIM_METER_LEN(st.h));
 	bool *extend = CARVE(a, bool, n);
@@ -148,6 +157,8 @@ static struct loop *carve(struct mot_arena *a, const struct rig *rig, uint32_t t
 	L->prev = prev;
 	L->seq.target = target;
 	L->seq.ru_end = ru_end;
+	L->seq.gomo_open = gomo_open;
+	L->seq.gomo_close = gomo_close;
 	L->seq.mv.ch = mv_ch;
 	L->seq.vmax = vmax;
 	L->seq.amax = amax;
@@ -219,6 +230,7 @@ static void read_rig(struct loop *L)
 		L->val[i] = L->prev[i];
 		L->out[i].sent = o->vel_mode ? 0 : hal_scale_counts(&o->scale, L->prev[i], NULL);
 		L->out[i].lim = out_bounds(o);
+		L->out[i].has_fb = false; /* until loop_feedback reads some */
 		/* the run starts from rest where the rig stands */
 		lim_meter_reset(&L->out[i].meter, &L->stencil, L->out[i].meter.ring, L->prev[i],
 				true);
@@ -262,6 +274,17 @@ static int plan_step(struct loop *L, char *err, size_t errsize)
 		snprintf(err, errsize, "--frames: more shots times %u triggers than a run counts",
 			 L->rig->ntrig);
 		return -EINVAL;
+	}
+	if (cfg->shutter) {
+		const struct play_source *g = cfg->gomo_src ? cfg->gomo_src : L->src;
+
+		if (g->timing.tick_hz != L->tm->tick_hz ||
+		    gomo_shutter_check(&g->timing, cfg->shutter)) {
+			snprintf(err, errsize, "go-motion: the shutter opens for less than two ticks, "
+				 "or its motion has another tick rate than the run");
+			return -EINVAL;
+		}
+		loop_gomo_setup(L);
 	}
 	L->seq.state = LOOP_STEP_NEXT;
 	return 0;
@@ -372,8 +395,10 @@ int loop_init(struct loop **out, const struct loop_cfg *cfg, struct rig *rig,
 	L->seq.lead = -min_off;
 	L->seq.tail = max_off;
 	read_rig(L);
-	rc = standing(L, err, errsize);
-	if (!rc)
+	/* a live loop plans each segment when a command asks for it, and
+	 * may start outside the limits: a jog brings it back (loop_live.h) */
+	rc = cfg->live ? 0 : standing(L, err, errsize);
+	if (!rc && !cfg->live)
 		rc = cfg->mode == LOOP_MODE_STEP ? plan_step(L, err, errsize) :
 						   plan_continuous(L, err, errsize);
 	if (rc) {
@@ -393,6 +418,7 @@ void loop_free(struct loop *L)
 {
 	STRAND_ASSERT_NOT_RT();
 
+	loop_live_free(L);
 	free(L); /* the block */
 }
 

@@ -9,6 +9,7 @@
 #include "chase.h"
 #include "hal/rt.h"
 
+#include <errno.h>
 #include <time.h>
 
 int64_t STRAND_RT loop_due(const struct loop *L, int64_t k)
@@ -35,6 +36,36 @@ static void STRAND_RT hold(struct loop *L, const mot_q32 *pose)
 
 	for (i = 0; i < L->n; i++)
 		L->val[i] = pose[i];
+}
+
+/* Go-motion: the exposure's first and last tick, its poses there, and
+ * what step mode's EXPOSE counts from (the shutter opening). */
+static void STRAND_RT gomo_exposure(struct loop *L)
+{
+	struct loop_seq *s = &L->seq;
+	uint32_t i;
+
+	if (s->scene_k == s->gomo_first) {
+		for (i = 0; i < L->n; i++)
+			s->gomo_open[i] = L->val[i];
+		s->gomo_open_tick = L->tick;
+		L->step.fired_at = L->tick;
+		L->step.ready_since_fire = false;
+	}
+	if (s->scene_k == s->gomo_last) {
+		for (i = 0; i < L->n; i++)
+			s->gomo_close[i] = L->val[i];
+		s->gomo_close_tick = L->tick;
+		loop_gomo_journal(L);
+	}
+}
+
+int STRAND_RT loop_gomo_go(struct loop *L)
+{
+	if (L->seq.state != LOOP_GOMO_ARMED)
+		return -EAGAIN;
+	loop_gomo_start(L, L->tick);
+	return 0;
 }
 
 /* This tick's setpoints into L->val, moving through the segments. */
@@ -120,19 +151,63 @@ static void STRAND_RT sequence(struct loop *L)
 				hold(L, L->prev);
 				return;
 			}
-			src_eval(L->src, L->step.frame * MOT_Q32_ONE, s->target, &L->sat);
+			if (!L->cfg.shutter) {
+				src_eval(L->src, L->step.frame * MOT_Q32_ONE, s->target, &L->sat);
+			} else if (loop_gomo_plan(L, &bad)) {
+				struct loop_where w = loop_where_out(L, (uint32_t)bad,
+								     move_q2d(s->target[bad]), 0);
+
+				/* strand check refused this: only --force gets here */
+				loop_fail(L, LOOP_END_FAULT, LOOP_CAUSE_LIMIT_POS, &w);
+				s->state = LOOP_ENDED;
+				hold(L, L->prev);
+				return;
+			}
+			/* to the frame's pose, or to where its go-motion runs up */
 			loop_move_plan(L, L->prev, s->target);
 			s->state = LOOP_STEP_MOVE;
 			continue;
 		case LOOP_STEP_SETTLE:
-		case LOOP_STEP_EXPOSE:
+		case LOOP_GOMO_ARMED:
 			hold(L, s->target);
+			return;
+		case LOOP_STEP_EXPOSE:
+			/* where the frame's pose, or its go-motion's run-out, left it */
+			hold(L, L->prev);
+			return;
+		case LOOP_GOMO_RUNUP:
+			/* as a pass's: sample 0 at rest at the ramps' start */
+			if (++s->ru_j < s->ru_ticks) {
+				for (i = 0; i < L->n; i++)
+					L->val[i] = loop_runup_at(L, i, s->ru_j);
+				return;
+			}
+			s->state = LOOP_GOMO_EXPOSE;
+			s->scene_k = s->gomo_first - 1;
+			continue;
+		case LOOP_GOMO_EXPOSE:
+			if (++s->scene_k > s->gomo_last) {
+				s->state = LOOP_GOMO_RUNOUT;
+				continue;
+			}
+			loop_eval_at(L, s->scene_k, L->val);
+			gomo_exposure(L);
+			return;
+		case LOOP_GOMO_RUNOUT:
+			/* to rest, and every edge of the frame out and over */
+			if (loop_rest_step(L) && !loop_pulses_pending(L) && !loop_pulses_active(L))
+				s->state = LOOP_STEP_EXPOSE;
 			return;
 		case LOOP_CUE:
 			hold(L, L->prev);
 			return;
 		case LOOP_ENDED:
 			hold(L, L->prev);
+			return;
+		case LOOP_HOLD:
+		case LOOP_JOG:
+		case LOOP_MOVE:
+			loop_live_sequence(L);
 			return;
 		}
 	}
@@ -188,25 +263,35 @@ static void STRAND_RT outputs(struct loop *L)
 
 /* ---- the tick ---- */
 
-static void STRAND_RT status(struct loop *L)
+void STRAND_RT loop_status_fill(const struct loop *L, struct loop_status *s)
 {
 	const struct loop_result *res = L->res;
+
+	s->tick = L->tick;
+	s->frame = res->last_frame;
+	s->fired = res->frames_fired;
+	s->total = res->total_frames;
+	s->lat_max_ns = res->lat.n ? res->lat.max_ns : 0;
+	s->overruns = res->lat.overruns;
+	s->ferr = res->ferr_worst;
+	s->ferr_out = res->ferr_worst_out;
+	s->state = (uint8_t)L->seq.state;
+	s->end = (uint8_t)res->rep.end;
+}
+
+static void STRAND_RT status(struct loop *L)
+{
 	struct loop_status s;
 
 	if (!L->status)
 		return;
+	if (L->live) {
+		loop_live_status(L);
+		return;
+	}
 	if (L->seq.state != LOOP_ENDED && L->tick % L->cfg.status_every)
 		return;
-	s.tick = L->tick;
-	s.frame = res->last_frame;
-	s.fired = res->frames_fired;
-	s.total = res->total_frames;
-	s.lat_max_ns = res->lat.n ? res->lat.max_ns : 0;
-	s.overruns = res->lat.overruns;
-	s.ferr = res->ferr_worst;
-	s.ferr_out = res->ferr_worst_out;
-	s.state = (uint8_t)L->seq.state;
-	s.end = (uint8_t)res->rep.end;
+	loop_status_fill(L, &s);
 	if (!hal_ring_push(L->status, &s))
 		L->res->status_dropped++;
 }
@@ -225,6 +310,8 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 	loop_inputs(L, now_ns);
 	if (L->seq.state == LOOP_ENDED)
 		goto out;
+	if (L->live)
+		loop_live_commands(L);
 	loop_chase_tick(L, now_ns);
 	req = atomic_load_explicit(&L->safety.stop_req, memory_order_relaxed);
 	if ((req & 3) == 2) {
@@ -263,6 +350,8 @@ bool STRAND_RT loop_tick(struct loop *L, int64_t k, int64_t due_ns, int64_t now_
 	}
 	L->seq.braked = false;
 out:
+	if (L->live)
+		loop_live_tick_end(L);
 	loop_chase_after(L);
 	res->ticks_run = k + 1;
 	status(L);

@@ -28,6 +28,16 @@ void STRAND_RT loop_triggers_off(struct loop *L)
 		hal_dout_commit(L->rig->douts[i], L->tick);
 }
 
+bool STRAND_RT loop_pulses_pending(const struct loop *L)
+{
+	uint32_t i;
+
+	for (i = 0; i < L->rig->ntrig; i++)
+		if (L->trig.pulse[i].pending)
+			return true;
+	return false;
+}
+
 bool STRAND_RT loop_pulses_active(const struct loop *L)
 {
 	uint32_t i;
@@ -62,6 +72,11 @@ static struct journal_rec STRAND_RT *journal_take(struct loop *L, uint32_t i, in
 	rec->ferr = 0;
 	rec->ferr_out = -1;
 	rec->src_frame = loop_chase_frame(L, due);
+	if (jr->mode & JOURNAL_MODE_GOMO) {
+		struct journal_gomo *g = journal_gomo_of(rec, L->n);
+
+		g->open_tick = g->close_tick = -1;
+	}
 	for (k = 0; k < L->n; k++)
 		rec->sp[k] = L->val[k];
 	journal_arm(jr, rec);
@@ -83,6 +98,11 @@ static bool STRAND_RT rise(struct loop *L, uint32_t i, int64_t f, int64_t due)
 			loop_stop(L, LOOP_END_FAULT, LOOP_CAUSE_JOURNAL, &w);
 			return false;
 		}
+	}
+	if (L->cfg.shutter && L->trig.jr && (L->trig.jr->mode & JOURNAL_MODE_GOMO)) {
+		/* its exposure, when that has ended already (a late edge) */
+		pl->rec = pl->armed;
+		loop_gomo_journal(L);
 	}
 	hal_dout_set(L->rig->douts[t->dev], t->line, true);
 	L->trig.dout_dirty[t->dev] = true;
@@ -117,6 +137,60 @@ static bool STRAND_RT play_edges(struct loop *L, int64_t due)
 		}
 	}
 	return any;
+}
+
+void STRAND_RT loop_gomo_journal(struct loop *L)
+{
+	const struct loop_seq *s = &L->seq;
+	uint32_t i, k, n = L->n;
+
+	if (s->gomo_close_tick < 0)
+		return;
+	for (i = 0; i < L->rig->ntrig; i++) {
+		struct journal_rec *r = L->trig.pulse[i].rec;
+		struct journal_gomo *g;
+
+		if (!r)
+			continue;
+		g = journal_gomo_of(r, n);
+		for (k = 0; k < n; k++) {
+			g->sp[k] = s->gomo_open[k];
+			g->sp[n + k] = s->gomo_close[k];
+		}
+		g->open_tick = s->gomo_open_tick;
+		g->close_tick = s->gomo_close_tick;
+		L->trig.pulse[i].rec = NULL;
+	}
+}
+
+/* Go-motion: the edges due at this run tick (loop_gomo_start set them);
+ * true when one rose. */
+static bool STRAND_RT gomo_edges(struct loop *L, int64_t due)
+{
+	bool any = false;
+	uint32_t i;
+
+	for (i = 0; i < L->rig->ntrig; i++) {
+		struct loop_pulse *t = &L->trig.pulse[i];
+
+		if (!t->pending || L->tick != t->edge_k)
+			continue;
+		t->pending = false;
+		if (!rise(L, i, t->next_frame, due))
+			break;
+		any = true;
+	}
+	return any;
+}
+
+/* STEP_SETTLE, settled, go-motion: armed to wait for the word, or the
+ * run-up from the next tick on. */
+static void STRAND_RT gomo_settled(struct loop *L)
+{
+	if (L->cfg.gomo_wait)
+		L->seq.state = LOOP_GOMO_ARMED;
+	else
+		loop_gomo_start(L, L->tick + 1);
 }
 
 /* STEP_SETTLE: true when the frame may be shot (every drive in position
@@ -203,8 +277,13 @@ void STRAND_RT loop_triggers(struct loop *L, int64_t due)
 	}
 	if (L->seq.state == LOOP_PLAY)
 		any = play_edges(L, due);
-	else if (L->seq.state == LOOP_STEP_SETTLE)
+	else if (L->seq.state == LOOP_STEP_SETTLE && L->cfg.shutter && step_settled(L))
+		gomo_settled(L);
+	else if (L->seq.state == LOOP_STEP_SETTLE && !L->cfg.shutter)
 		any = step_settled(L) && step_fire(L, due);
+	else if (L->seq.state == LOOP_GOMO_RUNUP || L->seq.state == LOOP_GOMO_EXPOSE ||
+		 L->seq.state == LOOP_GOMO_RUNOUT)
+		any = gomo_edges(L, due);
 	else if (L->seq.state == LOOP_STEP_EXPOSE)
 		step_exposed(L);
 	for (d = 0; d < r->ndouts; d++) {

@@ -25,13 +25,14 @@ static uint32_t journal_unit(enum src_unit u)
 	return u == SRC_UNIT_TURNS ? JOURNAL_UNIT_TURNS : JOURNAL_UNIT_PLAIN;
 }
 
-static int open_journal(struct play *p, struct play_source *src, char *err, size_t errsize)
+int play_journal_open(struct journal *jr, const char *path, const struct rig *rig,
+		      const struct play_source *src, uint32_t mode, int64_t total,
+		      int64_t wall_ns, char *err, size_t errsize)
 {
 	struct journal_info ji;
 	const char **names;
-	uint32_t *units, i, n = p->rig.nout;
+	uint32_t *units, i, n = rig->nout;
 	double fps = (double)src->timing.num / src->timing.den;
-	int64_t total = loop_result(p->L)->total_frames;
 	int rc;
 
 	names = calloc(n ? n : 1, sizeof(*names));
@@ -43,17 +44,16 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 		return -ENOMEM;
 	}
 	for (i = 0; i < n; i++) {
-		names[i] = p->rig.out[i].channel;
-		units[i] = journal_unit(p->rig.out[i].unit);
+		names[i] = rig->out[i].channel;
+		units[i] = journal_unit(rig->out[i].unit);
 	}
 	memset(&ji, 0, sizeof(ji));
 	ji.scene = src->name;
 	ji.rate_num = src->timing.num;
 	ji.rate_den = src->timing.den;
 	ji.tick_hz = src->timing.tick_hz;
-	ji.mode = (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
-		  (p->extclk ? JOURNAL_MODE_CHASE : 0);
-	ji.start_wall_ns = hal_clock_wall(&p->clk);
+	ji.mode = mode;
+	ji.start_wall_ns = wall_ns;
 	ji.nout = n;
 	ji.out_name = names;
 	ji.out_unit = units;
@@ -62,16 +62,29 @@ static int open_journal(struct play *p, struct play_source *src, char *err, size
 	ji.capacity = total >= 0 ? total : JOURNAL_UNBOUNDED;
 	if (total == 0)
 		ji.capacity = 1;
-	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (p->rig.ntrig ? p->rig.ntrig : 1));
+	ji.ahead = (int64_t)fmax(4096, JOURNAL_AHEAD_S * fps * (rig->ntrig ? rig->ntrig : 1));
 	/* a tick's edges are FIRED after every one of them was armed */
-	ji.behind = p->rig.ntrig ? p->rig.ntrig : 1;
-	rc = journal_open(&p->jr, p->o.journal_path, &ji);
+	ji.behind = rig->ntrig ? rig->ntrig : 1;
+	rc = journal_open(jr, path, &ji);
 	free(names);
 	free(units);
-	if (rc) {
-		snprintf(err, errsize, "journal %s: %s", p->o.journal_path, strerror(-rc));
+	if (rc)
+		snprintf(err, errsize, "journal %s: %s", path, strerror(-rc));
+	return rc;
+}
+
+static int open_journal(struct play *p, struct play_source *src, char *err, size_t errsize)
+{
+	int rc = play_journal_open(&p->jr, p->o.journal_path, &p->rig, src,
+				   (p->o.loop.mode == LOOP_MODE_STEP ? JOURNAL_MODE_STEP : 0) |
+				   (p->extclk ? JOURNAL_MODE_CHASE : 0) |
+				   (p->o.loop.mode == LOOP_MODE_STEP && p->o.loop.shutter ?
+				    JOURNAL_MODE_GOMO : 0),
+				   loop_result(p->L)->total_frames, hal_clock_wall(&p->clk), err,
+				   errsize);
+
+	if (rc)
 		return rc;
-	}
 	p->has_journal = true;
 	return 0;
 }
@@ -349,19 +362,34 @@ static void *rt_main(void *arg)
 	return NULL;
 }
 
+static const char *rig_out_name(const struct rig *r, int32_t i)
+{
+	return i >= 0 && (uint32_t)i < r->nout ? r->out[i].channel : "";
+}
+
+static double rig_out_file_units(const struct rig *r, int32_t i, double v)
+{
+	return i >= 0 && (uint32_t)i < r->nout ? rig_file_units(r->out[i].unit, v) : v;
+}
+
+static const char *rig_out_unit(const struct rig *r, int32_t i)
+{
+	return i >= 0 && (uint32_t)i < r->nout ? rig_unit_name(r->out[i].unit) : "";
+}
+
 static const char *out_name(const struct play *p, int32_t i)
 {
-	return i >= 0 && (uint32_t)i < p->rig.nout ? p->rig.out[i].channel : "";
+	return rig_out_name(&p->rig, i);
 }
 
 static double out_file_units(const struct play *p, int32_t i, double v)
 {
-	return i >= 0 && (uint32_t)i < p->rig.nout ? rig_file_units(p->rig.out[i].unit, v) : v;
+	return rig_out_file_units(&p->rig, i, v);
 }
 
 static const char *out_unit(const struct play *p, int32_t i)
 {
-	return i >= 0 && (uint32_t)i < p->rig.nout ? rig_unit_name(p->rig.out[i].unit) : "";
+	return rig_out_unit(&p->rig, i);
 }
 
 static void telemetry_line(struct play *p, const struct loop_status *s)
@@ -516,22 +544,17 @@ void play_press_estop(struct play *p)
 	atomic_store(&p->press, true);
 }
 
-void play_describe(const struct play *p, char *buf, size_t size)
+void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
+			  const struct loop_result *res, const struct loop_report *r,
+			  const struct lockstep *ls, char *buf, size_t size)
 {
-	play_describe_report(p, &loop_result(p->L)->rep, buf, size);
-}
-
-void play_describe_report(const struct play *p, const struct loop_report *r, char *buf,
-			  size_t size)
-{
-	const struct loop_result *res = loop_result(p->L);
 	int32_t o = r->out;
 	const char *why;
 	int level = 1;
 	char when[96];
 
 	snprintf(when, sizeof(when), "at tick %lld (%.3f s), last frame %lld", (long long)r->tick,
-		 (double)r->tick / p->tm->tick_hz, (long long)r->frame);
+		 (double)r->tick / tm->tick_hz, (long long)r->frame);
 	switch (r->cause) {
 	case LOOP_CAUSE_FINISHED:
 		snprintf(buf, size, "finished: %lld frames fired", (long long)res->frames_fired);
@@ -547,7 +570,10 @@ void play_describe_report(const struct play *p, const struct loop_report *r, cha
 			 when);
 		break;
 	case LOOP_CAUSE_ESTOP:
-		if (r->has_edge)
+		if (!r->device) /* no input's: a live session's e-stop command */
+			snprintf(buf, size, "e-stop (commanded) %s; drives disabled, latched",
+				 when);
+		else if (r->has_edge)
 			snprintf(buf, size, "e-stop: input '%s' (line %d) %s, acted on %.1f us after "
 				 "the edge; drives disabled, latched", r->device ? r->device : "?",
 				 r->channel, when, (r->acted_ns - r->edge_ns) / 1000.0);
@@ -564,23 +590,25 @@ void play_describe_report(const struct play *p, const struct loop_report *r, cha
 		}
 		snprintf(buf, size, "device fault: device '%s' channel %d%s%s%s: %s (%s) %s",
 			 r->device ? r->device : "?", r->channel, o >= 0 ? " (" : "",
-			 out_name(p, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
+			 rig_out_name(rig, o), o >= 0 ? ")" : "", r->what ? r->what : "fault",
 			 strerror(r->code < 0 ? -r->code : r->code), when);
 		break;
 	case LOOP_CAUSE_FERROR:
 	case LOOP_CAUSE_IN_POSITION:
 		snprintf(buf, size, "%s: device '%s' channel %d (%s): %.6g %s beyond the bound %.6g %s %s",
 			 loop_cause_name(r->cause), r->device ? r->device : "?", r->channel,
-			 out_name(p, o), out_file_units(p, o, fabs(r->value)), out_unit(p, o),
-			 out_file_units(p, o, r->bound), out_unit(p, o), when);
+			 rig_out_name(rig, o), rig_out_file_units(rig, o, fabs(r->value)),
+			 rig_out_unit(rig, o), rig_out_file_units(rig, o, r->bound),
+			 rig_out_unit(rig, o), when);
 		break;
 	case LOOP_CAUSE_LIMIT_POS:
 	case LOOP_CAUSE_LIMIT_VEL:
 	case LOOP_CAUSE_LIMIT_ACC:
 		snprintf(buf, size, "%s: %s (device '%s' channel %d): %.6g beyond %.6g %s%s %s",
-			 loop_cause_name(r->cause), out_name(p, o), r->device ? r->device : "?",
-			 r->channel, out_file_units(p, o, r->value), out_file_units(p, o, r->bound),
-			 out_unit(p, o),
+			 loop_cause_name(r->cause), rig_out_name(rig, o),
+			 r->device ? r->device : "?", r->channel,
+			 rig_out_file_units(rig, o, r->value), rig_out_file_units(rig, o, r->bound),
+			 rig_out_unit(rig, o),
 			 r->cause == LOOP_CAUSE_LIMIT_VEL ? "/s" :
 			 r->cause == LOOP_CAUSE_LIMIT_ACC ? "/s^2" : "", when);
 		break;
@@ -606,15 +634,29 @@ void play_describe_report(const struct play *p, const struct loop_report *r, cha
 				 chase_event_name((enum chase_event)r->detail), when);
 		break;
 	case LOOP_CAUSE_BOARD:
-		why = ls_stop_reason(p->ls, &level);
+		why = ls ? ls_stop_reason(ls, &level) : NULL;
 		snprintf(buf, size, "%s; here %s %s", why ? why : "another board stopped",
 			 r->end == LOOP_END_ESTOP || level == 2 ? "every drive disabled at once" :
 			 "every axis brought to rest within its limits", when);
+		break;
+	case LOOP_CAUSE_DISABLE:
+		snprintf(buf, size, "drives disabled %s; every axis brought to rest first", when);
 		break;
 	default:
 		snprintf(buf, size, "ended (%d)", (int)r->end);
 		break;
 	}
+}
+
+void play_describe(const struct play *p, char *buf, size_t size)
+{
+	play_describe_report(p, &loop_result(p->L)->rep, buf, size);
+}
+
+void play_describe_report(const struct play *p, const struct loop_report *r, char *buf,
+			  size_t size)
+{
+	play_report_describe(&p->rig, p->tm, loop_result(p->L), r, p->ls, buf, size);
 }
 
 /* What the chase did: lock, rate, stops and cues, the schedule's phase. */

@@ -139,6 +139,19 @@ void play_describe(const struct play *p, char *buf, size_t size);
 void play_describe_report(const struct play *p, const struct loop_report *r, char *buf,
 			  size_t size);
 
+/* [init] A journal at path for a run on rig of src (mode JOURNAL_MODE_*,
+ * total: the frames it fires, -1 without an end), as strand play opens
+ * its own. 0, or a negative errno with err. */
+int play_journal_open(struct journal *jr, const char *path, const struct rig *rig,
+		      const struct play_source *src, uint32_t mode, int64_t total,
+		      int64_t wall_ns, char *err, size_t errsize);
+
+/* The same for any run of the loop on rig, whose scene has timing tm
+ * (report r of result res; ls: its lockstep, or NULL). */
+void play_report_describe(const struct rig *rig, const struct mot_timing *tm,
+			  const struct loop_result *res, const struct loop_report *r,
+			  const struct lockstep *ls, char *buf, size_t size);
+
 /* A summary of the run (frames, time, latency, following error), with
  * play_describe's line first when `reason`. */
 void play_summary(const struct play *p, FILE *f, bool reason);

@@ -63,6 +63,34 @@ static int given_up(struct modbus_drv *m, int rc)
 	return -ECANCELED;
 }
 
+/*
+ * A start after a stop (a live session enables the drives again for each
+ * run of the loop, whose ticks count from 0 again): nothing of the last
+ * run may carry over. Its disable would keep every update from the drive
+ * (and the I/O thread's, every write), its latched fault fail the new run
+ * at once, its reads' ticks put the next read thousands of ticks off, and
+ * an update or a command left in the slot and the rings be taken as the
+ * new run's. No thread runs here.
+ */
+static void forget_run(struct modbus_drv *m)
+{
+	uint32_t nch = m->ax.nch;
+
+	m->disabled = false;
+	memset(&m->fault, 0, sizeof(m->fault));
+	m->have_actual = false;
+	m->io_disabled = false;
+	m->fault_sent = false;
+	m->have_read = false;
+	m->in_a_row = 0;
+	hal_slot_init(&m->slot, m->slot_buf, (uint32_t)(sizeof(struct mb_update) +
+							nch * sizeof(int64_t)));
+	hal_ring_init(&m->done, m->done_buf, MB_DONE_RING, m->done_size);
+	hal_ring_init(&m->cmd, m->cmd_buf, MB_CMD_RING, sizeof(uint32_t));
+	while (sem_trywait(&m->wake) == 0)
+		;
+}
+
 static int mb_start(struct hal_axis *ax)
 {
 	struct modbus_drv *m = mb_of(ax);
@@ -71,6 +99,7 @@ static int mb_start(struct hal_axis *ax)
 	int rc;
 
 	STRAND_ASSERT_NOT_RT();
+	forget_run(m);
 	m->pending = m->popped; /* no thread yet: the loop's buffer serves */
 	memset(m->pending, 0, m->done_size);
 	rc = given_up(m, 0);

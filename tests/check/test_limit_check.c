@@ -274,6 +274,65 @@ static void test_runup_outside(void **state)
 	unlink(path);
 }
 
+/*
+ * Go-motion (--mode step --shutter): each frame runs up from rest to the
+ * scene's speed where its exposure opens. At 48 deg/s and 100 deg/s^2 a
+ * ramp takes 0.48 s and starts 11.5 deg behind: for frames 0 to 5 that is
+ * behind the min of -1 deg. check names each frame's run-up, play refuses
+ * the run for the same first reason; from frame 6 on check passes it, and
+ * play plays it to its end (its own check at every tick never fires).
+ */
+static void test_gomo_runup_outside(void **state)
+{
+	static const char yaml[] =
+		"timing: {tick_hz: 1000, frame_rate: 24, frames: [0, 24]}\n"
+		"nodes: [{name: a, joint: {type: revolute, axis: z},\n"
+		"         limits: {min: -1, max: 100, velocity: 200, acceleration: 100}}]\n"
+		"strands: [{node: a, interpolation: linear,\n"
+		"           keys: [{frame: 0, angle: 0}, {frame: 24, angle: 48}]}]\n";
+	char path[] = "/tmp/strand-gomo-XXXXXX.yaml", args[300], want[128];
+	struct run chk, ply;
+	int fd = mkstemps(path, 5), f;
+
+	assert_true(fd >= 0);
+	assert_int_equal(write(fd, yaml, strlen(yaml)), (ssize_t)strlen(yaml));
+	close(fd);
+	snprintf(args, sizeof(args), "check --sim %s --mode step --shutter 180 --from 0 --to 10",
+		 path);
+	strand(&chk, args);
+	snprintf(args, sizeof(args), "play %s --sim --clock virtual --no-journal --quiet "
+		 "--mode step --shutter 180 --frames 0..10", path);
+	strand(&ply, args);
+	printf("%s", chk.out);
+	assert_int_equal(chk.rc, STRAND_EXIT_VIOLATION);
+	for (f = 0; f < 7; f++) {
+		snprintf(want, sizeof(want), "a.angle: the go-motion run-up into frame %d starts at ",
+			 f);
+		assert_true(!strstr(chk.out, want) == (f == 6));
+	}
+	/* frame 0: from -0.48 deg (a quarter frame before 0, at the scene's
+	 * speed) back 0.048 deg x 481 / 2 */
+	assert_non_null(strstr(chk.out, "frame 0 starts at -12.02399 deg, beyond limit -1 deg;"));
+	assert_non_null(strstr(chk.out, "frames 0 to 10, 418 ticks\n"));
+	assert_int_equal(ply.rc, STRAND_EXIT_VIOLATION);
+	same_first(&chk, &ply);
+	run_free(&chk);
+	run_free(&ply);
+
+	snprintf(args, sizeof(args), "check --sim %s --mode step --shutter 180 --from 6 --to 24",
+		 path);
+	strand(&chk, args);
+	snprintf(args, sizeof(args), "play %s --sim --clock virtual --no-journal --quiet "
+		 "--mode step --shutter 180 --frames 6..24", path);
+	strand(&ply, args);
+	assert_int_equal(chk.rc, STRAND_EXIT_OK);
+	assert_non_null(strstr(chk.out, ": 0 violations;"));
+	assert_int_equal(ply.rc, STRAND_EXIT_OK);
+	run_free(&chk);
+	run_free(&ply);
+	unlink(path);
+}
+
 /* A rig that stands outside an output's position limits is refused before
  * its first tick, naming the output (exit 7: the rig's state, not the
  * scene's), rather than faulting at tick 0. */
@@ -301,6 +360,7 @@ int main(void)
 		cmocka_unit_test(test_command),
 		cmocka_unit_test(test_output_limits),
 		cmocka_unit_test(test_runup_outside),
+		cmocka_unit_test(test_gomo_runup_outside),
 		cmocka_unit_test(test_stands_outside),
 	};
 

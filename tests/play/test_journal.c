@@ -195,8 +195,8 @@ static void patch(const char *path, off_t at, const void *bytes, size_t n)
 }
 
 /* A journal of version 1 (no byte order or layout in its header, the
- * output names right after the scene's) reads as the same journal of
- * version 2 did. */
+ * output names right after the scene's) and one of version 2 read as the
+ * same journal of version 3 does. */
 static void test_journal_version1(void **state)
 {
 	struct journal_hdr h;
@@ -209,9 +209,21 @@ static void test_journal_version1(void **state)
 	write_small(path, 100);
 	v2 = csv_of(path, &rc, msg, sizeof(msg));
 	assert_int_equal(rc, 0);
+	/* version 2 wrote the same bytes but for the version (version 3 added
+	 * go-motion's records only) */
+	{
+		uint32_t two = 2;
+		char *v;
+
+		patch(path, offsetof(struct journal_hdr, version), &two, sizeof(two));
+		v = csv_of(path, &rc, msg, sizeof(msg));
+		assert_int_equal(rc, 0);
+		assert_string_equal(v, v2);
+		free(v);
+	}
 	/* the same file as version 1 wrote it */
 	assert_int_equal(file_read(path, &h, sizeof(h), 0), 0);
-	assert_int_equal(h.version, JOURNAL_VERSION);
+	assert_int_equal(h.version, 2);
 	assert_int_equal(h.byte_order, JOURNAL_BYTE_ORDER);
 	assert_int_equal(h.capacity, 100);
 	assert_int_equal(file_read(path, out, sizeof(out), offsetof(struct journal_hdr, out)), 0);
@@ -244,8 +256,8 @@ static void test_journal_foreign(void **state)
 		{ "layout", offsetof(struct journal_hdr, layout), 0x87403004,
 		  "a strand journal whose records are laid out otherwise (layout 0x87403004, this "
 		  "build's 0x87403008: another architecture's ABI)" },
-		{ "version 3", offsetof(struct journal_hdr, version), 3,
-		  "a strand journal of version 3; this strand reads versions 1 to 2" },
+		{ "version 4", offsetof(struct journal_hdr, version), 4,
+		  "a strand journal of version 4; this strand reads versions 1 to 3" },
 	};
 	char path[256], msg[512];
 	size_t i;

@@ -7,14 +7,17 @@
  * Random valid scenes (tests/scenegen.c: every joint, free-node, curve and
  * ease kind, rpm strands, cycles, attributes, a camera, spans from a second
  * to a day, 100 Hz to 10 kHz, 24, 25 and 30000/1001 fps, with limits and
- * without; now and then a --from/--to, --ping-pong or --loop run) go
+ * without; now and then a --from/--to, --ping-pong or --loop run, or
+ * go-motion over a few frames: --mode step --shutter ANGLE) go
  * through `strand check --sim` and `strand play --sim --clock virtual`
  * in-process, with the same run options:
  *
  *   check passes   play exits 0, and its journal has every frame of the run
  *                  exactly once, in the run's order, each on the tick of
  *                  FORMULAS section 5 (within a pass, frames are as many
- *                  ticks apart as their trigger ticks are)
+ *                  ticks apart as their trigger ticks are); go-motion's
+ *                  each with its exposure's ticks (plan/gomo.h), the
+ *                  trigger at the first
  *   check rejects  play exits 1 and names the same first violation
  *   check says 8   (saturation) play exits 8 before anything moves
  *
@@ -38,12 +41,14 @@
 #include "cliutil.h"
 #include "load/load.h"
 #include "motion/timing.h"
+#include "plan/gomo.h"
 #include "playutil.h"
 #include "scenegen.h"
 #include "testutil.h"
 
 struct tally {
 	int64_t scenes, played, refused, saturated, frames, ticks;
+	int64_t gomo_played, gomo_refused; /* of them, go-motion runs */
 };
 
 static int64_t env_or(const char *name, int64_t dflt)
@@ -57,6 +62,7 @@ static int64_t env_or(const char *name, int64_t dflt)
 struct order {
 	int64_t from, to, passes;
 	bool ping_pong;
+	mot_q32 shutter; /* go-motion (step mode), 0: none */
 };
 
 static void order_of(struct order *o, const char *run, int64_t first, int64_t last)
@@ -67,6 +73,9 @@ static void order_of(struct order *o, const char *run, int64_t first, int64_t la
 	o->to = last;
 	o->passes = 1;
 	o->ping_pong = strstr(run, "--ping-pong") != NULL;
+	o->shutter = 0;
+	if ((p = strstr(run, "--shutter ")))
+		assert_true(gomo_shutter_of_angle(atof(p + 10), &o->shutter));
 	if ((p = strstr(run, "--from ")))
 		o->from = atoll(p + 7);
 	if ((p = strstr(run, "--to ")))
@@ -119,7 +128,7 @@ static void check_journal(uint64_t seed, const struct scenegen *g, const char *j
 	struct order o;
 	struct pu_csv c;
 	int64_t n, want_frames, prev_f = 0, prev_k = 0;
-	int cf, ct, cs;
+	int cf, ct, cs, co, cc;
 
 	assert_int_equal(mot_timing_init(&tm, g->num, g->den, g->tick_hz), 0);
 	order_of(&o, g->run, g->first, g->last);
@@ -130,6 +139,8 @@ static void check_journal(uint64_t seed, const struct scenegen *g, const char *j
 	cf = pu_csv_col(&c, "frame");
 	ct = pu_csv_col(&c, "tick");
 	cs = pu_csv_col(&c, "state");
+	co = o.shutter ? pu_csv_col(&c, "open_tick") : -1;
+	cc = o.shutter ? pu_csv_col(&c, "close_tick") : -1;
 	if ((int64_t)c.nrows - 1 != want_frames)
 		fail_scene(seed, g, "%u frames in the journal, want %lld", c.nrows - 1,
 			   (long long)want_frames);
@@ -141,6 +152,18 @@ static void check_journal(uint64_t seed, const struct scenegen *g, const char *j
 		if (atoll(row[cf]) != f || strcmp(row[cs], "fired"))
 			fail_scene(seed, g, "journal row %lld: frame %s %s, want frame %lld fired",
 				   (long long)n + 1, row[cf], row[cs], (long long)f);
+		if (o.shutter) {
+			/* step mode: each frame on its own; its exposure the
+			 * window's ticks, the trigger (offset 0) at the first */
+			int64_t k0, k1, open = atoll(row[co]), close = atoll(row[cc]);
+
+			assert_int_equal(gomo_window(&tm, f, o.shutter, &k0, &k1), 0);
+			if (!*row[cc] || close - open != k1 - k0 || k != open)
+				fail_scene(seed, g, "frame %lld: edge at %lld, exposure %s..%s, want "
+					   "%lld ticks from the edge", (long long)f, (long long)k,
+					   row[co], row[cc], (long long)(k1 - k0));
+			starts = true;
+		}
 		if (!starts) {
 			int64_t dk = mot_timing_trigger_tick(&tm, f) -
 				     mot_timing_trigger_tick(&tm, prev_f);
@@ -189,6 +212,7 @@ static void one(uint64_t seed, struct scenegen *g, const char *path, struct tall
 			fail_scene(seed, g, "check passes, play exits %d: %s", ply.rc, ply.err);
 		check_journal(seed, g, journal, t);
 		t->played++;
+		t->gomo_played += strstr(g->run, "--shutter") != NULL;
 		t->ticks += g->ticks;
 		break;
 	case STRAND_EXIT_VIOLATION:
@@ -198,6 +222,7 @@ static void one(uint64_t seed, struct scenegen *g, const char *path, struct tall
 			fail_scene(seed, g, "check rejects (%s), play exits %d: %s", line, ply.rc,
 				   ply.err);
 		t->refused++;
+		t->gomo_refused += strstr(g->run, "--shutter") != NULL;
 		break;
 	case STRAND_EXIT_INTERNAL:
 		if (ply.rc != STRAND_EXIT_INTERNAL || !strstr(chk.err, "saturated"))
@@ -300,6 +325,8 @@ static void test_random_scenes(void **state)
 	       (long long)t.scenes, (long long)seed0, (long long)(seed0 + n - 1),
 	       (long long)t.played, (long long)t.frames, (long long)t.ticks,
 	       (long long)t.refused, (long long)t.saturated);
+	printf("promise: go-motion runs among them: %lld played, %lld refused\n",
+	       (long long)t.gomo_played, (long long)t.gomo_refused);
 	printf("BENCH promise_scenes %lld\nBENCH promise_played %lld\nBENCH promise_refused %lld\n"
 	       "BENCH promise_frames %lld\nBENCH promise_ticks %lld\nBENCH promise_wall_s %.1f\n",
 	       (long long)t.scenes, (long long)t.played, (long long)t.refused,
@@ -308,6 +335,7 @@ static void test_random_scenes(void **state)
 	/* both sides of the promise must have been exercised */
 	assert_true(t.played > n / 10);
 	assert_true(t.refused > n / 20);
+	assert_true(t.gomo_played > n / 100);
 }
 
 int main(void)

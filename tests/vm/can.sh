@@ -33,8 +33,10 @@ wait_playing() {
 	while ! syncs_at_least "$1"; do
 		kill -0 "$2" 2>/dev/null || {
 			wait "$2"
-			fail "strand play ended (exit $?) after $(grep -c ' 080 ' /tmp/bus.log) SYNCs:" \
-				"$(cat "$3")"
+			_rc=$?
+			cat "$3"
+			fail "strand play ended (exit $_rc) after $(grep -c ' 080 ' /tmp/bus.log) SYNCs:" \
+				"$(grep 'strand play:' "$3" | tail -n 1)"
 		}
 		[ "$(uptime_ms)" -lt $_end ] ||
 			fail "only $(grep -c ' 080 ' /tmp/bus.log) SYNCs in 30 s"

@@ -14,12 +14,17 @@
 MAX_LATE_US=$(max_late_us)
 gpio_rig_chip
 bg strand play /scenes/genlock_gen.yaml --journal /tmp/gen.journal --quiet
+gen=$!
 wait_for 5 line_held 0 strand || fail "the generator never holds its trigger line"
 strand play /scenes/gpio_rig.yaml --sim --chase "gpio:$SIM_CHIP:8" --to 50 \
 	--journal /tmp/chase.journal >/tmp/chase.out 2>&1
 rc=$?
 cat /tmp/chase.out
 [ $rc = 0 ] || fail "the chaser exited $rc: $(tail -n 1 /tmp/chase.out)"
+# the generator stops (a controlled stop, then its journal closed) before
+# its journal is read
+kill "$gen"
+wait "$gen"
 cleanup
 strand journal /tmp/gen.journal >/tmp/gen.csv || fail "strand journal (generator) failed"
 strand journal /tmp/chase.journal >/tmp/chase.csv || fail "strand journal (chaser) failed"
