@@ -14,6 +14,17 @@
  * check-cross). */
 static const bool small_kernels = MOT_HAVE_INT128;
 
+/* The kernels' loops over three rows or columns unrolled where they are
+ * inlined (gcc -O2 keeps them loops): each entry's operands at fixed
+ * offsets, no loop counter, and the products of one column free to overlap
+ * the next's (a tenth fewer instructions and cycles per joint); kept loops
+ * where code size is the point (the portable path). */
+#if MOT_HAVE_INT128
+#define UNROLL3 _Pragma("GCC unroll 3")
+#else
+#define UNROLL3
+#endif
+
 static const struct mot_mat mat_id = {
 	{ { ONE, 0, 0 }, { 0, ONE, 0 }, { 0, 0, ONE }, { 0, 0, 0 } },
 };
@@ -727,13 +738,16 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 
 	for (i = 0; i < 3; i++)
 		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
+	UNROLL3
 	for (i = 0; i < 3; i++) {
 		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
 
+	UNROLL3
 		for (j = 0; j < 3; j++)
 			w->m[i][j] = mot_sum3_ov(m0, y[0][j], m1, y[1][j], m2, y[2][j], 0, 32,
 						 small ? &unused : &ov);
 	}
+	UNROLL3
 	for (j = 0; j < 3; j++) {
 		/* at most three products and an addend, then three more from a
 		 * sum that fits (else ov is set already): no wrap goes unseen */
@@ -790,6 +804,7 @@ translate_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	uint64_t ov = 0;
 	unsigned j;
 
+	UNROLL3
 	for (j = 0; j < 3; j++) {
 		mot_acc x = mot_acc_mac(trans_start(y[3][j], small), t[0], y[0][j]);
 
@@ -883,11 +898,13 @@ revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	uint64_t unused = 0;
 	unsigned j;
 
+	UNROLL3
 	for (j = 0; j < 3; j++) {
 		x[a][j] = mot_sum2_ov(c, y[a][j], s, y[b][j], 0, 32, small ? &unused : ov);
 		x[b][j] = mot_sum2_ov(-s, y[a][j], c, y[b][j], 0, 32, small ? &unused : ov);
 		x[o][j] = y[o][j];
 	}
+	UNROLL3
 	for (j = 0; j < 3; j++) {
 		mot_acc u = mot_acc_mac(trans_start(y[3][j], small), p[a], y[a][j]);
 
