@@ -1024,7 +1024,11 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			if (m->fresh) {
 				m->value = v;
 				if (n->kind == MOT_NODE_REVOLUTE) {
+#if MOT_HAVE_INT128
+					struct mot_sc p = mot_sincos_in(v);
+#else
 					struct mot_sc p = mot_sincos_pair(v);
+#endif
 
 					m->s = p.s;
 					m->c = p.c;

@@ -81,20 +81,23 @@ static inline int64_t mulsh(int64_t a, int64_t b, unsigned shift)
 /* ---- sin and cos --------------------------------------------------------- */
 
 #define SIN_N 256 /* table intervals per quarter turn */
-#define SIN_SHIFT 22 /* phase bits below a table point: 2^32 / (4 * SIN_N) */
+
+#if MOT_HAVE_INT128
+/* the table unfolded over the turn: two reads (10 kB where the quarter
+ * wave is 2 kB, for a fifth fewer instructions) */
+const struct mot_trig_turn mot_trig_turn = {
+	mot_trig_sin_turn_q62, MOT_TRIG_RAD_PER_PHASE_Q70, MOT_TRIG_RAD6_PER_PHASE_Q70
+};
+#endif
 
 static inline void sincos_q32(mot_q32 turns, mot_q32 *s, mot_q32 *c)
 {
-	uint32_t phase = (uint32_t)(uint64_t)turns; /* 2^-32 turn; whole turns dropped */
-	uint32_t j = (uint32_t)(phase + (1u << (SIN_SHIFT - 1))) >> SIN_SHIFT; /* 0..1023 */
-	int64_t low = phase & ((1u << SIN_SHIFT) - 1);
-	int64_t d = low - ((low & (1 << (SIN_SHIFT - 1))) << 1); /* from point j: [-2^21, 2^21) */
+	struct mot_sc r;
 #if MOT_HAVE_INT128
-	/* the table unfolded over the turn: two reads (10 kB where the
-	 * quarter wave is 2 kB, for a fifth fewer instructions) */
-	int64_t sa = mot_trig_sin_turn_q62[j & (4 * SIN_N - 1)]; /* sin a, Q62 */
-	int64_t ca = mot_trig_sin_turn_q62[(j & (4 * SIN_N - 1)) + SIN_N]; /* cos a, Q62 */
+	r = mot_sincos_in(turns);
 #else
+	int64_t d;
+	uint32_t j = mot_sincos_point(turns, &d);
 	unsigned quad = j / SIN_N, i = j % SIN_N;
 	int64_t lo = mot_trig_sin_q62[i], hi = mot_trig_sin_q62[SIN_N - i];
 	/* Quadrant by masks, not branches: random angles would mispredict. In
@@ -103,16 +106,11 @@ static inline void sincos_q32(mot_q32 turns, mot_q32 *s, mot_q32 *c)
 	int64_t neg_s = -(int64_t)((quad >> 1) & 1), neg_c = -(int64_t)(((quad + 1) >> 1) & 1);
 	int64_t sa = ((lo ^ swap) ^ neg_s) - neg_s; /* sin a, Q62 */
 	int64_t ca = ((hi ^ swap) ^ neg_c) - neg_c; /* cos a, Q62 */
-#endif
-	int64_t dr = d * MOT_TRIG_RAD_PER_PHASE_Q70; /* delta, rad Q70, < 2^62 */
-	int64_t dr6 = d * MOT_TRIG_RAD6_PER_PHASE_Q70; /* delta/6, rad Q70 */
-	int64_t half_sq = mulsh(dr, dr, 79); /* delta^2/2, Q62 */
-	int64_t cd = ((int64_t)1 << 62) - half_sq; /* cos delta, Q62 */
-	int64_t sd = (dr >> 8) - mulsh(half_sq, dr6, 69); /* sin delta, Q62 */
 
-	/* Q124 sums, one rounding each */
-	*s = mot_acc_round(mot_acc_mac(mot_acc_mul(sa, cd), ca, sd), 92, NULL);
-	*c = mot_acc_round(mot_acc_mac(mot_acc_mul(ca, cd), -sa, sd), 92, NULL);
+	r = mot_sincos_add(sa, ca, d, MOT_TRIG_RAD_PER_PHASE_Q70, MOT_TRIG_RAD6_PER_PHASE_Q70);
+#endif
+	*s = r.s;
+	*c = r.c;
 }
 
 void mot_sincos(mot_q32 turns, mot_q32 *s, mot_q32 *c)

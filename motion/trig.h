@@ -34,6 +34,59 @@ struct mot_sc {
 	mot_q32 s, c;
 };
 struct mot_sc mot_sincos_pair(mot_q32 turns);
+
+/*
+ * The same computation in parts, for trig.c and for an inline copy in a hot
+ * loop (mot_sincos_in): the phase's table point j (0..1023 of a turn) and
+ * its offset d from it (2^-32 turn, in [-2^21, 2^21)), then, from sin a
+ * and cos a of that point (Q62), the angle addition (trig.c says how).
+ */
+static inline uint32_t mot_sincos_point(mot_q32 turns, int64_t *d)
+{
+	uint32_t phase = (uint32_t)(uint64_t)turns; /* 2^-32 turn; whole turns dropped */
+	int64_t low = phase & ((1u << 22) - 1);     /* 2^22 phases a table point */
+
+	*d = low - ((low & (1 << 21)) << 1);
+	return ((uint32_t)(phase + (1u << 21)) >> 22) & 1023;
+}
+
+/* k and k6: 2 pi / 2^32 and that over 6 (rad per phase), Q70 */
+static inline struct mot_sc mot_sincos_add(int64_t sa, int64_t ca, int64_t d, int64_t k,
+					   int64_t k6)
+{
+	int64_t dr = d * k;   /* delta, rad Q70, < 2^62 */
+	int64_t dr6 = d * k6; /* delta/6, rad Q70 */
+	int64_t half_sq = (int64_t)mot_acc_hi(mot_acc_mul(dr, dr)) >> 15; /* delta^2/2, Q62 */
+	int64_t cd = ((int64_t)1 << 62) - half_sq;                        /* cos delta, Q62 */
+	int64_t sd = (dr >> 8) - ((int64_t)mot_acc_hi(mot_acc_mul(half_sq, dr6)) >> 5);
+	struct mot_sc r; /* Q124 sums, one rounding each */
+
+	r.s = mot_acc_round(mot_acc_mac(mot_acc_mul(sa, cd), ca, sd), 92, NULL);
+	r.c = mot_acc_round(mot_acc_mac(mot_acc_mul(ca, cd), -sa, sd), 92, NULL);
+	return r;
+}
+
+#if MOT_HAVE_INT128
+/* What mot_sincos_in() reads: trig.c's table of sin(j/1024 turn), j =
+ * 0..1279 (cos is entry j + 256), and the two constants of
+ * mot_sincos_add(). */
+struct mot_trig_turn {
+	const int64_t *sin;
+	int64_t k, k6;
+};
+extern const struct mot_trig_turn mot_trig_turn;
+
+/* mot_sincos_pair() inline (where 128-bit integers are native): the same
+ * bits without a call in the caller's loop. */
+static inline __attribute__((always_inline)) struct mot_sc mot_sincos_in(mot_q32 turns)
+{
+	int64_t d;
+	uint32_t j = mot_sincos_point(turns, &d);
+
+	return mot_sincos_add(mot_trig_turn.sin[j], mot_trig_turn.sin[j + 256], d,
+			      mot_trig_turn.k, mot_trig_turn.k6);
+}
+#endif
 mot_q32 mot_sin(mot_q32 turns);
 mot_q32 mot_cos(mot_q32 turns);
 
