@@ -260,6 +260,10 @@ static int node_init(struct dbl_scene *sc, uint32_t i, const struct sd_node *sn,
 		else if (!(len > 1e-9) || !dbl_quantize(sn->axis[k] / len, &n->axis[k]))
 			return -1;
 	}
+	n->prow = 0;
+	for (k = 0; k < 3; k++)
+		if (n->pivot[k] != 0)
+			n->prow = n->pivot[(k + 1) % 3] != 0 || n->pivot[(k + 2) % 3] != 0 ? 3 : k;
 	if (!dbl_quantize(sn->rest * scale, &n->rest))
 		return -1;
 	for (k = 0; k < 3; k++) {
@@ -519,12 +523,30 @@ static void translate_world(struct dbl_mat *w, double pos[3], const struct dbl_m
 /* scene.c's revolute_world(): R mixes rows a and b of the parent; with
  * U = P_t + p_a P_a + p_b P_b, pos = U + p_o P_o and W_t = U - p_a W_a - p_b W_b */
 static void revolute_world(struct dbl_mat *w, double pos[3], const struct dbl_mat *par,
-			   unsigned o, const double p[3], double s, double c)
+			   unsigned o, const double p[3], double s, double c, unsigned prow)
 {
 	static const unsigned ab[3][2] = { { 1, 2 }, { 2, 0 }, { 0, 1 } };
 	const unsigned a = ab[o][0], b = ab[o][1];
 	unsigned j;
 
+	if (prow < 3) {
+		/* scene.c's revolute_line(): p = p_k e_k, pos = P_t + p_k P_k and
+		 * W_t = P_t + p_k (P_k - W_k) */
+		for (j = 0; j < 3; j++) {
+			double pa = par->m[a][j], pb = par->m[b][j];
+
+			w->m[a][j] = c * pa + s * pb;
+			w->m[b][j] = c * pb - s * pa;
+			w->m[o][j] = par->m[o][j];
+		}
+		for (j = 0; j < 3; j++) {
+			double pk = par->m[prow][j];
+
+			pos[j] = par->m[3][j] + p[prow] * pk;
+			w->m[3][j] = par->m[3][j] + p[prow] * (pk - w->m[prow][j]);
+		}
+		return;
+	}
 	for (j = 0; j < 3; j++) {
 		double pa = par->m[a][j], pb = par->m[b][j];
 		double wa = c * pa + s * pb, wb = c * pb - s * pa;
@@ -579,7 +601,7 @@ void dbl_scene_eval(const struct dbl_scene *sc, struct dbl_eval *ev, double fram
 			if (still && !m->fresh) {
 				m->moved = false;
 			} else if (n->axis_id != MOT_AXIS_VEC) {
-				revolute_world(w, pos, par, n->axis_id, n->pivot, m->s, m->c);
+				revolute_world(w, pos, par, n->axis_id, n->pivot, m->s, m->c, n->prow);
 			} else {
 				tilted_rot(&local, n, m->s, m->c);
 				node_world(w, pos, par, &local, n->pivot, zero);

@@ -67,6 +67,7 @@ struct dbl_node {
 	double pivot[3], axis[3], rest;
 	int32_t curve, spin, strand;
 	double rot_sq[3], rot_pr[3]; /* tilted axis: struct mot_node's */
+	uint32_t prow; /* struct mot_node_memo's: the pivot's one nonzero component, 3: more */
 };
 
 struct dbl_scene {

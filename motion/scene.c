@@ -207,6 +207,10 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 		off = off && (uint64_t)mot_abs(n->pivot[k]) < SMALL_OFFSET;
 		p1 = add_sat(p1, (uint64_t)mot_abs(n->pivot[k]));
 	}
+	m->prow = 0;
+	for (k = 0; k < 3; k++)
+		if (n->pivot[k])
+			m->prow = n->pivot[(k + 1) % 3] || n->pivot[(k + 2) % 3] ? 3 : k;
 	m->chain = chain && chain <= SMALL_DEPTH && t != UINT64_MAX ? chain + 1 : 0;
 	bt = up ? up->bound : 0;
 	m->small = m->chain && off && bt < SMALL_TRANS;
@@ -883,14 +887,10 @@ static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
 	m->m[b][b] = c;
 }
 
-/* revolute_world() for rows (a, b) and axis row o, constants where it is
- * inlined (one copy per axis: the rows sit at fixed offsets). The rotated
- * rows first, then the translation sums, which read them back: fewer values
- * live at once than column by column, so none is spilled. */
+/* W_lin: rows a and b of the parent turned into each other, row o kept */
 static inline __attribute__((always_inline)) void
-revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
-	      const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3], mot_q32 s,
-	      mot_q32 c, bool small, uint64_t *ov)
+revolute_rows(struct mot_mat *restrict w, const struct mot_mat *restrict par, unsigned o,
+	      mot_q32 s, mot_q32 c, bool small, uint64_t *ov)
 {
 	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
 	const mot_q32(*restrict y)[3] = par->m;
@@ -904,6 +904,23 @@ revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		x[b][j] = mot_sum2_ov(-s, y[a][j], c, y[b][j], 0, 32, small ? &unused : ov);
 		x[o][j] = y[o][j];
 	}
+}
+
+/* revolute_world() for rows (a, b) and axis row o, constants where it is
+ * inlined (one copy per axis: the rows sit at fixed offsets). The rotated
+ * rows first, then the translation sums, which read them back: fewer values
+ * live at once than column by column, so none is spilled. */
+static inline __attribute__((always_inline)) void
+revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
+	      const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3], mot_q32 s,
+	      mot_q32 c, bool small, uint64_t *ov)
+{
+	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
+	const mot_q32(*restrict y)[3] = par->m;
+	mot_q32(*restrict x)[3] = w->m;
+	unsigned j;
+
+	revolute_rows(w, par, o, s, c, small, ov);
 	UNROLL3
 	for (j = 0; j < 3; j++) {
 		mot_acc u = mot_acc_mac(trans_start(y[3][j], small), p[a], y[a][j]);
@@ -913,6 +930,36 @@ revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		pos[j] = trans_end(mot_acc_mac(u, p[o], y[o][j]), y[3][j], small, ov);
 		u = mot_acc_sub(u, mot_acc_mul(p[a], x[a][j]));
 		x[3][j] = trans_end(mot_acc_sub(u, mot_acc_mul(p[b], x[b][j])), y[3][j], small, ov);
+	}
+}
+
+/*
+ * The same for a pivot on one coordinate line, p = p_k e_k (a link along
+ * an axis, the common case of a rig; p = 0 too), in the small case: the
+ * other components' products are exact zeros, and of the sums above only
+ * pos = P_t + p_k P_k and W_t = P_t + p_k (P_k - W_k) remain (W_o = P_o:
+ * 0 for k = o), the difference exact (|entries| below 2^40 raw, the small
+ * case's bound). Two products a column where there were five; the same
+ * bits. k at run time, the axis a constant where inlined.
+ */
+static inline __attribute__((always_inline)) void
+revolute_line(struct mot_mat *restrict w, mot_q32 *restrict pos,
+	      const struct mot_mat *restrict par, unsigned o, unsigned k, mot_q32 pk, mot_q32 s,
+	      mot_q32 c)
+{
+	const mot_q32(*restrict y)[3] = par->m;
+	mot_q32(*restrict x)[3] = w->m;
+	uint64_t unused = 0;
+	unsigned j;
+
+	revolute_rows(w, par, o, s, c, true, &unused);
+	UNROLL3
+	for (j = 0; j < 3; j++) {
+		const mot_q32 yk = y[k][j], yt = y[3][j];
+
+		pos[j] = trans_end(mot_acc_mac(trans_start(yt, true), pk, yk), yt, true, &unused);
+		x[3][j] = trans_end(mot_acc_mac(trans_start(yt, true), pk, yk - x[k][j]), yt, true,
+				    &unused);
 	}
 }
 
@@ -941,12 +988,20 @@ revolute_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_
 
 static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
-			   mot_q32 s, mot_q32 c, bool small, uint32_t *sat)
+			   mot_q32 s, mot_q32 c, bool small, unsigned prow, uint32_t *sat)
 {
-	if (small_kernels && small)
+	if (small_kernels && small && prow < 3) {
+		if (o == MOT_AXIS_X)
+			revolute_line(w, pos, par, MOT_AXIS_X, prow, p[prow], s, c);
+		else if (o == MOT_AXIS_Y)
+			revolute_line(w, pos, par, MOT_AXIS_Y, prow, p[prow], s, c);
+		else
+			revolute_line(w, pos, par, MOT_AXIS_Z, prow, p[prow], s, c);
+	} else if (small_kernels && small) {
 		revolute_in(w, pos, par, o, p, s, c, true, sat);
-	else
+	} else {
 		revolute_in(w, pos, par, o, p, s, c, false, sat);
+	}
 }
 
 /* t = v . axis, the offset of a prismatic joint */
@@ -1056,7 +1111,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		case MOT_NODE_REVOLUTE:
 			if (n->axis_id != MOT_AXIS_VEC)
 				revolute_world(w, *pos, par, n->axis_id, n->pivot, m->s, m->c, small,
-					       &ev->sat);
+					       m->prow, &ev->sat);
 			else
 				tilted_world(w, *pos, par, n, m->s, m->c, small, &ev->sat);
 			break;

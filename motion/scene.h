@@ -128,6 +128,7 @@ struct mot_node_memo {
 	uint32_t small; /* every sum of the node's matrix is known to fit */
 	uint32_t chain; /* 1 + depth under parents that only rotate, 0 else */
 	uint64_t bound; /* bound on |W_t| (raw), UINT64_MAX: none */
+	uint32_t prow;  /* the pivot's one nonzero component (any if none), 3: more */
 };
 
 /* Mutable evaluation state. cursors has mot_eval_cursor_count() entries,

@@ -218,26 +218,47 @@ static void assert_same_pose(const struct mot_scene *sc, const struct mot_pose *
  * ticks in a scrambled order (random access); the shortcuts must be taken,
  * or this tests nothing.
  */
+/* Every pivot of a synthetic scene moved onto a coordinate line (a rig's
+ * links along an axis), every fifth to the origin: the revolute joints'
+ * kernel for a pivot on one line (scene.c's revolute_line()). */
+static void pivots_on_lines(struct synth *sy)
+{
+	uint32_t i, k;
+
+	for (i = 0; i < sy->d.nnodes; i++) {
+		/* synth's own allocation: writable */
+		struct sd_node *nd = (struct sd_node *)&sy->d.nodes[i];
+
+		for (k = 0; k < 3; k++)
+			if (k != i % 3 || i % 5 == 0)
+				nd->pivot[k] = 0;
+	}
+}
+
 static void test_shortcuts(void **state)
 {
 	struct synth sy;
 	uint32_t kind;
 
-	for (kind = 0; kind < 3; kind++) {
+	for (kind = 0; kind < 4; kind++) {
 		struct scene_built b;
 		struct scene_build_err e;
 		struct mot_eval warm, cold, one, other;
 		struct mot_pose pw, pc, shared;
 		const struct mot_timing *t;
-		uint32_t i, kept = 0, small = 0, total = 0, pieces = 0;
+		uint32_t i, kept = 0, small = 0, total = 0, pieces = 0, line = 0;
 		int64_t k, n;
 
 		if (kind == 0)
 			synth_random(&sy, 3, 300, 96);
 		else if (kind == 1)
 			synth_joints(&sy, 5, 300, 96, 0);
-		else
+		else if (kind == 2)
 			synth_joints(&sy, 9, 300, 96, 1u << MOT_INTERP_STEP);
+		else
+			synth_joints(&sy, 13, 300, 96, 0);
+		if (kind == 3)
+			pivots_on_lines(&sy);
 		assert_int_equal(scene_build(&b, &sy.d, &e), 0);
 		t = &b.sc.timing;
 		assert_int_equal(scene_eval_new(&warm, &b.sc), 0);
@@ -247,8 +268,12 @@ static void test_shortcuts(void **state)
 		assert_int_equal(scene_pose_new(&pw, &b.sc), 0);
 		assert_int_equal(scene_pose_new(&pc, &b.sc), 0);
 		assert_int_equal(scene_pose_new(&shared, &b.sc), 0);
-		for (i = 0; i < b.sc.nnodes; i++)
+		for (i = 0; i < b.sc.nnodes; i++) {
 			small += warm.memo[i].small;
+			line += warm.memo[i].small && warm.memo[i].prow < 3 &&
+				b.sc.nodes[i].kind == MOT_NODE_REVOLUTE &&
+				b.sc.nodes[i].axis_id != MOT_AXIS_VEC;
+		}
 		n = mot_timing_trigger_tick(t, 100);
 		for (k = -5; k < n; k += 3) {
 			mot_q32 f = mot_timing_tick_frame(t, k);
@@ -285,6 +310,8 @@ static void test_shortcuts(void **state)
 		/* the small case covers most nodes; the memo keeps some */
 		assert_true(small > b.sc.nnodes / 2 || kind == 0);
 		assert_true(small > 0);
+		/* the pivots on a line take their own kernel */
+		assert_true(kind < 3 || line > b.sc.nnodes / 4);
 		assert_true(kept > total / 50);
 		assert_true(pieces > total / 8);
 		scene_pose_free(&pw);
