@@ -106,10 +106,15 @@ enum mot_aim_src {
  * pose (mot_scene_eval). The results are the same bits either way.
  */
 struct mot_node_memo {
+	/* What both passes read comes first (one cache line where the array
+	 * is aligned to it). */
 	mot_q32 value;  /* the joint value of the node's matrix */
 	mot_q32 s, c;   /* revolute joints: its sine and cosine */
-	uint16_t moved; /* the matrix was made anew in the last evaluation */
-	uint16_t fresh; /* this evaluation's joint value is not `value`'s (scene.c) */
+	uint8_t moved;  /* the matrix was made anew in the last evaluation */
+	uint8_t fresh;  /* this evaluation's joint value is not `value`'s (scene.c) */
+	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
+	uint8_t small;  /* every sum of the node's matrix is known to fit */
+	uint8_t prow;   /* the pivot's one nonzero component (any if none), 3: more */
 	/* A joint's curve between the frames lo (included) and hi (excluded):
 	 * the held value `held` (piece NULL) or the piece `piece` of an
 	 * interpolating curve, evaluated as `how` says, inline where `op`
@@ -124,11 +129,8 @@ struct mot_node_memo {
 	const struct mot_curve_seg *piece;
 	const struct mot_curve *warp;
 	mot_q32 glo, ghi;
-	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
-	uint32_t small; /* every sum of the node's matrix is known to fit */
 	uint32_t chain; /* 1 + depth under parents that only rotate, 0 else */
 	uint64_t bound; /* bound on |W_t| (raw), UINT64_MAX: none */
-	uint32_t prow;  /* the pivot's one nonzero component (any if none), 3: more */
 };
 
 /* Mutable evaluation state. cursors has mot_eval_cursor_count() entries,
