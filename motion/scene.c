@@ -740,13 +740,14 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 	uint64_t ov = 0, unused = 0;
 	unsigned i, j;
 
+	UNROLL3
 	for (i = 0; i < 3; i++)
 		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
 	UNROLL3
 	for (i = 0; i < 3; i++) {
 		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
 
-	UNROLL3
+		UNROLL3
 		for (j = 0; j < 3; j++)
 			w->m[i][j] = mot_sum3_ov(m0, y[0][j], m1, y[1][j], m2, y[2][j], 0, 32,
 						 small ? &unused : &ov);
