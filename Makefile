@@ -56,6 +56,8 @@ layer_dir    = $(if $(wildcard $(1)/.),$(1),firmware/$(1))
 LAYER_DIRS  := $(foreach l,$(LAYERS),$(call layer_dir,$(l)))
 # The view a source file is compiled in: its folder's (mk/layers.sh views).
 VIEWS       := $(BUILD)/inc
+# The fuzzers, their corpora and logs (mk/fuzz.mk and the mk/*.mk of each).
+FUZZ_DIR    := $(BUILD)/fuzz
 view_of      = $(VIEWS)/$(subst /,-,$(patsubst firmware/%,%,$(patsubst %/,%,$(dir $(1)))))
 
 # motion/ is the freestanding core; hal/gpio/gpiod/ is built for the

@@ -50,7 +50,7 @@ $(GPIOD_LIB): $(BUILD)/hal/gpio/gpiod/gpio_line_api.o $(BUILD)/hal/gpio/gpiod/gp
 FW_LIBS += $(GPIOD_LIB) $(shell pkg-config --libs libgpiod 2>/dev/null || echo -lgpiod)
 $(BUILD)/strand $(BUILD)/strand-simdrive: $(GPIOD_LIB)
 $(TEST_BIN): | $(GPIOD_LIB)
-$(BUILD)/fuzz/fuzz_load: | $(GPIOD_LIB)
+$(FUZZ_DIR)/fuzz_load: | $(GPIOD_LIB)
 
 # test_gpio, test_play_gpio and test_rt_plan (a run with a GPIO input
 # thread): the fake chip, ahead of the archive in the link, and a sysfs
