@@ -124,6 +124,9 @@ $(BUILD)/.deps-cross: mk/deps.sh $(BUILD)/.deps-build
 $(BUILD)/.deps-bench: mk/deps.sh $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_BENCH) && touch $@
 deps: $(BUILD)/.deps-build $(BUILD)/.deps-test $(BUILD)/.deps-cross $(BUILD)/.deps-bench
+deps-test: $(BUILD)/.deps-test
+deps-cross: $(BUILD)/.deps-cross
+deps-bench: $(BUILD)/.deps-bench
 
 # ---- the views ---------------------------------------------------------------------
 # Made again when the table or the set of headers changes (the list is
