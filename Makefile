@@ -115,7 +115,9 @@ TEST_COMMON_OBJ := $(TEST_COMMON_SRC:%.c=$(BUILD)/san/%.o)
 all: $(BUILD)/libmotion.a $(BUILD)/strand $(TEST_BIN)
 
 # ---- dependencies ------------------------------------------------------------
-$(BUILD)/.deps-build: mk/deps.sh
+# Asked again when a package list may have changed (a merge that brings a
+# library): every group's stamp comes after this one.
+$(BUILD)/.deps-build: mk/deps.sh Makefile $(wildcard mk/*.mk)
 	$(Q)mkdir -p $(BUILD) && sh mk/deps.sh $(DEB_BUILD) && touch $@
 $(BUILD)/.deps-test: mk/deps.sh $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_TEST) && touch $@
