@@ -23,7 +23,7 @@ FS_SELFTEST = pass:tests/freestanding/good.c \
 # ---- x86_64, general registers only --------------------------------------------
 # -fno-pic: in a position-independent object a const table of pointers is
 # writable data (.data.rel.ro), which would hide real mutable state.
-FS_CFLAGS := $(CORE_CFLAGS) -mgeneral-regs-only -O2 -fno-pic
+FS_CFLAGS = $(CORE_CFLAGS) -mgeneral-regs-only -O2 -fno-pic
 FS_ALLOW  := ^($(MEM_FUNCS))$$
 FS_OBJ    := $(MOTION_SRC:%.c=$(BUILD)/fs/%.o)
 

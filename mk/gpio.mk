@@ -15,7 +15,9 @@
 # tests/hal/test_gpio.c runs the backend over a fake chip (tests/fake/), linked
 # ahead of the archive; the real chip is tested in the VM (mk/vm.mk).
 
-DEB_GPIO  := libgpiod-dev
+# the program links libgpiod: one of DEB_BUILD, so that a fresh machine's
+# `make run` names every package it lacks at once
+DEB_BUILD += libgpiod-dev
 GPIOD_LIB := $(BUILD)/hal/libgpioline.a
 GPIOD_SRC := hal/gpio/gpiod/gpio_line_v1.c hal/gpio/gpiod/gpio_line_v2.c
 GPIOD_HDR := hal/gpio/gpio_line.h
@@ -23,16 +25,12 @@ GPIOD_VIEW := -iquote $(VIEWS)/hal-gpio-gpiod
 
 .PHONY: gpiod-api
 
-$(BUILD)/.deps-gpio: mk/deps.sh $(BUILD)/.deps-build
-	$(Q)sh mk/deps.sh $(DEB_GPIO) && touch $@
-deps: $(BUILD)/.deps-gpio
-
-gpiod-api: | $(BUILD)/.deps-gpio
+gpiod-api: | $(BUILD)/.deps-build
 	$(Q)echo "libgpiod $$(pkg-config --modversion libgpiod): $$(sh mk/gpiod-api.sh --have)," \
 		"compiling $$(sh mk/gpiod-api.sh)"
 
 $(BUILD)/hal/gpio/gpiod/gpio_line_api.o: $(GPIOD_SRC) $(GPIOD_HDR) mk/gpiod-api.sh | \
-		$(BUILD)/.deps-gpio $(VIEWS)/.stamp
+		$(BUILD)/.deps-build $(VIEWS)/.stamp
 	@mkdir -p $(@D)
 	$(Q)src=$$(sh mk/gpiod-api.sh) && \
 		$(CC) $(FW_CFLAGS) $(GPIOD_VIEW) $(OPT) -g $$(pkg-config --cflags libgpiod) -c $$src -o $@
@@ -50,7 +48,7 @@ $(GPIOD_LIB): $(BUILD)/hal/gpio/gpiod/gpio_line_api.o $(BUILD)/hal/gpio/gpiod/gp
 FW_LIBS += $(GPIOD_LIB) $(shell pkg-config --libs libgpiod 2>/dev/null || echo -lgpiod)
 $(BUILD)/strand $(BUILD)/strand-simdrive: $(GPIOD_LIB)
 $(TEST_BIN): | $(GPIOD_LIB)
-$(BUILD)/fuzz/fuzz_load: | $(GPIOD_LIB)
+$(FUZZ_DIR)/fuzz_load: | $(GPIOD_LIB)
 
 # test_gpio, test_play_gpio and test_rt_plan (a run with a GPIO input
 # thread): the fake chip, ahead of the archive in the link, and a sysfs

@@ -37,57 +37,45 @@ blender-fixtures: $(BUILD)/.deps-blender
 # ---- libFuzzer on the readers ---------------------------------------------------------
 FUZZ_IMPORT_SECONDS ?= 6
 FUZZ_IMPORT_CSV_SECONDS ?= 3
-FUZZ_IMPORT_DIR := $(BUILD)/fuzz
 IMPORT_SRC := $(wildcard firmware/import/*.c)
 FUZZ_IMPORT_CFLAGS = $(FUZZ_CFLAGS) $(shell pkg-config --cflags jansson expat)
 
 # the readers compiled once for libFuzzer, then one program per reader from
 # tests/fuzz/fuzz_import.c
-IMPORT_FUZZ_OBJ := $(IMPORT_SRC:%.c=$(FUZZ_IMPORT_DIR)/obj/%.o)
+IMPORT_FUZZ_OBJ := $(IMPORT_SRC:%.c=$(FUZZ_DIR)/obj/%.o)
 
-$(FUZZ_IMPORT_DIR)/obj/%.o: %.c $(wildcard firmware/import/*.h) | $(BUILD)/.deps-fuzz
+$(FUZZ_DIR)/obj/%.o: %.c $(wildcard firmware/import/*.h) | $(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
 	$(Q)clang $(FUZZ_IMPORT_CFLAGS) -c $< -o $@
 
-$(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf $(FUZZ_IMPORT_DIR)/fuzz_csv: \
-		$(FUZZ_IMPORT_DIR)/fuzz_%: tests/fuzz/fuzz_import.c $(IMPORT_FUZZ_OBJ) | \
+$(FUZZ_DIR)/fuzz_gltf $(FUZZ_DIR)/fuzz_urdf $(FUZZ_DIR)/fuzz_csv: \
+		$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_import.c $(IMPORT_FUZZ_OBJ) | \
 		$(BUILD)/.deps-fuzz
 	$(Q)clang $(FUZZ_IMPORT_CFLAGS) -DFUZZ_READER=imp_$* $< $(IMPORT_FUZZ_OBJ) \
 		$(shell pkg-config --libs jansson expat) -lm -o $@
 
 # seeds: the Blender files and the URDF test robots
-$(FUZZ_IMPORT_DIR)/seed-gltf: $(wildcard tests/import/blender/*.gl*)
+$(FUZZ_DIR)/seed-gltf: $(wildcard tests/import/blender/*.gl*)
 	$(Q)rm -rf $@ && mkdir -p $@ && cp tests/import/blender/*.gl* $@/
-$(FUZZ_IMPORT_DIR)/seed-urdf: $(wildcard tests/import/urdf/*.urdf)
+$(FUZZ_DIR)/seed-urdf: $(wildcard tests/import/urdf/*.urdf)
 	$(Q)rm -rf $@ && mkdir -p $@ && cp tests/import/urdf/*.urdf $@/
-$(FUZZ_IMPORT_DIR)/seed-csv: $(wildcard tests/import/csv/*.csv)
+$(FUZZ_DIR)/seed-csv: $(wildcard tests/import/csv/*.csv)
 	$(Q)rm -rf $@ && mkdir -p $@ && cp tests/import/csv/*.csv $@/
 
-define run_fuzz_import
-	$(Q)rm -rf $(FUZZ_IMPORT_DIR)/corpus-$(1) && mkdir -p $(FUZZ_IMPORT_DIR)/corpus-$(1) $(FUZZ_IMPORT_DIR)/crashes && \
-	cp $(FUZZ_IMPORT_DIR)/seed-$(1)/* $(FUZZ_IMPORT_DIR)/corpus-$(1)/ && \
-	$(FUZZ_IMPORT_DIR)/fuzz_$(1) -max_total_time=$(2) -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
-		-print_final_stats=1 -artifact_prefix=$(FUZZ_IMPORT_DIR)/crashes/$(1)- \
-		$(FUZZ_IMPORT_DIR)/corpus-$(1) > $(FUZZ_IMPORT_DIR)/fuzz-$(1).log 2>&1 || \
-		{ tail -n 40 $(FUZZ_IMPORT_DIR)/fuzz-$(1).log; echo "FAIL fuzz $(1): see $(FUZZ_IMPORT_DIR)/fuzz-$(1).log"; exit 1; }
-	$(Q)echo "PASS fuzz $(1) $$(grep -h -o 'stat::number_of_executed_units: *[0-9]*' $(FUZZ_IMPORT_DIR)/fuzz-$(1).log | \
-		grep -o '[0-9]*$$') inputs in $(2) s, no crash, leak or sanitizer report"
-endef
+FUZZ_IMPORT_DEPS := $(FUZZ_DIR)/fuzz_gltf $(FUZZ_DIR)/fuzz_urdf \
+                    $(FUZZ_DIR)/fuzz_csv $(FUZZ_DIR)/seed-gltf \
+                    $(FUZZ_DIR)/seed-urdf $(FUZZ_DIR)/seed-csv
 
-FUZZ_IMPORT_DEPS := $(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf \
-                    $(FUZZ_IMPORT_DIR)/fuzz_csv $(FUZZ_IMPORT_DIR)/seed-gltf \
-                    $(FUZZ_IMPORT_DIR)/seed-urdf $(FUZZ_IMPORT_DIR)/seed-csv
-
-TEST_PREBUILD += $(FUZZ_IMPORT_DIR)/fuzz_gltf $(FUZZ_IMPORT_DIR)/fuzz_urdf $(FUZZ_IMPORT_DIR)/fuzz_csv
+TEST_PREBUILD += $(FUZZ_DIR)/fuzz_gltf $(FUZZ_DIR)/fuzz_urdf $(FUZZ_DIR)/fuzz_csv
 
 fuzz-import: $(FUZZ_IMPORT_DEPS)
-	$(call run_fuzz_import,gltf,$(FUZZ_SECONDS))
-	$(call run_fuzz_import,urdf,$(FUZZ_SECONDS))
-	$(call run_fuzz_import,csv,$(FUZZ_SECONDS))
+	$(call fuzz_run,gltf,$(FUZZ_DIR)/seed-gltf,65536,$(FUZZ_SECONDS))
+	$(call fuzz_run,urdf,$(FUZZ_DIR)/seed-urdf,65536,$(FUZZ_SECONDS))
+	$(call fuzz_run,csv,$(FUZZ_DIR)/seed-csv,65536,$(FUZZ_SECONDS))
 
 fuzz-import-short: $(FUZZ_IMPORT_DEPS)
-	$(call run_fuzz_import,gltf,$(FUZZ_IMPORT_SECONDS))
-	$(call run_fuzz_import,urdf,$(FUZZ_IMPORT_SECONDS))
-	$(call run_fuzz_import,csv,$(FUZZ_IMPORT_CSV_SECONDS))
+	$(call fuzz_run,gltf,$(FUZZ_DIR)/seed-gltf,65536,$(FUZZ_IMPORT_SECONDS))
+	$(call fuzz_run,urdf,$(FUZZ_DIR)/seed-urdf,65536,$(FUZZ_IMPORT_SECONDS))
+	$(call fuzz_run,csv,$(FUZZ_DIR)/seed-csv,65536,$(FUZZ_IMPORT_CSV_SECONDS))
 
 fuzz: fuzz-import

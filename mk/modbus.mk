@@ -13,7 +13,7 @@ FW_CFLAGS   += $(MODBUS_CFLAGS)
 TEST_CFLAGS += $(MODBUS_CFLAGS)
 FW_LIBS     += $(shell pkg-config --libs libmodbus 2>/dev/null || echo -lmodbus)
 # the fuzz build compiles every library folder too (mk/scene.mk)
-$(BUILD)/fuzz/fuzz_load: FUZZ_CFLAGS += $(MODBUS_CFLAGS)
+$(FUZZ_DIR)/fuzz_load: FUZZ_CFLAGS += $(MODBUS_CFLAGS)
 
 # ---- strand-simdrive ----------------------------------------------------------
 # The program (firmware/simdrive/) on the library folders: the scene

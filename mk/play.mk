@@ -15,6 +15,7 @@ DEB_SERVE := curl python3-websockets python3-selenium chromium chromium-driver
 $(BUILD)/.deps-serve: mk/deps.sh $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_SERVE) && touch $@
 .PHONY: check-serve
+deps: $(BUILD)/.deps-serve
 check-serve: $(BUILD)/strand $(BUILD)/strand-simdrive | $(BUILD)/.deps-serve
 	$(Q)/usr/bin/python3 tests/serve/test_serve.py $(BUILD)/strand $(BUILD)/serve-test
 EXTRA_TEST_STEPS += check-serve

@@ -9,30 +9,17 @@
 EXTRA_TEST_STEPS += fuzz-rpc-short
 FUZZ_RPC_SECONDS ?= 6
 
-$(BUILD)/fuzz/fuzz_rpc: tests/fuzz/fuzz_rpc.c firmware/serve/rpc.c $(ALL_HDR) | \
+$(FUZZ_DIR)/fuzz_rpc: tests/fuzz/fuzz_rpc.c firmware/serve/rpc.c $(ALL_HDR) | \
 		$(BUILD)/.deps-fuzz
 	@mkdir -p $(@D)
 	$(Q)clang $(FUZZ_CFLAGS) $(shell pkg-config --cflags jansson) tests/fuzz/fuzz_rpc.c \
 		firmware/serve/rpc.c $(shell pkg-config --libs jansson) -o $@
 
-define run_fuzz_rpc
-	$(Q)rm -rf $(BUILD)/fuzz/corpus-rpc && mkdir -p $(BUILD)/fuzz/corpus-rpc \
-		$(BUILD)/fuzz/crashes && cp tests/fuzz/rpc/* $(BUILD)/fuzz/corpus-rpc/ && \
-	$(BUILD)/fuzz/fuzz_rpc -max_total_time=$(1) -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
-		-print_final_stats=1 -artifact_prefix=$(BUILD)/fuzz/crashes/rpc- \
-		$(BUILD)/fuzz/corpus-rpc > $(BUILD)/fuzz/fuzz-rpc.log 2>&1 || \
-		{ tail -n 40 $(BUILD)/fuzz/fuzz-rpc.log; \
-		  echo "FAIL fuzz rpc: see $(BUILD)/fuzz/fuzz-rpc.log"; exit 1; }
-	$(Q)echo "PASS fuzz rpc $$(grep -h -o 'stat::number_of_executed_units: *[0-9]*' \
-		$(BUILD)/fuzz/fuzz-rpc.log | grep -o '[0-9]*$$') inputs in $(1) s, no crash, \
-		leak or sanitizer report"
-endef
+fuzz-rpc: $(FUZZ_DIR)/fuzz_rpc
+	$(call fuzz_run,rpc,tests/fuzz/rpc,4096,$(FUZZ_SECONDS))
 
-fuzz-rpc: $(BUILD)/fuzz/fuzz_rpc
-	$(call run_fuzz_rpc,$(FUZZ_SECONDS))
-
-fuzz-rpc-short: $(BUILD)/fuzz/fuzz_rpc
-	$(call run_fuzz_rpc,$(FUZZ_RPC_SECONDS))
+fuzz-rpc-short: $(FUZZ_DIR)/fuzz_rpc
+	$(call fuzz_run,rpc,tests/fuzz/rpc,4096,$(FUZZ_RPC_SECONDS))
 
 fuzz: fuzz-rpc
 
@@ -48,4 +35,4 @@ bench-serve: $(BUILD)/strand | $(BUILD)/.deps-serve $(BUILD)/.deps-bench-play
 		$(BUILD)/bench-serve
 
 # built in make test's parallel build (mk/test.mk)
-TEST_PREBUILD += $(BUILD)/fuzz/fuzz_rpc
+TEST_PREBUILD += $(FUZZ_DIR)/fuzz_rpc

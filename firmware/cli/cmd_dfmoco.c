@@ -88,11 +88,6 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	}
 }
 
-static bool is_loopback(const char *addr)
-{
-	return !strcmp(addr, "localhost") || !strncmp(addr, "127.", 4) || !strcmp(addr, "::1");
-}
-
 static volatile sig_atomic_t g_stop;
 
 static void on_signal(int sig)
@@ -118,7 +113,7 @@ static void default_journal(char *buf, size_t size, const char *scene)
 static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE *err)
 {
 	struct cli c;
-	struct sigaction sa, old_int, old_term;
+	struct cli_live_signals sigs;
 	struct dfm_session *s = NULL;
 	struct dfm_port p;
 	struct live *lv = NULL;
@@ -143,7 +138,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 				 "ADDRESS:PORT");
 	if (c.peer && !c.port)
 		return cli_usage(cmd, err, "--peer goes with --listen");
-	if (c.port && !is_loopback(c.addr) && !c.peer) {
+	if (c.port && !cli_is_loopback(c.addr) && !c.peer) {
 		fprintf(err, "strand dfmoco: --listen %s: DFMoco has no authentication; beyond "
 			"loopback give the Dragonframe computer's address with --peer ADDRESS\n",
 			c.addr);
@@ -155,13 +150,9 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		c.o.journal_file = c.journal;
 		c.o.journal_gomo = true;
 	}
-	rc = live_open(&lv, argv[first], &c.o, msg, sizeof(msg));
-	if (rc) {
-		fprintf(err, "%s\n", msg);
-		return rc == -EINVAL || rc == -ERANGE || rc == -EBADMSG ? STRAND_EXIT_SCENE :
-		       rc == -ENOMEM ? STRAND_EXIT_INTERNAL : rc == -ENOENT ? STRAND_EXIT_IO :
-		       STRAND_EXIT_FAULT;
-	}
+	rc = cli_live_open(&lv, argv[first], &c.o, err);
+	if (rc)
+		return rc;
 	rc = c.serial ? dfm_port_serial(&p, c.serial, c.baud, msg, sizeof(msg)) :
 	     c.pty ? dfm_port_pty(&p, c.pty, msg, sizeof(msg)) :
 		     dfm_port_listen(&p, c.addr, c.port, c.peer, msg, sizeof(msg));
@@ -187,15 +178,9 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 		fprintf(err, " %u=%s", i + 1, info[i].channel);
 	fprintf(err, "%s%s\n", c.no_journal ? "" : "; journal ", c.no_journal ? "" : c.journal);
 	g_stop = 0;
-	memset(&sa, 0, sizeof(sa));
-	sa.sa_handler = on_signal;
-	sigemptyset(&sa.sa_mask);
-	sigaction(SIGINT, &sa, &old_int);
-	sigaction(SIGTERM, &sa, &old_term);
-	signal(SIGPIPE, SIG_IGN);
+	cli_live_signals_catch(&sigs, on_signal);
 	rc = dfm_run(s, &p, &g_stop, err);
-	sigaction(SIGINT, &old_int, NULL);
-	sigaction(SIGTERM, &old_term, NULL);
+	cli_live_signals_restore(&sigs);
 	if (rc)
 		fprintf(err, "strand dfmoco: %s: %s\n", p.name, strerror(-rc));
 	dfm_port_close(&p);

@@ -4,7 +4,6 @@
  * browser or any JSON-RPC client (live/live.h, serve/server.h): the
  * options, the token, the signals, the exit codes.
  */
-#include <arpa/inet.h>
 #include <errno.h>
 #include <getopt.h>
 #include <signal.h>
@@ -76,18 +75,6 @@ static int on_opt(void *ctx, int opt, const char *arg)
 	}
 }
 
-static bool is_loopback(const char *addr)
-{
-	struct in_addr a4;
-	struct in6_addr a6;
-
-	if (!strcmp(addr, "localhost"))
-		return true;
-	if (inet_pton(AF_INET, addr, &a4) == 1)
-		return (ntohl(a4.s_addr) >> 24) == 127;
-	return inet_pton(AF_INET6, addr, &a6) == 1 && IN6_IS_ADDR_LOOPBACK(&a6);
-}
-
 /* The token: the file's first line, at least 16 characters. */
 static int read_token(struct cli *c, char *tok, size_t size)
 {
@@ -123,9 +110,9 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 {
 	struct cli c;
 	struct server_opts so;
-	struct sigaction sa, old_int, old_term;
+	struct cli_live_signals sigs;
 	struct live *lv = NULL;
-	char msg[LIVE_MSG], token[256];
+	char token[256];
 	int first, rc;
 
 	memset(&c, 0, sizeof(c));
@@ -142,7 +129,7 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 	memset(&so, 0, sizeof(so));
 	so.addr = c.addr;
 	so.port = c.port;
-	so.loopback = is_loopback(c.addr);
+	so.loopback = cli_is_loopback(c.addr);
 	if (!so.loopback && !c.token_file) {
 		fprintf(err, "strand serve: --listen %s is not a loopback address: a server that "
 			"moves machinery on a network needs --token-file\n", c.addr);
@@ -154,24 +141,14 @@ static int run(const struct cli_cmd *cmd, int argc, char **argv, FILE *out, FILE
 			return rc;
 		so.token = token;
 	}
-	rc = live_open(&lv, argc > first ? argv[first] : NULL, &c.o, msg, sizeof(msg));
-	if (rc) {
-		fprintf(err, "%s\n", msg);
-		return rc == -EINVAL || rc == -ERANGE || rc == -EBADMSG ? STRAND_EXIT_SCENE :
-		       rc == -ENOMEM ? STRAND_EXIT_INTERNAL : rc == -ENOENT ? STRAND_EXIT_IO :
-		       STRAND_EXIT_FAULT;
-	}
+	rc = cli_live_open(&lv, argc > first ? argv[first] : NULL, &c.o, err);
+	if (rc)
+		return rc;
 	g_stop = 0;
-	memset(&sa, 0, sizeof(sa));
-	sa.sa_handler = on_signal;
-	sigemptyset(&sa.sa_mask);
-	sigaction(SIGINT, &sa, &old_int);
-	sigaction(SIGTERM, &sa, &old_term);
-	signal(SIGPIPE, SIG_IGN);
+	cli_live_signals_catch(&sigs, on_signal);
 	rc = server_run(lv, &so, &g_stop, err);
 	live_close(lv);
-	sigaction(SIGINT, &old_int, NULL);
-	sigaction(SIGTERM, &old_term, NULL);
+	cli_live_signals_restore(&sigs);
 	if (rc)
 		return STRAND_EXIT_IO;
 	fprintf(err, "strand serve: stopped; every drive disabled\n");

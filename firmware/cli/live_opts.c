@@ -2,7 +2,12 @@
 /* live_opts.c - the live session's options (see live_opts.h). */
 #include "live_opts.h"
 
+#include <arpa/inet.h>
+#include <errno.h>
+#include <netinet/in.h>
 #include <string.h>
+
+#include "exitcode.h"
 
 void cli_live_defaults(struct live_opts *o)
 {
@@ -57,4 +62,47 @@ int cli_listen_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, char *
 		snprintf(addr, size, "%.*s", (int)(colon - arg), arg);
 	*port = (unsigned)v;
 	return -1;
+}
+
+bool cli_is_loopback(const char *addr)
+{
+	struct in_addr a4;
+	struct in6_addr a6;
+
+	if (!strcmp(addr, "localhost"))
+		return true;
+	if (inet_pton(AF_INET, addr, &a4) == 1)
+		return (ntohl(a4.s_addr) >> 24) == 127;
+	return inet_pton(AF_INET6, addr, &a6) == 1 && IN6_IS_ADDR_LOOPBACK(&a6);
+}
+
+int cli_live_open(struct live **out, const char *scene, const struct live_opts *o, FILE *err)
+{
+	char msg[LIVE_MSG];
+	int rc = live_open(out, scene, o, msg, sizeof(msg));
+
+	if (!rc)
+		return 0;
+	fprintf(err, "%s\n", msg);
+	return rc == -EINVAL || rc == -ERANGE || rc == -EBADMSG ? STRAND_EXIT_SCENE :
+	       rc == -ENOMEM ? STRAND_EXIT_INTERNAL : rc == -ENOENT ? STRAND_EXIT_IO :
+	       STRAND_EXIT_FAULT;
+}
+
+void cli_live_signals_catch(struct cli_live_signals *s, void (*on_signal)(int))
+{
+	struct sigaction sa;
+
+	memset(&sa, 0, sizeof(sa));
+	sa.sa_handler = on_signal;
+	sigemptyset(&sa.sa_mask);
+	sigaction(SIGINT, &sa, &s->old_int);
+	sigaction(SIGTERM, &sa, &s->old_term);
+	signal(SIGPIPE, SIG_IGN);
+}
+
+void cli_live_signals_restore(const struct cli_live_signals *s)
+{
+	sigaction(SIGINT, &s->old_int, NULL);
+	sigaction(SIGTERM, &s->old_term, NULL);
 }

@@ -3,12 +3,15 @@
  * live_opts.h - the options of the commands that run a live session
  * (strand serve, strand dfmoco): where to listen, the clock, the loop
  * thread's scheduling, the jog's dead-man. One table of them and one
- * handler, so that they read and refuse alike in both.
+ * handler, so that they read and refuse alike in both; and what both do
+ * around the session: open it, catch the signals that end it.
  */
 #ifndef STRAND_CLI_LIVE_OPTS_H
 #define STRAND_CLI_LIVE_OPTS_H
 
 #include <getopt.h>
+#include <signal.h>
+#include <stdbool.h>
 #include <stdio.h>
 
 #include "cli.h"
@@ -41,5 +44,21 @@ int cli_live_opt(const struct cli_cmd *cmd, FILE *err, int opt, const char *arg,
  * or the usage error's exit code. */
 int cli_listen_arg(const struct cli_cmd *cmd, FILE *err, const char *arg, char *addr,
 		   size_t size, unsigned *port);
+
+/* ADDR (as --listen gave it, brackets gone) names this machine only:
+ * localhost, 127.0.0.0/8 or ::1. */
+bool cli_is_loopback(const char *addr);
+
+/* [init] live_open() with its message on err: 0, or the exit code of
+ * its error (2 the scene, 4 the file, 7 a device, 8 memory). */
+int cli_live_open(struct live **out, const char *scene, const struct live_opts *o, FILE *err);
+
+/* SIGINT and SIGTERM to on_signal, SIGPIPE ignored (a client that goes
+ * is a write error, not the end); restore puts SIGINT and SIGTERM back. */
+struct cli_live_signals {
+	struct sigaction old_int, old_term;
+};
+void cli_live_signals_catch(struct cli_live_signals *s, void (*on_signal)(int));
+void cli_live_signals_restore(const struct cli_live_signals *s);
 
 #endif /* STRAND_CLI_LIVE_OPTS_H */

@@ -54,9 +54,11 @@ int live_enable(struct live *lv, char *msg, size_t size)
 	return SCENE_LOCKED(lv, enable(lv, msg, size));
 }
 
-static int disable(struct live *lv, char *msg, size_t size)
+/* A command of no arguments to the loop while it runs (disable, stop):
+ * without a loop there is nothing to bring to rest. */
+static int to_running(struct live *lv, enum loop_cmd_kind kind, char *msg, size_t size)
 {
-	struct loop_cmd c = { .kind = LOOP_CMD_DISABLE };
+	struct loop_cmd c = { .kind = kind };
 	struct loop_ack a;
 
 	if (!lv->running)
@@ -66,7 +68,7 @@ static int disable(struct live *lv, char *msg, size_t size)
 
 int live_disable(struct live *lv, char *msg, size_t size)
 {
-	return LOCKED(lv, disable(lv, msg, size));
+	return LOCKED(lv, to_running(lv, LOOP_CMD_DISABLE, msg, size));
 }
 
 static int jog(struct live *lv, uint64_t client, uint32_t out, double speed, uint64_t seq,
@@ -579,19 +581,9 @@ int live_gomo_go(struct live *lv, char *msg, size_t size)
 	return LOCKED(lv, gomo_go(lv, msg, size));
 }
 
-static int stop(struct live *lv, char *msg, size_t size)
-{
-	struct loop_cmd c = { .kind = LOOP_CMD_STOP };
-	struct loop_ack a;
-
-	if (!lv->running)
-		return 0;
-	return live_send(lv, &c, &a, msg, size);
-}
-
 int live_stop(struct live *lv, char *msg, size_t size)
 {
-	return LOCKED(lv, stop(lv, msg, size));
+	return LOCKED(lv, to_running(lv, LOOP_CMD_STOP, msg, size));
 }
 
 void live_estop(struct live *lv)

@@ -130,9 +130,7 @@ static int sections(struct ld *l, yaml_node_t *root)
 	int err;
 
 	l->mk->root = ld_mark_of(root);
-	err = ld_map(l, root, "the scene", top_keys, v);
-	if (!err)
-		err = ld_require(l, root, "the scene", v[T_TIMING], "timing");
+	err = ld_map_req(l, root, "the scene", top_keys, v, YML_REQ(T_TIMING));
 	if (err)
 		return err;
 	l->d->name = "";

@@ -21,11 +21,7 @@ static int attribute(struct ld *l, yaml_node_t *map, struct sd_attr *a,
 	int err;
 
 	cm->at = ld_mark_of(map);
-	err = ld_map(l, map, "attribute", keys, v);
-	if (!err)
-		err = ld_require(l, map, "attribute", v[A_NAME], "name");
-	if (!err)
-		err = ld_require(l, map, "attribute", v[A_KEYS], "keys");
+	err = ld_map_req(l, map, "attribute", keys, v, YML_REQ(A_NAME) | YML_REQ(A_KEYS));
 	if (!err)
 		err = ld_name(l, v[A_NAME], &a->name);
 	if (err)
@@ -49,9 +45,7 @@ static int attribute(struct ld *l, yaml_node_t *map, struct sd_attr *a,
 		struct ld_key_common c;
 
 		marks[i] = ld_mark_of(km);
-		err = ld_map(l, km, "key", key_fields, f);
-		if (!err)
-			err = ld_require(l, km, "key", f[3], "value");
+		err = ld_map_req(l, km, "key", key_fields, f, YML_REQ(3));
 		if (err)
 			return err;
 		c.frame = f[0];

@@ -149,13 +149,7 @@ int ld_boards(struct ld *l, yaml_node_t *seq, yaml_node_t *ls_map, yaml_node_t *
 		yaml_node_t *map = ld_node(l, it[i]), *v[5];
 		long long port = 0;
 
-		err = ld_map(l, map, "board", keys, v);
-		if (!err)
-			err = ld_require(l, map, "board", v[0], "name");
-		if (!err)
-			err = ld_require(l, map, "board", v[1], "address");
-		if (!err)
-			err = ld_require(l, map, "board", v[4], "devices");
+		err = ld_map_req(l, map, "board", keys, v, YML_REQ(0) | YML_REQ(1) | YML_REQ(4));
 		if (!err)
 			err = ld_name(l, v[0], &bd[i].name);
 		if (!err)

@@ -26,9 +26,7 @@ int ld_camera(struct ld *l, yaml_node_t *n)
 	int err;
 
 	l->mk->camera = ld_mark_of(n);
-	err = ld_map(l, n, "camera", keys, v);
-	if (!err)
-		err = ld_require(l, n, "camera", v[C_KEYS], "keys");
+	err = ld_map_req(l, n, "camera", keys, v, YML_REQ(C_KEYS));
 	if (err)
 		return err;
 	o.interp = v[C_INTERP];
@@ -55,11 +53,8 @@ int ld_camera(struct ld *l, yaml_node_t *n)
 		double eye[3], look[3], twist = 0;
 
 		marks[i] = ld_mark_of(map);
-		err = ld_map(l, map, "camera key", key_fields, f);
-		if (!err)
-			err = ld_require(l, map, "camera key", f[F_EYE], "eye");
-		if (!err)
-			err = ld_require(l, map, "camera key", f[F_LOOK], "look_at");
+		err = ld_map_req(l, map, "camera key", key_fields, f,
+				 YML_REQ(F_EYE) | YML_REQ(F_LOOK));
 		if (err)
 			return err;
 		c.frame = f[F_FRAME];

@@ -16,13 +16,8 @@ static int cycle(struct ld *l, yaml_node_t *map, struct sd_cycle *c)
 	long long first, last, skip = 1, fps = 1, start = 0;
 	int mode = MOT_CYCLE_LOOP, err;
 
-	err = ld_map(l, map, "cycle", keys, v);
-	if (!err)
-		err = ld_require(l, map, "cycle", v[Y_NAME], "name");
-	if (!err)
-		err = ld_require(l, map, "cycle", v[Y_FIRST], "first");
-	if (!err)
-		err = ld_require(l, map, "cycle", v[Y_LAST], "last");
+	err = ld_map_req(l, map, "cycle", keys, v,
+			 YML_REQ(Y_NAME) | YML_REQ(Y_FIRST) | YML_REQ(Y_LAST));
 	if (!err)
 		err = ld_name(l, v[Y_NAME], &c->name);
 	if (!err)

@@ -54,11 +54,7 @@ static int joint(struct ld *l, uint32_t i, yaml_node_t *n)
 	yaml_node_t *v[2];
 	int type, axis, err;
 
-	err = ld_map(l, n, "joint", keys, v);
-	if (!err)
-		err = ld_require(l, n, "joint", v[0], "type");
-	if (!err)
-		err = ld_require(l, n, "joint", v[1], "axis");
+	err = ld_map_req(l, n, "joint", keys, v, YML_REQ(0) | YML_REQ(1));
 	if (!err)
 		err = ld_enum(l, v[0], "joint type", types, &type);
 	if (err)
@@ -208,9 +204,7 @@ static int mimic(struct ld *l, uint32_t i, yaml_node_t *n, const yaml_node_t *re
 	char buf[64];
 	int err, m;
 
-	err = ld_map(l, n, "mimic", keys, v);
-	if (!err)
-		err = ld_require(l, n, "mimic", v[0], "joint");
+	err = ld_map_req(l, n, "mimic", keys, v, YML_REQ(0));
 	if (err)
 		return err;
 	if (sn->kind == MOT_NODE_FREE)

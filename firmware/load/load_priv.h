@@ -115,6 +115,12 @@ static inline int ld_map(struct ld *l, yaml_node_t *n, const char *what,
 	return yml_map(&l->y, n, what, names, vals);
 }
 
+static inline int ld_map_req(struct ld *l, yaml_node_t *n, const char *what,
+			     const char *const *names, yaml_node_t **vals, uint32_t required)
+{
+	return yml_map_req(&l->y, n, what, names, vals, required);
+}
+
 static inline int ld_require(struct ld *l, const yaml_node_t *map, const char *what,
 			     const yaml_node_t *v, const char *name)
 {

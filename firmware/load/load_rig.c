@@ -172,10 +172,8 @@ static int ready_output(struct ld *l, yaml_node_t *map, struct rig_device_desc *
 {
 	static const char *const keys[] = { "line", "active_low", NULL };
 	yaml_node_t *v[2];
-	int err = ld_map(l, map, "ready", keys, v);
+	int err = ld_map_req(l, map, "ready", keys, v, YML_REQ(0));
 
-	if (!err)
-		err = ld_require(l, map, "ready", v[0], "line");
 	if (!err)
 		err = line_spec(l, v[0], &dev->ready_line, &dev->ready_line_name);
 	if (!err && v[1])
@@ -553,13 +551,8 @@ static int trigger(struct rl *rl, yaml_node_t *map, struct rig_trigger_desc *t)
 	bool at_offset;
 	int err, dev;
 
-	err = ld_map(l, map, "trigger", keys, v);
-	if (!err)
-		err = ld_require(l, map, "trigger", v[G_NAME], "name");
-	if (!err)
-		err = ld_require(l, map, "trigger", v[G_DEV], "device");
-	if (!err)
-		err = ld_require(l, map, "trigger", v[G_LINE], "line");
+	err = ld_map_req(l, map, "trigger", keys, v,
+			 YML_REQ(G_NAME) | YML_REQ(G_DEV) | YML_REQ(G_LINE));
 	if (!err)
 		err = ld_name(l, v[G_NAME], &t->name);
 	if (!err)
@@ -598,15 +591,8 @@ static int input(struct rl *rl, yaml_node_t *map, struct rig_input_desc *in)
 	yaml_node_t *v[I_N];
 	int err, dev, role;
 
-	err = ld_map(l, map, "input", keys, v);
-	if (!err)
-		err = ld_require(l, map, "input", v[I_NAME], "name");
-	if (!err)
-		err = ld_require(l, map, "input", v[I_DEV], "device");
-	if (!err)
-		err = ld_require(l, map, "input", v[I_LINE], "line");
-	if (!err)
-		err = ld_require(l, map, "input", v[I_ROLE], "role");
+	err = ld_map_req(l, map, "input", keys, v,
+			 YML_REQ(I_NAME) | YML_REQ(I_DEV) | YML_REQ(I_LINE) | YML_REQ(I_ROLE));
 	if (!err)
 		err = ld_name(l, v[I_NAME], &in->name);
 	if (!err)

@@ -213,11 +213,7 @@ static int strand(struct ld *l, yaml_node_t *map)
 	char buf[64];
 	int node, err;
 
-	err = ld_map(l, map, "strand", strand_keys, v);
-	if (!err)
-		err = ld_require(l, map, "strand", v[S_NODE], "node");
-	if (!err)
-		err = ld_require(l, map, "strand", v[S_KEYS], "keys");
+	err = ld_map_req(l, map, "strand", strand_keys, v, YML_REQ(S_NODE) | YML_REQ(S_KEYS));
 	if (err)
 		return err;
 	nn = v[S_NODE];

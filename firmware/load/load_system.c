@@ -407,15 +407,8 @@ static int surface(struct ld *l, yaml_node_t *map, struct sd_surface *s, struct 
 	bool *moved;
 	int basis = MOT_SURFACE_BSPLINE, err;
 
-	err = ld_map(l, map, "surface", keys, v);
-	if (!err)
-		err = ld_require(l, map, "surface", v[S_NAME], "name");
-	if (!err)
-		err = ld_require(l, map, "surface", v[S_CTL], "control");
-	if (!err)
-		err = ld_require(l, map, "surface", v[S_SAMPLES], "samples");
-	if (!err)
-		err = ld_require(l, map, "surface", v[S_KEYS], "keys");
+	err = ld_map_req(l, map, "surface", keys, v,
+			 YML_REQ(S_NAME) | YML_REQ(S_CTL) | YML_REQ(S_SAMPLES) | YML_REQ(S_KEYS));
 	if (!err)
 		err = ld_name(l, v[S_NAME], &s->name);
 	if (!err && v[S_BASIS])
@@ -524,10 +517,8 @@ static int lattice(struct ld *l, yaml_node_t *n, struct sd_particles *p)
 	static const char *const keys[] = { "size", "spacing", "origin", "shear", NULL };
 	yaml_node_t *v[4];
 	uint32_t sz[2];
-	int err = ld_map(l, n, "lattice", keys, v);
+	int err = ld_map_req(l, n, "lattice", keys, v, YML_REQ(0));
 
-	if (!err)
-		err = ld_require(l, n, "lattice", v[0], "size");
 	if (!err)
 		err = pair(l, v[0], SYS_ITEMS_MAX, sz);
 	if (!err && (uint64_t)sz[0] * sz[1] > SYS_ITEMS_MAX)
@@ -564,9 +555,7 @@ static int pins(struct ld *l, yaml_node_t *seq, struct sd_particles *p)
 		yaml_node_t *map = ld_node(l, it[i]), *v[5];
 		uint32_t at[2];
 
-		err = ld_map(l, map, "pin", keys, v);
-		if (!err)
-			err = ld_require(l, map, "pin", v[0], "at");
+		err = ld_map_req(l, map, "pin", keys, v, YML_REQ(0));
 		if (!err)
 			err = pair(l, v[0], SYS_ITEMS_MAX, at);
 		if (!err && (at[0] > p->lu || at[1] > p->lv || !at[0] || !at[1]))
@@ -611,9 +600,7 @@ static int particles(struct ld *l, yaml_node_t *map, struct sd_particles *p,
 	double mass = 1;
 	int motion = MOT_PARTICLES_SCRIPTED, err, k;
 
-	err = ld_map(l, map, "particles", keys, v);
-	if (!err)
-		err = ld_require(l, map, "particles", v[P_NAME], "name");
+	err = ld_map_req(l, map, "particles", keys, v, YML_REQ(P_NAME));
 	if (!err)
 		err = ld_name(l, v[P_NAME], &p->name);
 	if (!err && v[P_MOTION])
@@ -681,11 +668,7 @@ static int particles(struct ld *l, yaml_node_t *map, struct sd_particles *p,
 	if (!err && v[P_PAIRS]) {
 		static const char *const pk[] = { "radius", "strength", NULL };
 
-		err = ld_map(l, v[P_PAIRS], "pairs", pk, w);
-		if (!err)
-			err = ld_require(l, v[P_PAIRS], "pairs", w[0], "radius");
-		if (!err)
-			err = ld_require(l, v[P_PAIRS], "pairs", w[1], "strength");
+		err = ld_map_req(l, v[P_PAIRS], "pairs", pk, w, YML_REQ(0) | YML_REQ(1));
 		if (!err)
 			err = above0(l, w[0], "radius", &p->pair_radius);
 		if (!err)
@@ -698,9 +681,7 @@ static int particles(struct ld *l, yaml_node_t *map, struct sd_particles *p,
 	if (!err && v[P_SPRINGS]) {
 		static const char *const sk[] = { "stiffness", "damping", NULL };
 
-		err = ld_map(l, v[P_SPRINGS], "springs", sk, w);
-		if (!err)
-			err = ld_require(l, v[P_SPRINGS], "springs", w[0], "stiffness");
+		err = ld_map_req(l, v[P_SPRINGS], "springs", sk, w, YML_REQ(0));
 		if (!err)
 			err = above0(l, w[0], "stiffness", &p->spring_k);
 		if (!err && w[1])
@@ -740,15 +721,8 @@ static int flock(struct ld *l, yaml_node_t *map, struct sd_flock *f, struct sd_s
 	long long seed = 1;
 	int err;
 
-	err = ld_map(l, map, "flock", keys, v);
-	if (!err)
-		err = ld_require(l, map, "flock", v[F_NAME], "name");
-	if (!err)
-		err = ld_require(l, map, "flock", v[F_N], "members");
-	if (!err)
-		err = ld_require(l, map, "flock", v[F_SPEED], "speed");
-	if (!err)
-		err = ld_require(l, map, "flock", v[F_ACC], "acceleration");
+	err = ld_map_req(l, map, "flock", keys, v,
+			 YML_REQ(F_NAME) | YML_REQ(F_N) | YML_REQ(F_SPEED) | YML_REQ(F_ACC));
 	if (!err)
 		err = ld_name(l, v[F_NAME], &f->name);
 	if (!err)
@@ -850,11 +824,7 @@ static int flock(struct ld *l, yaml_node_t *map, struct sd_flock *f, struct sd_s
 			static const char *const ok[] = { "centre", "radius", NULL };
 			yaml_node_t *m = ld_node(l, it[i]);
 
-			err = ld_map(l, m, "obstacle", ok, w);
-			if (!err)
-				err = ld_require(l, m, "obstacle", w[0], "centre");
-			if (!err)
-				err = ld_require(l, m, "obstacle", w[1], "radius");
+			err = ld_map_req(l, m, "obstacle", ok, w, YML_REQ(0) | YML_REQ(1));
 			if (!err)
 				err = ld_vec(l, w[0], 3, 1.0, "scene units", ob[i].c);
 			if (!err)
@@ -1035,13 +1005,8 @@ int ld_aims(struct ld *l, yaml_node_t *seq)
 
 		memset(lim, 0, sizeof(lim));
 		l->mk->aim[i] = ld_mark_of(map);
-		err = ld_map(l, map, "aim", keys, v);
-		if (!err)
-			err = ld_require(l, map, "aim", v[A_NAME], "name");
-		if (!err)
-			err = ld_require(l, map, "aim", v[A_AT], "at");
-		if (!err)
-			err = ld_require(l, map, "aim", v[A_TARGET], "target");
+		err = ld_map_req(l, map, "aim", keys, v,
+				 YML_REQ(A_NAME) | YML_REQ(A_AT) | YML_REQ(A_TARGET));
 		if (!err)
 			err = ld_name(l, v[A_NAME], &name);
 		if (!err)

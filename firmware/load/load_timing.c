@@ -59,11 +59,7 @@ int ld_timing(struct ld *l, yaml_node_t *n)
 	int err;
 
 	l->mk->timing = ld_mark_of(n);
-	err = ld_map(l, n, "timing", keys, v);
-	if (!err)
-		err = ld_require(l, n, "timing", v[FRAME_RATE], "frame_rate");
-	if (!err)
-		err = ld_require(l, n, "timing", v[FRAMES], "frames");
+	err = ld_map_req(l, n, "timing", keys, v, YML_REQ(FRAME_RATE) | YML_REQ(FRAMES));
 	if (err)
 		return err;
 	if (v[TICK_HZ]) {

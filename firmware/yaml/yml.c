@@ -204,6 +204,18 @@ int yml_require(struct yml *y, const yaml_node_t *map, const char *what, const y
 	return yml_fail(y, map, -EINVAL, "missing field '%s' in %s", name, what);
 }
 
+int yml_map_req(struct yml *y, yaml_node_t *n, const char *what, const char *const *names,
+		yaml_node_t **vals, uint32_t required)
+{
+	int err = yml_map(y, n, what, names, vals);
+	size_t i;
+
+	for (i = 0; !err && i < 32 && names[i]; i++)
+		if (required & YML_REQ(i))
+			err = yml_require(y, n, what, vals[i], names[i]);
+	return err;
+}
+
 int yml_seq(struct yml *y, yaml_node_t *n, const char *what, yaml_node_item_t **items,
 	    size_t *count)
 {

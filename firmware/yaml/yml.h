@@ -21,6 +21,7 @@
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <yaml.h>
 
 #include "pool.h"
@@ -58,6 +59,17 @@ yaml_node_t *yml_node(struct yml *y, int index);
  */
 int yml_map(struct yml *y, yaml_node_t *n, const char *what, const char *const *names,
 	    yaml_node_t **vals);
+
+/* The keys of `names` a mapping must have, for yml_map_req: a bit per index. */
+#define YML_REQ(i) (UINT32_C(1) << (i))
+
+/*
+ * yml_map(), then yml_require() of each name whose index is set in
+ * `required` (among the first 32), the lowest index first: the first one
+ * missing is the error.
+ */
+int yml_map_req(struct yml *y, yaml_node_t *n, const char *what, const char *const *names,
+		yaml_node_t **vals, uint32_t required);
 
 /* The value of key `name` in mapping map, or NULL (no check of the rest:
  * for a position, once yml_map has read the mapping). */
