@@ -14,7 +14,7 @@
 #include <string.h>
 
 /* Newton start rules and limits: curve_solve.c's */
-enum { START_CHORD, START_CUBE0, START_CUBE1 };
+enum { START_CHORD, START_CUBE0, START_CUBE1, START_INV };
 #define NEWTON_MAX_IT 64
 #define NEWTON_TOL (1.0 / 2147483648.0)     /* 2^-31 */
 #define BISECT_TOL (1.0 / 1125899906842624.0) /* 2^-50 */
@@ -150,9 +150,11 @@ static double power_value(const double *a, uint32_t m, double u)
 	return r * u;
 }
 
-/* frame(u) - fref and its derivative on piece s */
-static void frame_at(const struct dbl_curve *c, const struct dbl_seg *s, double u, double *f,
-		     double *df)
+/* frame(u) - fref and its derivative on piece s (inline in the solve, as the
+ * core's evaluators are, bezier_start() calling it too) */
+static inline __attribute__((always_inline)) void frame_at(const struct dbl_curve *c,
+							   const struct dbl_seg *s, double u,
+							   double *f, double *df)
 {
 	double w[MOT_BEZIER_MAX_KEYS];
 
@@ -168,6 +170,68 @@ static void frame_at(const struct dbl_curve *c, const struct dbl_seg *s, double 
 	bezier_reduce(c, c->frame, u, 2, w);
 	*f = w[0] + (w[1] - w[0]) * u;
 	*df = (double)(c->nkeys - 1) * (w[1] - w[0]);
+}
+
+/* curve_solve.c's mot_cv_bezier_start(): the same table, in the same slots (in doubles
+ * too a Bezier curve's step costs more than the table: 69.5 -> 67.5 ns a joint) */
+static void bezier_start(struct dbl_curve *c)
+{
+	uint32_t m = c->nkeys - 1, nt = 4 * m, i, j;
+	double uk[4 * (MOT_BEZIER_MAX_KEYS - 1) + 1], q[4 * (MOT_BEZIER_MAX_KEYS - 1) + 1];
+	double w, f, df, prev = 0, step;
+
+	frame_at(c, &c->seg[0], 1, &w, &df);
+	if (!(w > 0))
+		return;
+	step = w / nt;
+	uk[0] = 0;
+	uk[nt] = 1;
+	for (i = 1; i < nt; i++) {
+		double lo = prev, hi = 1;
+
+		for (j = 0; j < 40; j++) {
+			double mid = (lo + hi) / 2;
+
+			frame_at(c, &c->seg[0], mid, &f, &df);
+			if (f < step * i)
+				lo = mid;
+			else
+				hi = mid;
+		}
+		uk[i] = prev = lo;
+	}
+	for (i = 0; i <= nt; i++) {
+		frame_at(c, &c->seg[0], uk[i], &f, &df);
+		if (!(df > 0))
+			return;
+		q[i] = step / df;
+		if (q[i] > 3 || (i > 0 && q[i] > 3 * (uk[i] - uk[i - 1])) ||
+		    (i < nt && q[i] > 3 * (uk[i + 1] - uk[i])))
+			return;
+	}
+	for (i = 1; i < nt; i++)
+		c->seg[(i - 1) / 4].us[(i - 1) % 4] = (uint16_t)lround(uk[i] * 32768);
+	for (i = 0; i <= nt; i++) {
+		uint16_t *p = i == nt ? &c->seg[(nt - 1) / 4].us[3] : &c->seg[i / 4].us[4 + i % 4];
+
+		*p = (uint16_t)lround(q[i] * 16384);
+	}
+	c->seg[0].start = START_INV;
+}
+
+/* curve_solve.c's bez_inv62() */
+static double bezier_inv(const struct dbl_curve *c, double t)
+{
+	const struct dbl_seg *sg = c->seg;
+	uint32_t nt = 4 * (c->nkeys - 1), j = t >= 1 ? nt - 1 : (uint32_t)(t * nt);
+	double x = t * nt - j, u0 = j ? sg[(j - 1) / 4].us[(j - 1) % 4] / 32768.0 : 0;
+	double u1 = j + 1 < nt ? sg[j / 4].us[j % 4] / 32768.0 : 1;
+	double m0 = sg[j / 4].us[4 + j % 4] / 16384.0, du = u1 - u0, u;
+	double m1 = (j + 1 < nt ? sg[(j + 1) / 4].us[4 + (j + 1) % 4] : sg[(nt - 1) / 4].us[3]) /
+		    16384.0;
+
+	u = u0 + x * (m0 + x * (3 * du - 2 * m0 - m1 + x * (m0 + m1 - 2 * du)));
+	return u < 0 ? 0 : u > 1 ? 1 : u;
 }
 
 /* frame(u) = fref + d on piece s: curve_solve.c's Newton solve (rtsafe), the same
@@ -233,7 +297,9 @@ static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 
 	s = c->kind == MOT_INTERP_BEZIER ? &c->seg[0] : &c->seg[locate_seg(c, cur, f)];
 	u = frac(f - s->f0, s->inv_w);
-	if (s->start == START_CUBE0)
+	if (s->start == START_INV)
+		u = bezier_inv(c, u);
+	else if (s->start == START_CUBE0)
 		u = cbrt(u);
 	else if (s->start == START_CUBE1)
 		u = 1 - cbrt(1 - u);
@@ -551,6 +617,7 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 		s->start = START_CHORD;
 		s->tol = NEWTON_TOL;
 		prep_power(c);
+		bezier_start(c);
 		return;
 	}
 	if (c->kind >= MOT_INTERP_BSPLINE) {
@@ -563,6 +630,10 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 			struct dbl_seg *s = &c->seg[j];
 
 			s->f1 = j + 1 < c->nseg ? c->seg[j + 1].f0 : c->frame[n - 1];
+			/* the chord start, where the core takes curve_approx.c's
+			 * inv_start(): in doubles its table costs more time than the
+			 * Newton step it saves (make bench-motion: B-spline keys
+			 * 62 -> 69 ns a joint, Beta 65 -> 69) */
 			s->inv_w = s->f1 > s->f0 ? 1 / (s->f1 - s->f0) : 0;
 		}
 		return;

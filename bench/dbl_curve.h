@@ -35,7 +35,10 @@ struct dbl_seg {
 	int start;    /* Newton start rule */
 	double tol;   /* a Newton step below it is the last (curve_approx.c's ntol) */
 	struct dbl_ease ease;
-	double area;  /* integral from frame 0 to key j */
+	union {
+		double area;  /* integral from frame 0 to key j */
+		uint16_t us[8]; /* bezier's START_INV: curve_solve.c's table */
+	};
 };
 
 struct dbl_curve {

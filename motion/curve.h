@@ -149,7 +149,15 @@ struct mot_curve_seg {
 	};
 	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
 	struct mot_ease ease;    /* slow-in/out of key interval j */
-	mot_acc area;            /* integral from frame 0 to key j, value x frames, Q64.64 */
+	union {
+		mot_acc area;    /* integral from frame 0 to key j, value x frames, Q64.64 */
+		/* START_INV (bspline, beta, bezier: no integral): the Newton
+		 * start, a Hermite cubic on each quarter of the chord fraction t,
+		 * from u at t = 1/4, 1/2, 3/4 (Q1.15) and du/dt / 4 at t = 0 .. 1
+		 * (Q2.14) (curve_approx.c); a Bezier curve's table spread over its
+		 * key intervals' entries (curve_solve.c) */
+		uint16_t us[8];
+	};
 };
 
 struct mot_curve {

@@ -93,6 +93,7 @@ int mot_cv_prep_bezier(struct mot_curve *c)
 	struct mot_curve_seg *s = &c->seg[0];
 	int64_t dv = 0;
 	uint32_t i;
+	int err;
 
 	for (i = 1; i < c->nkeys; i++) {
 		int64_t d = k[i].value - k[0].value;
@@ -107,5 +108,8 @@ int mot_cv_prep_bezier(struct mot_curve *c)
 	s->f1 = k[c->nkeys - 1].frame;
 	s->start = START_CHORD;
 	prep_power(c);
-	return mot_recip_init(&s->inv_w, s->f1 - s->f0);
+	err = mot_recip_init(&s->inv_w, s->f1 - s->f0);
+	if (!err)
+		mot_cv_bezier_start(c);
+	return err;
 }

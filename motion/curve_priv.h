@@ -59,6 +59,7 @@ enum {
 	START_CHORD, /* u0 = (f - f0) / (f1 - f0) */
 	START_CUBE0, /* frame(u) = frame(0) + w u^3: u0 ~ cbrt of the chord fraction */
 	START_CUBE1, /* frame(u) = frame(1) - w (1 - u)^3: mirrored */
+	START_INV,   /* u0 = the inverse's Hermite cubics in the chord fraction (seg->us[]) */
 };
 
 /* ---- 128-bit and scaling helpers (curve_poly.c) ------------------------------ */
@@ -277,6 +278,7 @@ int mot_cv_prep_spline(struct mot_curve *c);
 /* Entry 0 of a Bezier curve of two keys or more: scales, frame range, and
  * its power form where that keeps the precision (curve_bezier.c). */
 int mot_cv_prep_bezier(struct mot_curve *c);
+void mot_cv_bezier_start(struct mot_curve *c); /* curve_solve.c */
 
 /* The running integrals of a prepared interpolating curve (curve_integral.c). */
 int mot_cv_prep_area(struct mot_curve *c);

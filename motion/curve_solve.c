@@ -75,6 +75,33 @@ static int64_t cbrt62(int64_t x)
 	return mul62(g, k_third[r]) >> q;
 }
 
+/* The cubic Hermite from u0, u1 (Q6.58) with slopes m0, m1 (Q6.58, in units
+ * of the part) at s in [0, 1] (Q2.62): u0 + s (m0 + s ((3 du - 2 m0 - m1) +
+ * s (m0 + m1 - 2 du))), du = u1 - u0 (|coefficients| < 2^62: mul62 holds
+ * them), clamped to [0, 1] in Q2.62. */
+static int64_t herm62(int64_t u0, int64_t u1, int64_t m0, int64_t m1, int64_t s)
+{
+	int64_t du = u1 - u0, r;
+
+	r = mul62(m0 + m1 - 2 * du, s) + 3 * du - 2 * m0 - m1;
+	r = mul62(r, s) + m0;
+	r = mul62(r, s) + u0;
+	return r <= 0 ? 0 : r >= (int64_t)1 << 58 ? ONE62 : r * 16;
+}
+
+/* The START_INV start of a spline piece at the chord fraction t in [0, 1]:
+ * quarter k's cubic at s = 4 t - k, from Q1.15 and Q2.14. */
+static int64_t inv62(const uint16_t us[8], int64_t t)
+{
+	int64_t k = t >> 60, s;
+
+	k = k > 3 ? 3 : k;
+	s = (t - (k << 60)) * 4;
+	return herm62(k > 0 ? (int64_t)us[k - 1] << 43 : 0,
+		      k < 3 ? (int64_t)us[k] << 43 : (int64_t)1 << 58, (int64_t)us[3 + k] << 44,
+		      (int64_t)us[4 + k] << 44, s);
+}
+
 /* ---- frame(u) and value(u) of a Bezier curve ------------------------------------ */
 
 /* Horner's rule on the power form (curve_bezier.c), a[k - 1] multiplying
@@ -139,6 +166,110 @@ static int64_t bezier_value(const struct mot_curve *c, int64_t u, uint32_t *sat)
 
 	bezier_reduce(c, true, u, 1, w);
 	return value_of(c->keys[0].value, w[0], c->seg[0].vsh, sat);
+}
+
+/*
+ * The Bezier curve's Newton start (START_INV on seg[0]): curve_approx.c's
+ * inv_start() over the whole curve, the chord fraction t cut into
+ * nt = 4 (nkeys - 1) equal parts, each a Hermite cubic of the inverse from u
+ * at its ends (bisection to 2^-20: the table keeps 2^-15) and the slopes
+ * there. Entry p's area holds u at knots 4p + 1 .. 4p + 4 (Q1.15; the last
+ * knot's u is 1, and its slot holds that knot's slope) and the slopes at
+ * knots 4p .. 4p + 3 (Q2.14, in units of the part). A solve takes about two
+ * steps where the chord took four, each step a pass over every key.
+ */
+static void bez_frame_at(const struct mot_curve *c, const int64_t *pw, int64_t u, int64_t *f,
+			 int64_t *df)
+{
+	if (pw)
+		power_frame(pw, c->nkeys - 1, u, f, df);
+	else
+		bezier_frame(c, u, f, df);
+}
+
+static uint16_t *bez_u(struct mot_curve *c, uint32_t i) /* knot i in 1 .. nt - 1 */
+{
+	return &c->seg[(i - 1) / 4].us[(i - 1) % 4];
+}
+
+static uint16_t *bez_m(struct mot_curve *c, uint32_t i, uint32_t nt) /* knot i in 0 .. nt */
+{
+	return i == nt ? &c->seg[(nt - 1) / 4].us[3] : &c->seg[i / 4].us[4 + i % 4];
+}
+
+void mot_cv_bezier_start(struct mot_curve *c)
+{
+	uint32_t m = c->nkeys - 1, nt = 4 * m, i, j;
+	int64_t pw[MOT_BEZIER_MAX_KEYS - 1] = { 0 }, *pp = NULL, w, f, df, prev = 0, step;
+	uint64_t q[4 * (MOT_BEZIER_MAX_KEYS - 1) + 1], r;
+	int64_t uk[4 * (MOT_BEZIER_MAX_KEYS - 1) + 1];
+
+	if (c->nkeys < 2 || c->seg[0].start != START_CHORD)
+		return;
+	if (c->power) {
+		for (j = 0; j < m; j++)
+			pw[j] = *power_slot(c, j);
+		pp = pw;
+	}
+	bez_frame_at(c, pp, ONE62, &w, &df);
+	if (w <= 0)
+		return;
+	step = w / (int64_t)nt;
+	uk[0] = 0;
+	uk[nt] = ONE62;
+	for (i = 1; i < nt; i++) {
+		int64_t lo = prev, hi = ONE62, target = step * (int64_t)i;
+
+		for (j = 0; j < 40; j++) {
+			int64_t mid = lo + (hi - lo) / 2;
+
+			bez_frame_at(c, pp, mid, &f, &df);
+			if (f < target)
+				lo = mid;
+			else
+				hi = mid;
+		}
+		uk[i] = prev = lo;
+	}
+	for (i = 0; i <= nt; i++) {
+		uint32_t sat = 0;
+
+		bez_frame_at(c, pp, uk[i], &f, &df);
+		if (df <= 0)
+			return;
+		/* du/ds = (W / nt) / F' in Q2.62, s the part's own parameter */
+		q[i] = mot_acc_udiv(mot_acc_from(step, 62), (uint64_t)df, &r, &sat);
+		if (sat || q[i] > (uint64_t)3 << 62 ||
+		    (i > 0 && q[i] > 3 * (uint64_t)(uk[i] - uk[i - 1])) ||
+		    (i < nt && q[i] > 3 * (uint64_t)(uk[i + 1] - uk[i])))
+			return;
+	}
+	for (i = 1; i < nt; i++)
+		*bez_u(c, i) = (uint16_t)((uk[i] + ((int64_t)1 << 46)) >> 47);
+	for (i = 0; i <= nt; i++)
+		*bez_m(c, i, nt) = (uint16_t)((q[i] + ((uint64_t)1 << 47)) >> 48);
+	c->seg[0].start = START_INV;
+}
+
+/* The start at the chord fraction t in [0, 1] from that table: part
+ * j = floor(nt t) (t to 32 bits), its cubic at s = nt t - j. */
+static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
+{
+	const struct mot_curve_seg *sg = c->seg;
+	uint32_t nt = 4 * (c->nkeys - 1);
+	uint64_t x = (uint64_t)(t >> 30) * nt;
+	uint32_t j = (uint32_t)(x >> 32);
+	int64_t s = (int64_t)((x & 0xffffffffu) << 30), m1;
+
+	if (j >= nt) {
+		j = nt - 1;
+		s = ONE62;
+	}
+	m1 = (int64_t)(j + 1 < nt ? sg[(j + 1) / 4].us[4 + (j + 1) % 4] : sg[(nt - 1) / 4].us[3])
+	     << 44;
+	return herm62(j ? (int64_t)sg[(j - 1) / 4].us[(j - 1) % 4] << 43 : 0,
+		      j + 1 < nt ? (int64_t)sg[j / 4].us[j % 4] << 43 : (int64_t)1 << 58,
+		      (int64_t)sg[j / 4].us[4 + j % 4] << 44, m1, s);
 }
 
 /* ---- the solve ------------------------------------------------------------------ */
@@ -260,7 +391,9 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 	sv.s = s;
 	sv.d = round_shift(f - s->fref, -s->fsh, NULL);
 	u = frac62(f - s->f0, &s->inv_w);
-	if (s->start == START_CUBE0)
+	if (s->start == START_INV)
+		u = c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
+	else if (s->start == START_CUBE0)
 		u = cbrt62(u);
 	else if (s->start == START_CUBE1)
 		u = ONE62 - cbrt62(ONE62 - u);

@@ -31,6 +31,7 @@
 #define mot_cv_prep_bezier cvp_cv_prep_bezier_
 #define mot_cv_prep_area cvp_cv_prep_area_
 #define mot_cv_approx_eval cvp_cv_approx_eval_
+#define mot_cv_bezier_start cvp_cv_bezier_start_
 #include "curve_portable.h"
 #include "motion/curve.c"
 #include "motion/curve_poly.c"
