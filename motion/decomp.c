@@ -6,6 +6,14 @@
 #include "decomp.h"
 #include "trig.h"
 
+/* Loops of three unrolled where 128-bit integers are native (gcc -O2 keeps
+ * them loops; scene.c's kernels do the same), kept loops elsewhere. */
+#if MOT_HAVE_INT128
+#define UNROLL3 _Pragma("GCC unroll 3")
+#else
+#define UNROLL3
+#endif
+
 /* R . v for a unit row R in Q2.62 and v in Q32.32 (below 2^60), rounded
  * once to Q32.32. */
 static mot_q32 dot62(const int64_t r[3], const mot_q32 v[3])
@@ -148,6 +156,12 @@ int mot_mat_decompose(struct mot_decomp *out, struct mot_mat *rot_mat, const str
 	return MOT_OK;
 }
 
+/* |v| as an unsigned number (exact for every v) */
+static inline uint64_t mag(mot_q32 v)
+{
+	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+}
+
 void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *sat)
 {
 	/*
@@ -163,13 +177,12 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 				   { mot_mul(s[2], h[1], sat), mot_mul(s[2], h[2], sat), s[2] } };
 	int64_t r[3][3];
 	struct mot_mat m;
-	uint64_t ov = 0, big = 0;
+	uint64_t ov = 0, big;
 	int i, j;
 
 	/* every |sh| below 2^62: the OR of their magnitudes is */
-	for (i = 0; i < 3; i++)
-		for (j = 0; j <= i; j++)
-			big |= sh[i][j] < 0 ? 0 - (uint64_t)sh[i][j] : (uint64_t)sh[i][j];
+	big = mag(sh[0][0]) | mag(sh[1][0]) | mag(sh[1][1]) | mag(sh[2][0]) | mag(sh[2][1]) |
+	      mag(sh[2][2]);
 	if (big >= (uint64_t)lim || mot_quat_to_rot_q62(r, &d->rot, sat) != MOT_OK) {
 		struct mot_mat a = { { { sh[0][0], 0, 0 }, { sh[1][0], sh[1][1], 0 },
 				       { sh[2][0], sh[2][1], sh[2][2] }, { 0, 0, 0 } } };
@@ -182,7 +195,9 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 		return;
 	}
 	/* S . H is lower-triangular: row i has i + 1 products (fix.h's kernel,
-	 * the saturating rounding only when an entry does not fit) */
+	 * the saturating rounding only when an entry does not fit); the columns
+	 * unrolled where 128-bit integers are native, as scene.c's kernels */
+	UNROLL3
 	for (j = 0; j < 3; j++) {
 		m.m[0][j] = mot_acc_floor_ov(mot_acc_mac(mot_acc_start(0, 62), sh[0][0], r[0][j]), 62,
 					     &ov);
