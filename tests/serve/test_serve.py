@@ -494,6 +494,11 @@ def browser(port, scene):
         est = d.find_element(By.ID, "estop")
         check(est.is_displayed() and est.location["y"] < 200,
               "browser: on a phone's width the e-stop stays in view")
+        # the rows rebuilt (as an event does) while the rig stands and no new
+        # status comes: they must keep the last status's values
+        v0 = d.execute_script("return loadInfo().then(() => $('v0').textContent)")
+        check(v0.endswith("deg"),
+              "browser: after the e-stop the jog rows still show where the rig stands (%s)" % v0)
         for f in ("serve-desktop.png", "serve-phone.png"):
             screenshot_content(os.path.join(OUT, f), f)
     finally:
