@@ -161,8 +161,20 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
 	const struct mot_curve_seg *s;
 	int64_t u;
 
-	if (!c || !c->plain || !cur)
+	if (!c || !cur)
 		return eval_any(c, cur, frame, sat);
+	if (!c->plain) {
+		/* an approximating curve without eases: eval()'s way to the solve,
+		 * which it ends with, as a tail call (half a random scene's curves) */
+		if (c->kind < MOT_INTERP_BSPLINE || c->span_ease || c->seg_ease || c->compact ||
+		    c->nkeys == 0)
+			return eval_any(c, cur, frame, sat);
+		if (frame <= c->span_f0)
+			return c->keys[0].value;
+		if (frame >= c->span_f1)
+			return c->keys[c->nkeys - 1].value;
+		return mot_cv_approx_eval(c, cur, frame, NULL, sat);
+	}
 	if (frame <= c->span_f0)
 		return c->keys[0].value;
 	if (frame >= c->span_f1)

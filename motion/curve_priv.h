@@ -286,7 +286,7 @@ int mot_cv_prep_area(struct mot_curve *c);
 /* ---- evaluation of the approximating kinds (curve_solve.c) ------------------------- */
 
 /* Value of an approximating curve at a (warped) frame strictly inside the
- * span; *iters: the Newton iterations it took. */
+ * span; *iters (iters may be NULL): the Newton iterations it took. */
 mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f,
 			   int *iters, uint32_t *sat);
 

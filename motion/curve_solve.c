@@ -27,23 +27,23 @@
  * aarch64: a dozen cycles, where a reciprocal by products took two dozen
  * and four times the instructions) and libgcc's elsewhere.
  */
-static bool ratio62(int64_t r, int64_t d, int64_t *q)
+static inline bool ratio62(int64_t r, int64_t d, int64_t *q)
 {
 	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, a, b, x;
-	unsigned lr, ld;
-	int e;
+	int cr, cd, e;
 
 	if (ar == 0) {
 		*q = 0;
 		return true;
 	}
-	/* one count each: mot_clz64()'s two halves cost a branch each here */
-	lr = 64 - (unsigned)__builtin_clzll(ar);
-	ld = 64 - (unsigned)__builtin_clzll((uint64_t)d);
-	a = lr <= 62 ? ar << (62 - lr) : ar >> (lr - 62); /* [2^61, 2^62) */
-	b = ld >= 31 ? (uint64_t)d >> (ld - 31) : (uint64_t)d << (31 - ld); /* [2^30, 2^31) */
-	x = a / b; /* (2^30, 2^32): |r| / d = x 2^(lr - ld - 31) */
-	e = (int)lr - (int)ld + 31;
+	/* both normalised by their leading zeros (d > 0): |r| to [2^61, 2^62),
+	 * its bits below 2^(lr - 62) dropped, and d to [2^30, 2^31) */
+	cr = __builtin_clzll(ar);
+	cd = __builtin_clzll((uint64_t)d);
+	a = (ar << cr) >> 2;
+	b = ((uint64_t)d << cd) >> 33;
+	x = a / b; /* (2^30, 2^32): |r| / d = x 2^(lr - ld - 31), lr = 64 - cr */
+	e = cd - cr + 31;
 	if (e >= 0) {
 		if (e > 31 || x >> (62 - e))
 			return false; /* |q| >= 2^62 */
@@ -105,7 +105,7 @@ static int64_t inv62(const uint16_t us[8], int64_t t)
 /* ---- frame(u) and value(u) of a Bezier curve ------------------------------------ */
 
 /* Horner's rule on the power form (curve_bezier.c), a[k - 1] multiplying
- * u^k: the frame and its derivative, or the value. */
+ * u^k: the frame and its derivative (the value's: mot_cv_approx_eval()). */
 static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int64_t *df)
 {
 	int64_t r = a[m - 1], d = (int64_t)m * a[m - 1];
@@ -117,16 +117,6 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
 	}
 	*f = mul62(r, u);
 	*df = d;
-}
-
-static int64_t power_value(const int64_t *a, uint32_t m, int64_t u)
-{
-	int64_t r = a[m - 1];
-	uint32_t k;
-
-	for (k = m - 1; k >= 1; k--)
-		r = mul62(r, u) + a[k - 1];
-	return mul62(r, u);
 }
 
 /* De Casteljau's algorithm, for the curves the power form would not keep
@@ -274,16 +264,12 @@ static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 
 /* ---- the solve ------------------------------------------------------------------ */
 
-struct solve {
-	const struct mot_curve *c;
-	const struct mot_curve_seg *s;
-	int64_t d;        /* target: frame - fref, scaled by 2^fsh */
-	int it;           /* iterations taken (mot_curve_newton_iterations) */
-	const int64_t *pw; /* bezier in power form: the coefficients, else NULL */
-};
+/* How a solve evaluates the frame: a spline piece's cubic, a Bezier curve
+ * in power form, or by de Casteljau. */
+enum form { FORM_SPLINE, FORM_POWER, FORM_CASTELJAU };
 
 /*
- * Solve frame(u) = f on one piece: safeguarded Newton (rtsafe, Numerical
+ * Solve frame(u) = d on one piece: safeguarded Newton (rtsafe, Numerical
  * Recipes 9.4). The bracket [lo, hi] starts as [0, 1] and shrinks to the
  * evaluated points on either side of the root; a Newton step that leaves it,
  * or that does not halve the step before last, is replaced by bisection. An
@@ -300,29 +286,35 @@ struct solve {
  * bracket is narrower than 2^-50, or after NEWTON_MAX_IT iterations. Random
  * and sequential access therefore give the same u, bit for bit, on every
  * target.
+ *
+ * Inlined once per form with the form a constant, so that an iteration
+ * tests nothing of the curve's kind (the solve is a third of a random
+ * scene's instructions, mostly two iterations each).
  */
-static int64_t solve_u(struct solve *sv, int64_t u)
+static inline __attribute__((always_inline)) int64_t
+solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_seg *s,
+	const int64_t *pw, int64_t d, int64_t u, int *iters)
 {
-	const struct mot_curve_seg *s = sv->s;
-	bool bezier = sv->c->kind == MOT_INTERP_BEZIER;
+	const int64_t tol = (int64_t)1 << (62 - s->ntol);
 	bool lo_known = false, hi_known = false;
 	int64_t lo = 0, hi = ONE62, dx = ONE62, dxold = ONE62;
+	int it;
 
-	for (sv->it = 1; sv->it <= NEWTON_MAX_IT; sv->it++) {
-		int64_t f, df, du = 0, un = 0, tol;
+	for (it = 1; it <= NEWTON_MAX_IT; it++) {
+		int64_t f, df, du = 0, un = 0;
 		bool newton;
 
-		if (sv->pw) {
-			power_frame(sv->pw, sv->c->nkeys - 1, u, &f, &df);
-		} else if (bezier) {
-			bezier_frame(sv->c, u, &f, &df);
+		if (form == FORM_POWER) {
+			power_frame(pw, c->nkeys - 1, u, &f, &df);
+		} else if (form == FORM_CASTELJAU) {
+			bezier_frame(c, u, &f, &df);
 		} else {
 			f = poly_eval(s->fc, u);
 			df = poly_deriv(s->fc, u);
 		}
-		f -= sv->d;
+		f -= d;
 		if (f == 0)
-			return u;
+			break;
 		if (f < 0) {
 			lo = u;
 			lo_known = true;
@@ -331,7 +323,7 @@ static int64_t solve_u(struct solve *sv, int64_t u)
 			hi_known = true;
 		}
 		if (lo >= hi) /* the root lies beyond an end of the piece */
-			return u;
+			break;
 		newton = df > 0 && ratio62(f, df, &du);
 		if (newton) {
 			/* rtsafe's progress test: |du| at most half the step before last */
@@ -351,17 +343,36 @@ static int64_t solve_u(struct solve *sv, int64_t u)
 			dx = u - un;
 			if (dx < 0)
 				dx = -dx;
-			tol = (int64_t)1 << (62 - s->ntol);
+			if (dx <= tol) {
+				u = un;
+				break;
+			}
 		} else {
 			dx = (hi - lo) / 2;
 			un = lo + dx;
-			tol = BISECT_TOL;
+			if (dx <= BISECT_TOL) {
+				u = un;
+				break;
+			}
 		}
-		if (dx <= tol)
-			return un;
 		u = un;
 	}
-	sv->it = NEWTON_MAX_IT;
+	*iters = it > NEWTON_MAX_IT ? NEWTON_MAX_IT : it;
+	return u;
+}
+
+/* The Newton start of piece s at the frame offset x = f - f0, by its rule. */
+static inline __attribute__((always_inline)) int64_t
+start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
+{
+	int64_t u = frac62(x, &s->inv_w);
+
+	if (s->start == START_INV)
+		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
+	if (s->start == START_CUBE0)
+		return cbrt62(u);
+	if (s->start == START_CUBE1)
+		return ONE62 - cbrt62(ONE62 - u);
 	return u;
 }
 
@@ -370,38 +381,40 @@ static int64_t solve_u(struct solve *sv, int64_t u)
 mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f,
 			   int *iters, uint32_t *sat)
 {
+	int unused;
 	const struct mot_curve_seg *s;
-	struct solve sv;
-	int64_t u, pw[2 * (MOT_BEZIER_MAX_KEYS - 1)];
-	uint32_t m = c->nkeys - 1, j;
+	int64_t u, d, r, pw[MOT_BEZIER_MAX_KEYS - 1];
+	const int64_t *fw;
+	uint32_t m, j;
 
-	sv.c = c;
-	sv.pw = NULL;
-	if (c->kind == MOT_INTERP_BEZIER) {
-		s = &c->seg[0];
-		if (c->power) {
-			/* contiguous for the iterations */
-			for (j = 0; j < 2 * m; j++)
-				pw[j] = *power_slot(c, j);
-			sv.pw = pw;
-		}
-	} else {
+	if (!iters)
+		iters = &unused;
+	if (c->kind != MOT_INTERP_BEZIER) {
 		s = &c->seg[locate_seg(c, cur, f)];
+		d = round_shift(f - s->fref, -s->fsh, NULL);
+		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), iters);
+		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 	}
-	sv.s = s;
-	sv.d = round_shift(f - s->fref, -s->fsh, NULL);
-	u = frac62(f - s->f0, &s->inv_w);
-	if (s->start == START_INV)
-		u = c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
-	else if (s->start == START_CUBE0)
-		u = cbrt62(u);
-	else if (s->start == START_CUBE1)
-		u = ONE62 - cbrt62(ONE62 - u);
-	u = solve_u(&sv, u);
-	*iters = sv.it;
-	if (sv.pw)
-		return value_of(s->vref, power_value(pw + m, m, u), s->vsh, sat);
-	if (c->kind == MOT_INTERP_BEZIER)
+	s = &c->seg[0];
+	d = round_shift(f - s->fref, -s->fsh, NULL);
+	u = start_u(c, s, f - s->f0);
+	if (!c->power) {
+		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, iters);
 		return bezier_value(c, u, sat);
-	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+	}
+	/* the frame's coefficients are power_slot(c, 0 .. m - 1): the first
+	 * entry's c[] holds up to four of them in a row, read in place */
+	m = c->nkeys - 1;
+	fw = s->c;
+	if (m > 4) {
+		for (j = 0; j < m; j++)
+			pw[j] = *power_slot(c, j);
+		fw = pw;
+	}
+	u = solve_u(FORM_POWER, c, s, fw, d, u, iters);
+	/* the value's, power_frame()'s Horner without the derivative */
+	r = *power_slot(c, 2 * m - 1);
+	for (j = m - 1; j >= 1; j--)
+		r = mul62(r, u) + *power_slot(c, m + j - 1);
+	return value_of(s->vref, mul62(r, u), s->vsh, sat);
 }
