@@ -407,6 +407,22 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 	}
 	sincos_fine(mot_acc_mul(t, s->theta), &sn, &cs);
 	{
+		/* mot_sum_prod()'s kernel for two products, inline: the same bits,
+		 * and its saturating path only when a sum does not fit */
+		uint64_t ov = 0;
+		struct mot_quat q = {
+			mot_sum2_ov(s->a.w, cs, s->c.w, sn, 0, MOT_Q32_FRAC, &ov),
+			mot_sum2_ov(s->a.x, cs, s->c.x, sn, 0, MOT_Q32_FRAC, &ov),
+			mot_sum2_ov(s->a.y, cs, s->c.y, sn, 0, MOT_Q32_FRAC, &ov),
+			mot_sum2_ov(s->a.z, cs, s->c.z, sn, 0, MOT_Q32_FRAC, &ov),
+		};
+
+		if (!ov) {
+			*out = q;
+			return;
+		}
+	}
+	{
 		const mot_q32 l[8] = { s->a.w, s->c.w, s->a.x, s->c.x,
 				       s->a.y, s->c.y, s->a.z, s->c.z };
 		const mot_q32 r[2] = { cs, sn };
@@ -417,11 +433,122 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 	}
 }
 
+/* Loops over the four components unrolled where 128-bit integers are native
+ * (gcc -O2 keeps them loops, its operands on the stack), as decomp.c's and
+ * scene.c's kernels; kept loops elsewhere. */
+#if MOT_HAVE_INT128
+#define UNROLL4 _Pragma("GCC unroll 4")
+#else
+#define UNROLL4
+#endif
+
+/* round(x / 2^shift) for a sum known to fit: mot_acc_round()'s bits without
+ * its test */
+static inline int64_t round_fits(mot_acc x, unsigned shift)
+{
+	uint64_t ov = 0;
+
+	return mot_acc_round_ov(x, shift, &ov);
+}
+
+static inline uint64_t mag(mot_q32 v)
+{
+	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+}
+
+/*
+ * One slerp for components below 2 in magnitude (every unit quaternion):
+ * the arc of mot_slerp_prepare(), the same d and u bit for bit, but no unit
+ * c. The in-between is
+ *     a cos(t theta) + u k,  k = sin(t theta) / |u|,
+ * which is a cos + c sin with c = u / |u| and needs one division where
+ * normalising u took a reciprocal square root, its Newton step and twelve
+ * products. k is kept in Q2.62: its relative error (that of |u|, rounded
+ * once, and the quotient's, 2^-63) times |u k| <= 1 stays below half an
+ * LSB, and the sine's absolute error is not divided by |u|: u k carries it
+ * times |u| / |u|. Nearly equal keys take nlerp, as prepare does. False,
+ * nothing written, when a component is too large or k does not fit (k >= 2,
+ * only for quaternions far from unit): the caller then prepares.
+ *
+ * Bounds: with |a_i|, |b_i| < 2 the dot products are below 2^68, |d| < 16,
+ * u below 2^42 and |u|^2 below 2^86, the last sum below 2^106: no sum wraps
+ * and every rounded value fits.
+ */
+static bool slerp_once(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
+		       mot_q32 t, uint32_t *sat)
+{
+	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
+	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, theta, sn, cs;
+	uint64_t big = 0;
+	uint32_t local = 0;
+	mot_acc n;
+	int64_t k62;
+	int i;
+
+	UNROLL4
+	for (i = 0; i < 4; i++)
+		big |= mag(av[i]) | mag(bv[i]);
+	if (big >= (uint64_t)1 << 33)
+		return false;
+	n = mot_acc_zero();
+	UNROLL4
+	for (i = 0; i < 4; i++)
+		n = mot_acc_mac(n, av[i], bv[i]);
+	d = round_fits(n, MOT_Q32_FRAC);
+	if (d < 0) {
+		UNROLL4
+		for (i = 0; i < 4; i++)
+			bv[i] = -bv[i];
+		d = -d;
+	}
+	if (t <= 0 || t >= ONE) {
+		if ((t < 0 || t > ONE) && sat)
+			*sat |= MOT_SAT_DOMAIN;
+		*out = t <= 0 ? *a : (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
+		return true;
+	}
+	/* prepare's two passes of u = b - d a, the same roundings */
+	n = mot_acc_zero();
+	UNROLL4
+	for (i = 0; i < 4; i++) {
+		u[i] = bv[i] + round_fits(mot_acc_mul(av[i], -d), MOT_Q32_FRAC);
+		n = mot_acc_mac(n, av[i], u[i]);
+	}
+	k = round_fits(n, MOT_Q32_FRAC);
+	d += k;
+	n = mot_acc_zero();
+	UNROLL4
+	for (i = 0; i < 4; i++) {
+		u[i] += round_fits(mot_acc_mul(av[i], -k), MOT_Q32_FRAC);
+		n = mot_acc_mac(n, u[i], u[i]);
+	}
+	len = (mot_q32)mot_isqrt_acc(n, NULL);
+	if (len < SLERP_NLERP_SIN) {
+		const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
+
+		quat_lerp(out, a, &bb, t, sat);
+		return true;
+	}
+	theta = mot_atan2(len, d);
+	sincos_fine(mot_acc_mul(t, theta), &sn, &cs);
+	k62 = mot_muldiv(sn, (int64_t)1 << 62, len, &local);
+	if (local)
+		return false;
+	cs *= (mot_q32)1 << 30; /* Q2.62, |cs| <= 1 */
+	UNROLL4
+	for (i = 0; i < 4; i++)
+		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], cs), u[i], k62), 62);
+	*out = (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
+	return true;
+}
+
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
 		    mot_q32 t, uint32_t *sat)
 {
 	struct mot_slerp s;
 
+	if (slerp_once(out, a, b, t, sat))
+		return;
 	mot_slerp_prepare(&s, a, b, sat);
 	mot_slerp_eval(out, &s, t, sat);
 }

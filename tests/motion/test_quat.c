@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * test_quat.c - motion/quat.c against the double reference (tests/ref_mat.c):
- * quaternion <-> matrix, products, normalisation, slerp (end points, unit
- * norm, shortest arc, constant speed, the nlerp fallback) and squad (keys,
- * inner points, continuity of the angular velocity across a key).
+ * quaternion <-> matrix, products, normalisation, slerp, prepared and
+ * one-shot (end points, unit norm, shortest arc, constant speed, the nlerp
+ * fallback) and squad (keys, inner points, continuity of the angular
+ * velocity across a key).
  *
  * Rotation errors are angles in radians between the fixed-point and the
  * reference rotation (ref_quat_angle, sign-blind as rotations are).
@@ -259,6 +260,7 @@ static void test_slerp_ref(void **state)
 {
 	struct tu_rng rng;
 	struct tu_worst w = { 0, 0 }, wn = { 0, 0 }, ws = { 0, 0 };
+	struct tu_worst w1 = { 0, 0 }, wn1 = { 0, 0 }, ws1 = { 0, 0 };
 	long ends = 0, flips = 0;
 	int i;
 
@@ -287,6 +289,15 @@ static void test_slerp_ref(void **state)
 		mot_slerp_eval(&q, &s, MOT_Q32_ONE, &sat);
 		nb = (struct mot_quat){ -b.w, -b.x, -b.y, -b.z };
 		ends += memcmp(&q, &b, sizeof(q)) != 0 && memcmp(&q, &nb, sizeof(q)) != 0;
+		/* the one-shot slerp (no unit c), the same ends */
+		mot_quat_slerp(&q, &a, &b, t, &sat);
+		tu_worst_add(&w1, fix_angle(&q, &r), q2d(t));
+		tu_worst_add(&wn1, fix_norm_err(&q) / LSB, q2d(t));
+		tu_worst_add(&ws1, fix_angle(&q, &ra) - q2d(t) * ref_quat_angle(&ra, &rb), q2d(t));
+		mot_quat_slerp(&q, &a, &b, 0, &sat);
+		ends += memcmp(&q, &a, sizeof(q)) != 0;
+		mot_quat_slerp(&q, &a, &b, MOT_Q32_ONE, &sat);
+		ends += memcmp(&q, &b, sizeof(q)) != 0 && memcmp(&q, &nb, sizeof(q)) != 0;
 		assert_int_equal(sat, 0);
 	}
 	assert_int_equal(ends, 0);
@@ -294,12 +305,15 @@ static void test_slerp_ref(void **state)
 	tu_bound("quat.slerp vs textbook slerp", &w, 4e-9, "rad");
 	tu_bound("quat.slerp |q(t)| - 1", &wn, 4, "LSB");
 	tu_bound("quat.slerp angle(a, q(t)) - t angle(a, b)", &ws, 3e-9, "rad");
+	tu_bound("quat.slerp one-shot vs textbook slerp", &w1, 4e-9, "rad");
+	tu_bound("quat.slerp one-shot |q(t)| - 1", &wn1, 4, "LSB");
+	tu_bound("quat.slerp one-shot angle(a, q(t)) - t angle(a, b)", &ws1, 3e-9, "rad");
 }
 
 static void test_slerp_nlerp(void **state)
 {
 	struct tu_rng rng;
-	struct tu_worst w = { 0, 0 }, wn = { 0, 0 };
+	struct tu_worst w = { 0, 0 }, wn = { 0, 0 }, w1 = { 0, 0 }, wn1 = { 0, 0 };
 	long nl = 0, sl = 0;
 	int i;
 
@@ -326,16 +340,23 @@ static void test_slerp_nlerp(void **state)
 		ref_slerp(&r, &ra, &rb, q2d(t));
 		tu_worst_add(&w, fix_angle(&q, &r), ang);
 		tu_worst_add(&wn, fix_norm_err(&q) / LSB, ang);
+		mot_quat_slerp(&q, &a, &b, t, &sat);
+		tu_worst_add(&w1, fix_angle(&q, &r), ang);
+		tu_worst_add(&wn1, fix_norm_err(&q) / LSB, ang);
 		/* equal keys */
 		mot_slerp_prepare(&s, &a, &a, &sat);
 		assert_true(s.nlerp);
 		mot_slerp_eval(&q, &s, t, &sat);
 		tu_worst_add(&w, fix_angle(&q, &ra), 0);
+		mot_quat_slerp(&q, &a, &a, t, &sat);
+		tu_worst_add(&w1, fix_angle(&q, &ra), 0);
 		assert_int_equal(sat, 0);
 	}
 	assert_true(nl > N / 10 && sl > N / 10);
 	tu_bound("quat.slerp near-equal keys (nlerp below 2^-10) vs slerp", &w, 4e-9, "rad");
 	tu_bound("quat.slerp near-equal keys |q| - 1", &wn, 4, "LSB");
+	tu_bound("quat.slerp one-shot near-equal keys vs slerp", &w1, 4e-9, "rad");
+	tu_bound("quat.slerp one-shot near-equal keys |q| - 1", &wn1, 4, "LSB");
 }
 
 /* ---- squad ---------------------------------------------------------------------- */
