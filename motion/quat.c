@@ -438,6 +438,18 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 		s->c = (struct mot_quat){ 0, 0, 0, 0 };
 }
 
+/* mot_slerp_eval()'s sums where one does not fit: saturating */
+static __attribute__((noinline)) void slerp_sum_sat(struct mot_quat *out,
+						    const struct mot_slerp *s, mot_q32 cs,
+						    mot_q32 sn, uint32_t *sat)
+{
+	const mot_q32 l[8] = { s->a.w, s->c.w, s->a.x, s->c.x, s->a.y, s->c.y, s->a.z, s->c.z };
+	const mot_q32 r[2] = { cs, sn };
+
+	*out = (struct mot_quat){ mot_sum_prod(l, r, 2, sat), mot_sum_prod(l + 2, r, 2, sat),
+				  mot_sum_prod(l + 4, r, 2, sat), mot_sum_prod(l + 6, r, 2, sat) };
+}
+
 void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
 {
 	struct mot_sc sc;
@@ -467,19 +479,9 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 			mot_sum2_ov(s->a.z, cs, s->c.z, sn, 0, MOT_Q32_FRAC, &ov),
 		};
 
-		if (!ov) {
-			*out = q;
-			return;
-		}
-	}
-	{
-		const mot_q32 l[8] = { s->a.w, s->c.w, s->a.x, s->c.x,
-				       s->a.y, s->c.y, s->a.z, s->c.z };
-		const mot_q32 r[2] = { cs, sn };
-
-		*out = (struct mot_quat){ mot_sum_prod(l, r, 2, sat), mot_sum_prod(l + 2, r, 2, sat),
-					  mot_sum_prod(l + 4, r, 2, sat),
-					  mot_sum_prod(l + 6, r, 2, sat) };
+		if (ov)
+			slerp_sum_sat(&q, s, cs, sn, sat);
+		*out = q;
 	}
 }
 
