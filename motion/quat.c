@@ -490,14 +490,15 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
  * the arc of mot_slerp_prepare(), the same d and u bit for bit, but no unit
  * c. The in-between is
  *     a cos(t theta) + u k,  k = sin(t theta) / |u|,
- * which is a cos + c sin with c = u / |u| and needs one division where
- * normalising u took a reciprocal square root, its Newton step and twelve
- * products. k is kept in Q2.62: its relative error (that of |u|, rounded
- * once, and the quotient's, 2^-63) times |u k| <= 1 stays below half an
- * LSB, and the sine's absolute error is not divided by |u|: u k carries it
- * times |u| / |u|. Nearly equal keys take nlerp, as prepare does. False,
- * nothing written, when a component is too large or k does not fit (k >= 2,
- * only for quaternions far from unit): the caller then prepares.
+ * which is a cos + c sin with c = u / |u|, with 1/|u| from the iteration
+ * that finds |u| (mot_isqrt_acc_inv()) where normalising u took a
+ * reciprocal square root, its Newton step and twelve products. k is kept
+ * in Q2.62: its relative error (1/|u|'s, below 2^-58, and its rounding)
+ * times |u k| <= 1 is far below an LSB, and the sine's absolute error is
+ * not divided by |u|: u k carries it times |u| / |u|. Nearly equal keys
+ * take nlerp, as prepare does. False, nothing written, when a component is
+ * too large or k does not fit (k >= 2, only for quaternions far from
+ * unit): the caller then prepares.
  *
  * Bounds: with |a_i|, |b_i| < 2 the dot products are below 2^68, |d| < 16,
  * u below 2^42 and |u|^2 below 2^86, the last sum below 2^106: no sum wraps
@@ -512,7 +513,8 @@ static bool slerp_once(struct mot_quat *out, const struct mot_quat *a, const str
 	uint32_t local = 0;
 	struct mot_sc sc;
 	mot_acc n;
-	int64_t k62;
+	int64_t k62, inv;
+	unsigned sh;
 	int i;
 
 	UNROLL4
@@ -552,7 +554,7 @@ static bool slerp_once(struct mot_quat *out, const struct mot_quat *a, const str
 		u[i] += round_fits(mot_acc_mul(av[i], -k), MOT_Q32_FRAC);
 		n = mot_acc_mac(n, u[i], u[i]);
 	}
-	len = (mot_q32)mot_isqrt_acc(n, NULL);
+	len = (mot_q32)mot_isqrt_acc_inv(n, &inv, &sh);
 	if (len < SLERP_NLERP_SIN) {
 		const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
 
@@ -563,7 +565,8 @@ static bool slerp_once(struct mot_quat *out, const struct mot_quat *a, const str
 	sc = sincos_fine_in(mot_acc_mul(t, theta));
 	sn = sc.s;
 	cs = sc.c;
-	k62 = mot_muldiv(sn, (int64_t)1 << 62, len, &local);
+	/* sh - 62 in [22, 42]: |u| >= 2^-10 and below 2^10 */
+	k62 = mot_acc_round(mot_acc_mul(sn, inv), sh - 62, &local);
 	if (local)
 		return false;
 	cs *= (mot_q32)1 << 30; /* Q2.62, |cs| <= 1 */

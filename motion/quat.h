@@ -73,9 +73,9 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
  * the exact slerp (tests/test_quat.c). About 22 ns. */
 void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat);
 /* One slerp, for one-off use: prepare's arc and eval's bounds (the same
- * ends, nlerp below the same angle), with c = u / |u| folded into one
- * division instead of normalising u; about 60% fewer instructions than
- * prepare + eval. Components of 2 or more take prepare + eval. */
+ * ends, nlerp below the same angle), with c = u / |u| folded into the
+ * sine's factor instead of normalising u; about 60% fewer instructions
+ * than prepare + eval. Components of 2 or more take prepare + eval. */
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
 		    mot_q32 t, uint32_t *sat);
 
