@@ -22,6 +22,35 @@ void mot_quat_identity(struct mot_quat *out)
 	*out = (struct mot_quat){ ONE, 0, 0, 0 };
 }
 
+/* Loops over the four components unrolled, and the sines of the real-time
+ * slerps inlined, where 128-bit integers are native (gcc -O2 keeps the
+ * loops, their operands on the stack), as decomp.c's and scene.c's kernels;
+ * kept loops and calls elsewhere, where code size is the point. */
+#if MOT_HAVE_INT128
+#define UNROLL4 _Pragma("GCC unroll 4")
+#define HOT __attribute__((always_inline))
+#else
+#define UNROLL4
+#define HOT
+#endif
+
+/* round(x / 2^shift), 1 <= shift <= 64, for a value known to fit:
+ * mot_acc_round()'s bits without its test (the low 64 bits of the shifted
+ * sum are the same whether the shift fills with the sign or with zeros) */
+static inline int64_t round_fits(mot_acc x, unsigned shift)
+{
+#if MOT_HAVE_INT128
+	return (int64_t)(uint64_t)(((mot_uacc)x + ((mot_uacc)1 << (shift - 1))) >> shift);
+#else
+	return mot_acc_round(x, shift, NULL);
+#endif
+}
+
+static inline uint64_t mag(mot_q32 v)
+{
+	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+}
+
 /*
  * sin and cos of an angle held with 64 fractional bits of a turn (a Q64.64
  * mot_acc): mot_sincos() of the Q32.32 part, then the remaining fraction d of
@@ -30,16 +59,28 @@ void mot_quat_identity(struct mot_quat *out)
  * then cost no rounding of the angle (the turn LSB is 1.46e-9 rad, several
  * quaternion LSB).
  */
-static void sincos_fine(mot_acc turns, mot_q32 *s, mot_q32 *c)
+static inline HOT struct mot_sc sincos_fine_in(mot_acc turns)
 {
 	mot_q32 a = (mot_q32)((mot_acc_hi(turns) << 32) | (mot_acc_lo(turns) >> 32));
 	int64_t d = (int64_t)(mot_acc_lo(turns) & 0xffffffffu); /* 2^-64 turn */
-	mot_q32 s0, c0;
+	struct mot_sc p;
 
-	mot_sincos(a, &s0, &c0);
-	d = mot_acc_round(mot_acc_mul(d, MOT_TWO_PI_Q32), MOT_Q32_FRAC, NULL); /* 2^-64 rad */
-	*s = s0 + mot_acc_round(mot_acc_mul(c0, d), 64, NULL);
-	*c = c0 - mot_acc_round(mot_acc_mul(s0, d), 64, NULL);
+#if MOT_HAVE_INT128
+	p = mot_sincos_in(a);
+#else
+	p = mot_sincos_pair(a);
+#endif
+	d = round_fits(mot_acc_mul(d, MOT_TWO_PI_Q32), MOT_Q32_FRAC); /* 2^-64 rad */
+	return (struct mot_sc){ p.s + round_fits(mot_acc_mul(p.c, d), 64),
+				p.c - round_fits(mot_acc_mul(p.s, d), 64) };
+}
+
+static void sincos_fine(mot_acc turns, mot_q32 *s, mot_q32 *c)
+{
+	struct mot_sc r = sincos_fine_in(turns);
+
+	*s = r.s;
+	*c = r.c;
 }
 
 /* sin and cos of turns / 2, exactly halved */
@@ -156,7 +197,7 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 	*out = r;
 }
 
-/* mot_quat_to_rot_q62() where an entry does not fit: saturating. */
+/* mot_quat_to_rot_q62() where an entry may not fit: saturating. */
 static __attribute__((noinline)) void rot_q62_sat(int64_t r[3][3], const struct mot_quat *q,
 						  uint32_t *sat)
 {
@@ -168,46 +209,52 @@ static __attribute__((noinline)) void rot_q62_sat(int64_t r[3][3], const struct 
 			r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
 }
 
-/* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62 */
+/* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62,
+ * known to fit */
 static inline __attribute__((always_inline)) void rot_pair(int64_t *plus, int64_t *minus,
 							   mot_q32 a, mot_q32 b, mot_q32 c,
-							   mot_q32 d, uint64_t *ov)
+							   mot_q32 d)
 {
 	mot_acc p = mot_acc_mul(a, b), q = mot_acc_mul(c, d);
 
-	*plus = mot_acc_round_ov(mot_acc_add(p, q), 1, ov);
-	*minus = mot_acc_round_ov(mot_acc_sub(p, q), 1, ov);
+	*plus = round_fits(mot_acc_add(p, q), 1);
+	*minus = round_fits(mot_acc_sub(p, q), 1);
 }
 
 /*
  * Each entry from its two products as soon as they are made, so that few
  * 128-bit values live at once: e = 2 (p + q) rounded from Q64.64 to Q2.62
  * is round((p + q) / 2), and 1 - 2 (p + q) is round((2^63 - p - q) / 2),
- * the same bits as rot_exact()'s sums rounded by 4.
+ * the same bits as rot_exact()'s sums rounded by 4. With |q|^2 < 3/2
+ * (every rotation) each entry fits: |xy + wz| <= |q|^2 / 2 < 3/4 and
+ * 1 - 2 (x^2 + y^2) > -2, so no entry is tested; otherwise
+ * rot_q62_sat(), whose bits are the same where an entry fits.
  */
 int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
 {
 	const mot_q32 lim = (mot_q32)1 << 62;
 	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
 	const mot_acc h = mot_acc_from(1, 63);
-	mot_acc a, b;
-	uint64_t ov = 0;
+	mot_acc a, b, c, n;
 
 	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
 	    z >= lim || z <= -lim)
 		return MOT_E_RANGE;
-	rot_pair(&r[0][1], &r[1][0], x, y, w, z, &ov);
-	rot_pair(&r[2][0], &r[0][2], x, z, w, y, &ov);
-	rot_pair(&r[1][2], &r[2][1], y, z, w, x, &ov);
 	a = mot_acc_mul(x, x);
 	b = mot_acc_mul(y, y);
-	r[2][2] = mot_acc_round_ov(mot_acc_sub(mot_acc_sub(h, a), b), 1, &ov);
-	b = mot_acc_sub(h, mot_acc_mul(z, z));
-	r[1][1] = mot_acc_round_ov(mot_acc_sub(b, a), 1, &ov);
-	a = mot_acc_mul(y, y);
-	r[0][0] = mot_acc_round_ov(mot_acc_sub(b, a), 1, &ov);
-	if (ov)
+	c = mot_acc_mul(z, z);
+	n = mot_acc_mac(mot_acc_add(mot_acc_add(a, b), c), w, w); /* below 2^126 */
+	if (!mot_acc_is_neg(mot_acc_sub(n, mot_acc_from(3, 63)))) {
 		rot_q62_sat(r, q, sat);
+		return MOT_OK;
+	}
+	rot_pair(&r[0][1], &r[1][0], x, y, w, z);
+	rot_pair(&r[2][0], &r[0][2], x, z, w, y);
+	rot_pair(&r[1][2], &r[2][1], y, z, w, x);
+	r[2][2] = round_fits(mot_acc_sub(mot_acc_sub(h, a), b), 1);
+	c = mot_acc_sub(h, c);
+	r[1][1] = round_fits(mot_acc_sub(c, a), 1);
+	r[0][0] = round_fits(mot_acc_sub(c, b), 1);
 	return MOT_OK;
 }
 
@@ -391,8 +438,21 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 		s->c = (struct mot_quat){ 0, 0, 0, 0 };
 }
 
+/* mot_slerp_eval()'s sums where one does not fit: saturating */
+static __attribute__((noinline)) void slerp_sum_sat(struct mot_quat *out,
+						    const struct mot_slerp *s, mot_q32 cs,
+						    mot_q32 sn, uint32_t *sat)
+{
+	const mot_q32 l[8] = { s->a.w, s->c.w, s->a.x, s->c.x, s->a.y, s->c.y, s->a.z, s->c.z };
+	const mot_q32 r[2] = { cs, sn };
+
+	*out = (struct mot_quat){ mot_sum_prod(l, r, 2, sat), mot_sum_prod(l + 2, r, 2, sat),
+				  mot_sum_prod(l + 4, r, 2, sat), mot_sum_prod(l + 6, r, 2, sat) };
+}
+
 void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
 {
+	struct mot_sc sc;
 	mot_q32 sn, cs;
 
 	if (t <= 0 || t >= ONE) {
@@ -405,16 +465,116 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 		quat_lerp(out, &s->a, &s->b, t, sat);
 		return;
 	}
-	sincos_fine(mot_acc_mul(t, s->theta), &sn, &cs);
+	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
+	sn = sc.s;
+	cs = sc.c;
 	{
-		const mot_q32 l[8] = { s->a.w, s->c.w, s->a.x, s->c.x,
-				       s->a.y, s->c.y, s->a.z, s->c.z };
-		const mot_q32 r[2] = { cs, sn };
+		/* mot_sum_prod()'s kernel for two products, inline: the same bits,
+		 * and its saturating path only when a sum does not fit */
+		uint64_t ov = 0;
+		struct mot_quat q = {
+			mot_sum2_ov(s->a.w, cs, s->c.w, sn, 0, MOT_Q32_FRAC, &ov),
+			mot_sum2_ov(s->a.x, cs, s->c.x, sn, 0, MOT_Q32_FRAC, &ov),
+			mot_sum2_ov(s->a.y, cs, s->c.y, sn, 0, MOT_Q32_FRAC, &ov),
+			mot_sum2_ov(s->a.z, cs, s->c.z, sn, 0, MOT_Q32_FRAC, &ov),
+		};
 
-		*out = (struct mot_quat){ mot_sum_prod(l, r, 2, sat), mot_sum_prod(l + 2, r, 2, sat),
-					  mot_sum_prod(l + 4, r, 2, sat),
-					  mot_sum_prod(l + 6, r, 2, sat) };
+		if (ov)
+			slerp_sum_sat(&q, s, cs, sn, sat);
+		*out = q;
 	}
+}
+
+/*
+ * One slerp for components below 2 in magnitude (every unit quaternion):
+ * the arc of mot_slerp_prepare(), the same d and u bit for bit, but no unit
+ * c. The in-between is
+ *     a cos(t theta) + u k,  k = sin(t theta) / |u|,
+ * which is a cos + c sin with c = u / |u|, with 1/|u| from the iteration
+ * that finds |u| (mot_isqrt_acc_inv()) where normalising u took a
+ * reciprocal square root, its Newton step and twelve products. k is kept
+ * in Q2.62: its relative error (1/|u|'s, below 2^-58, and its rounding)
+ * times |u k| <= 1 is far below an LSB, and the sine's absolute error is
+ * not divided by |u|: u k carries it times |u| / |u|. Nearly equal keys
+ * take nlerp, as prepare does. False, nothing written, when a component is
+ * too large or k does not fit (k >= 2, only for quaternions far from
+ * unit): the caller then prepares.
+ *
+ * Bounds: with |a_i|, |b_i| < 2 the dot products are below 2^68, |d| < 16,
+ * u below 2^42 and |u|^2 below 2^86, the last sum below 2^106: no sum wraps
+ * and every rounded value fits.
+ */
+static bool slerp_once(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
+		       mot_q32 t, uint32_t *sat)
+{
+	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
+	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, theta, sn, cs;
+	uint64_t big = 0;
+	uint32_t local = 0;
+	struct mot_sc sc;
+	mot_acc n;
+	int64_t k62, inv;
+	unsigned sh;
+	int i;
+
+	UNROLL4
+	for (i = 0; i < 4; i++)
+		big |= mag(av[i]) | mag(bv[i]);
+	if (big >= (uint64_t)1 << 33)
+		return false;
+	n = mot_acc_zero();
+	UNROLL4
+	for (i = 0; i < 4; i++)
+		n = mot_acc_mac(n, av[i], bv[i]);
+	d = round_fits(n, MOT_Q32_FRAC);
+	if (d < 0) {
+		UNROLL4
+		for (i = 0; i < 4; i++)
+			bv[i] = -bv[i];
+		d = -d;
+	}
+	if (t <= 0 || t >= ONE) {
+		if ((t < 0 || t > ONE) && sat)
+			*sat |= MOT_SAT_DOMAIN;
+		*out = t <= 0 ? *a : (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
+		return true;
+	}
+	/* prepare's two passes of u = b - d a, the same roundings */
+	n = mot_acc_zero();
+	UNROLL4
+	for (i = 0; i < 4; i++) {
+		u[i] = bv[i] + round_fits(mot_acc_mul(av[i], -d), MOT_Q32_FRAC);
+		n = mot_acc_mac(n, av[i], u[i]);
+	}
+	k = round_fits(n, MOT_Q32_FRAC);
+	d += k;
+	n = mot_acc_zero();
+	UNROLL4
+	for (i = 0; i < 4; i++) {
+		u[i] += round_fits(mot_acc_mul(av[i], -k), MOT_Q32_FRAC);
+		n = mot_acc_mac(n, u[i], u[i]);
+	}
+	len = (mot_q32)mot_isqrt_acc_inv(n, &inv, &sh);
+	if (len < SLERP_NLERP_SIN) {
+		const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
+
+		quat_lerp(out, a, &bb, t, sat);
+		return true;
+	}
+	theta = mot_atan2(len, d);
+	sc = sincos_fine_in(mot_acc_mul(t, theta));
+	sn = sc.s;
+	cs = sc.c;
+	/* sh - 62 in [22, 42]: |u| >= 2^-10 and below 2^10 */
+	k62 = mot_acc_round(mot_acc_mul(sn, inv), sh - 62, &local);
+	if (local)
+		return false;
+	cs *= (mot_q32)1 << 30; /* Q2.62, |cs| <= 1 */
+	UNROLL4
+	for (i = 0; i < 4; i++)
+		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], cs), u[i], k62), 62);
+	*out = (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
+	return true;
 }
 
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
@@ -422,6 +582,8 @@ void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct
 {
 	struct mot_slerp s;
 
+	if (slerp_once(out, a, b, t, sat))
+		return;
 	mot_slerp_prepare(&s, a, b, sat);
 	mot_slerp_eval(out, &s, t, sat);
 }

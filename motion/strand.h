@@ -55,7 +55,7 @@ int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, 
 /* A slerp track kept as its keys alone, for sampled motion (a key every
  * frame): 56 bytes a key where a prepared track takes 56 +
  * sizeof(struct mot_rot_seg). Each evaluation prepares the slerp of its
- * interval (mot_quat_slerp: the shorter arc, about 100 ns more) and takes
+ * interval (mot_quat_slerp: the shorter arc, one-shot) and takes
  * its parameter with one division; no squad, no ease (MOT_E_INVAL for an
  * ease fraction), otherwise mot_rot_track_init()'s checks. Init only. */
 int mot_rot_track_init_compact(struct mot_rot_track *r, const struct mot_rot_key *keys,

@@ -269,18 +269,24 @@ static inline mot_acc usquare(uint64_t s)
 /*
  * round(sqrt(n)) for an unsigned 128-bit n < 2^128 - 2^64 (the result fits
  * 64 bits). Bounded time: at most one Newton step and one correction step.
+ * The iteration's 1/(2 sqrt) on the way: 1/sqrt(n) ~ *hp 2^-(*qp + 92).
  */
-static uint64_t isqrt_round(mot_acc n)
+static uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp)
 {
 	uint64_t hi = mot_acc_hi(n), lo = mot_acc_lo(n), m, s;
 	int64_t g, h;
 	mot_acc d, t;
 	int q;
 
-	if ((hi | lo) == 0)
+	if ((hi | lo) == 0) {
+		*hp = 0;
+		*qp = 0;
 		return 0;
+	}
 	q = sqrt_scale(hi, lo, &m);
 	sqrt_core(m, &g, &h); /* sqrt(n) ~ g 2^(q - 31) */
+	*hp = h; /* 1/sqrt(n) ~ h 2^-(q + 92) */
+	*qp = q;
 	if (q <= 20) {
 		/* g is within 8 units of Q62 (measured; 3 floors per step), so
 		 * s is within 1/2 + 2^(q-28) of sqrt(n): one step from the answer */
@@ -308,6 +314,14 @@ static uint64_t isqrt_round(mot_acc n)
 	return s;
 }
 
+static uint64_t isqrt_round(mot_acc n)
+{
+	int64_t h;
+	int q;
+
+	return isqrt_core(n, &h, &q);
+}
+
 uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat)
 {
 	if (mot_acc_is_neg(x)) {
@@ -316,6 +330,23 @@ uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat)
 		return 0;
 	}
 	return isqrt_round(x);
+}
+
+uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh)
+{
+	int64_t h;
+	uint64_t r;
+	int q;
+
+	if (mot_acc_is_neg(x) || (mot_acc_hi(x) | mot_acc_lo(x)) == 0) {
+		*inv = 0;
+		*sh = 62;
+		return 0;
+	}
+	r = isqrt_core(x, &h, &q);
+	*inv = h;
+	*sh = (unsigned)(q + 92);
+	return r;
 }
 
 mot_q32 mot_sqrt(mot_q32 x, uint32_t *sat)

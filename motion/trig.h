@@ -118,6 +118,12 @@ mot_q32 mot_rsqrt(mot_q32 x, uint32_t *sat);
  * Exact for every x (tested against __int128). About 20 ns / 30 ns. */
 uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat);
 
+/* The same root of x > 0, and its reciprocal for a division by the root
+ * without a division: 1/sqrt(x) = *inv 2^-*sh, inv in [2^61, 2^62], sh in
+ * [62, 125], relative error below 2^-58 (tests/test_trig.c). The Newton
+ * iteration of the root makes it on the way. x <= 0 gives 0, *inv = 0. */
+uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh);
+
 /* |v| for a 3-vector: the root of the exact 128-bit sum of squares, rounded
  * once to nearest (0.5 LSB). A norm above MOT_Q32_MAX (possible only with
  * components beyond 2^62 raw) saturates and sets MOT_SAT_OVERFLOW.

@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * test_quat.c - motion/quat.c against the double reference (tests/ref_mat.c):
- * quaternion <-> matrix, products, normalisation, slerp (end points, unit
- * norm, shortest arc, constant speed, the nlerp fallback) and squad (keys,
- * inner points, continuity of the angular velocity across a key).
+ * quaternion <-> matrix (the Q2.62 matrix against exact integers), products, normalisation, slerp, prepared and
+ * one-shot (end points, unit norm, shortest arc, constant speed, the nlerp
+ * fallback) and squad (keys, inner points, continuity of the angular
+ * velocity across a key).
  *
  * Rotation errors are angles in radians between the fixed-point and the
  * reference rotation (ref_quat_angle, sign-blind as rotations are).
@@ -72,6 +73,86 @@ static void test_to_mat_ref(void **state)
 		assert_true(m.m[3][0] == 0 && m.m[3][1] == 0 && m.m[3][2] == 0);
 	}
 	tu_bound("quat.to_mat entry (rounded once)", &w, 0.501, "LSB");
+}
+
+/* round((v + 1) / 2) saturated to int64, in exact 128-bit integers */
+static int64_t q62_entry(__int128 v, bool *satd)
+{
+	__int128 r = (v + 1) >> 1;
+
+	if (r > INT64_MAX || r < INT64_MIN) {
+		*satd = true;
+		return r > 0 ? INT64_MAX : INT64_MIN;
+	}
+	return (int64_t)r;
+}
+
+/* The Q2.62 matrix bit for bit against exact 128-bit sums: unit
+ * quaternions, quaternions scaled across |q|^2 = 3/2 (where the test-free
+ * path ends) and far beyond (saturating entries), components of any size
+ * (MOT_E_RANGE from 2^62, r untouched). */
+static void test_to_rot_q62(void **state)
+{
+	static const double scale[] = { 1, 1.2247448713915889, 1.2247448713915892, 1.3 };
+	struct tu_rng rng;
+	long wrong = 0, satd_n = 0, range_n = 0;
+	int i, j;
+
+	tu_seed(&rng, 39);
+	for (i = 0; i < N; i++) {
+		struct mot_quat q;
+		struct ref_quat rq;
+		int64_t r[3][3], e[9];
+		__int128 w, x, y, z, h = (__int128)1 << 63;
+		uint32_t sat = 0;
+		bool satd = false, big;
+		int rc;
+
+		if (i % 5 == 4) {
+			q = (struct mot_quat){ tu_i64(&rng), tu_i64(&rng), tu_i64(&rng), tu_i64(&rng) };
+		} else {
+			double k = i % 5 < 4 ? scale[i % 4] : 1;
+
+			if (i % 5 == 3)
+				k = tu_uniform(&rng, 0, 1e6);
+			ref_rand_quat(&rq, &rng);
+			q = (struct mot_quat){ d2q(rq.w * k), d2q(rq.x * k), d2q(rq.y * k),
+					       d2q(rq.z * k) };
+		}
+		w = q.w, x = q.x, y = q.y, z = q.z;
+		big = q.w >= (int64_t)1 << 62 || q.w <= -((int64_t)1 << 62) ||
+		      q.x >= (int64_t)1 << 62 || q.x <= -((int64_t)1 << 62) ||
+		      q.y >= (int64_t)1 << 62 || q.y <= -((int64_t)1 << 62) ||
+		      q.z >= (int64_t)1 << 62 || q.z <= -((int64_t)1 << 62);
+		for (j = 0; j < 9; j++)
+			r[j / 3][j % 3] = 12345;
+		rc = mot_quat_to_rot_q62(r, &q, &sat);
+		if (big) {
+			range_n++;
+			assert_int_equal(rc, MOT_E_RANGE);
+			for (j = 0; j < 9; j++)
+				assert_true(r[j / 3][j % 3] == 12345);
+			continue;
+		}
+		assert_int_equal(rc, MOT_OK);
+		e[0] = q62_entry(h - y * y - z * z, &satd);
+		e[1] = q62_entry(x * y + w * z, &satd);
+		e[2] = q62_entry(x * z - w * y, &satd);
+		e[3] = q62_entry(x * y - w * z, &satd);
+		e[4] = q62_entry(h - x * x - z * z, &satd);
+		e[5] = q62_entry(y * z + w * x, &satd);
+		e[6] = q62_entry(x * z + w * y, &satd);
+		e[7] = q62_entry(y * z - w * x, &satd);
+		e[8] = q62_entry(h - x * x - y * y, &satd);
+		for (j = 0; j < 9; j++)
+			wrong += r[j / 3][j % 3] != e[j];
+		wrong += satd != (sat == MOT_SAT_OVERFLOW);
+		satd_n += satd;
+	}
+	printf("quat.to_rot_q62: %d quaternions, %ld saturating, %ld out of range, %ld wrong\n",
+	       N, satd_n, range_n, wrong);
+	assert_int_equal(wrong, 0);
+	assert_true(satd_n > N / 20 && range_n > N / 500);
 }
 
 /* a random unit quaternion, now and then one of the hard cases: a half turn
@@ -259,6 +340,7 @@ static void test_slerp_ref(void **state)
 {
 	struct tu_rng rng;
 	struct tu_worst w = { 0, 0 }, wn = { 0, 0 }, ws = { 0, 0 };
+	struct tu_worst w1 = { 0, 0 }, wn1 = { 0, 0 }, ws1 = { 0, 0 };
 	long ends = 0, flips = 0;
 	int i;
 
@@ -287,6 +369,15 @@ static void test_slerp_ref(void **state)
 		mot_slerp_eval(&q, &s, MOT_Q32_ONE, &sat);
 		nb = (struct mot_quat){ -b.w, -b.x, -b.y, -b.z };
 		ends += memcmp(&q, &b, sizeof(q)) != 0 && memcmp(&q, &nb, sizeof(q)) != 0;
+		/* the one-shot slerp (no unit c), the same ends */
+		mot_quat_slerp(&q, &a, &b, t, &sat);
+		tu_worst_add(&w1, fix_angle(&q, &r), q2d(t));
+		tu_worst_add(&wn1, fix_norm_err(&q) / LSB, q2d(t));
+		tu_worst_add(&ws1, fix_angle(&q, &ra) - q2d(t) * ref_quat_angle(&ra, &rb), q2d(t));
+		mot_quat_slerp(&q, &a, &b, 0, &sat);
+		ends += memcmp(&q, &a, sizeof(q)) != 0;
+		mot_quat_slerp(&q, &a, &b, MOT_Q32_ONE, &sat);
+		ends += memcmp(&q, &b, sizeof(q)) != 0 && memcmp(&q, &nb, sizeof(q)) != 0;
 		assert_int_equal(sat, 0);
 	}
 	assert_int_equal(ends, 0);
@@ -294,12 +385,15 @@ static void test_slerp_ref(void **state)
 	tu_bound("quat.slerp vs textbook slerp", &w, 4e-9, "rad");
 	tu_bound("quat.slerp |q(t)| - 1", &wn, 4, "LSB");
 	tu_bound("quat.slerp angle(a, q(t)) - t angle(a, b)", &ws, 3e-9, "rad");
+	tu_bound("quat.slerp one-shot vs textbook slerp", &w1, 4e-9, "rad");
+	tu_bound("quat.slerp one-shot |q(t)| - 1", &wn1, 4, "LSB");
+	tu_bound("quat.slerp one-shot angle(a, q(t)) - t angle(a, b)", &ws1, 3e-9, "rad");
 }
 
 static void test_slerp_nlerp(void **state)
 {
 	struct tu_rng rng;
-	struct tu_worst w = { 0, 0 }, wn = { 0, 0 };
+	struct tu_worst w = { 0, 0 }, wn = { 0, 0 }, w1 = { 0, 0 }, wn1 = { 0, 0 };
 	long nl = 0, sl = 0;
 	int i;
 
@@ -326,16 +420,23 @@ static void test_slerp_nlerp(void **state)
 		ref_slerp(&r, &ra, &rb, q2d(t));
 		tu_worst_add(&w, fix_angle(&q, &r), ang);
 		tu_worst_add(&wn, fix_norm_err(&q) / LSB, ang);
+		mot_quat_slerp(&q, &a, &b, t, &sat);
+		tu_worst_add(&w1, fix_angle(&q, &r), ang);
+		tu_worst_add(&wn1, fix_norm_err(&q) / LSB, ang);
 		/* equal keys */
 		mot_slerp_prepare(&s, &a, &a, &sat);
 		assert_true(s.nlerp);
 		mot_slerp_eval(&q, &s, t, &sat);
 		tu_worst_add(&w, fix_angle(&q, &ra), 0);
+		mot_quat_slerp(&q, &a, &a, t, &sat);
+		tu_worst_add(&w1, fix_angle(&q, &ra), 0);
 		assert_int_equal(sat, 0);
 	}
 	assert_true(nl > N / 10 && sl > N / 10);
 	tu_bound("quat.slerp near-equal keys (nlerp below 2^-10) vs slerp", &w, 4e-9, "rad");
 	tu_bound("quat.slerp near-equal keys |q| - 1", &wn, 4, "LSB");
+	tu_bound("quat.slerp one-shot near-equal keys vs slerp", &w1, 4e-9, "rad");
+	tu_bound("quat.slerp one-shot near-equal keys |q| - 1", &wn1, 4, "LSB");
 }
 
 /* ---- squad ---------------------------------------------------------------------- */
@@ -458,7 +559,8 @@ static void test_squad(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(test_to_mat_ref), cmocka_unit_test(test_from_mat),
+		cmocka_unit_test(test_to_mat_ref), cmocka_unit_test(test_to_rot_q62),
+		cmocka_unit_test(test_from_mat),
 		cmocka_unit_test(test_mul_ref),    cmocka_unit_test(test_normalize),
 		cmocka_unit_test(test_axis_euler), cmocka_unit_test(test_slerp_ref),
 		cmocka_unit_test(test_slerp_nlerp), cmocka_unit_test(test_squad),

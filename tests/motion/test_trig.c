@@ -338,7 +338,7 @@ static void test_sqrt(void **state)
 static void test_isqrt_acc(void **state)
 {
 	struct tu_rng rng;
-	struct tu_worst w = { 0, 0 };
+	struct tu_worst w = { 0, 0 }, wi = { 0, 0 };
 	uint32_t sat = 0;
 	int i;
 
@@ -360,6 +360,17 @@ static void test_isqrt_acc(void **state)
 		}
 		r = mot_isqrt_acc(mot_acc_make((uint64_t)(n >> 64), (uint64_t)n), &sat);
 		want = ref_isqrt_round(n);
+		if (n) { /* the root with its reciprocal: the same root */
+			int64_t inv;
+			unsigned sh;
+
+			assert_true(mot_isqrt_acc_inv(mot_acc_make((uint64_t)(n >> 64), (uint64_t)n),
+						      &inv, &sh) == r);
+			assert_true(sh >= 62 && sh <= 125);
+			tu_worst_add(&wi,
+				     fabsl(ldexpl((long double)inv, -(int)sh) * sqrtl((long double)n) - 1),
+				     (double)n);
+		}
 		tu_worst_add(&w, (double)r - (double)want, (double)n);
 		if (r != want)
 			fail_msg("isqrt(0x%016llx%016llx) = %llu, want %llu",
@@ -368,6 +379,7 @@ static void test_isqrt_acc(void **state)
 	}
 	assert_int_equal(sat, 0);
 	tu_bound("trig.isqrt_acc", &w, 0, "units (exact)");
+	tu_bound("trig.isqrt_acc_inv 1/sqrt relative", &wi, 0x1p-58, "(1)");
 
 	assert_int_equal(mot_isqrt_acc(mot_acc_zero(), &sat), 0);
 	assert_int_equal(mot_isqrt_acc(mot_acc_from(2, 0), &sat), 1);
