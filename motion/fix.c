@@ -72,6 +72,20 @@ int mot_recip_init(struct mot_recip *r, int64_t d)
 	return MOT_OK;
 }
 
+int mot_udiv_inv_init(struct mot_udiv_inv *in, uint64_t d)
+{
+	uint64_t r;
+
+	if (d == 0)
+		return MOT_E_INVAL;
+	in->s = mot_clz64(d);
+	in->dn = d << in->s;
+	/* floor((2^128 - 1) / dn) - 2^64 = floor(((2^64 - 1 - dn) 2^64 + 2^64 - 1) / dn):
+	 * its high word below dn, the quotient below 2^64 */
+	in->v = mot_acc_udiv(mot_acc_make(~in->dn, ~(uint64_t)0), in->dn, &r, NULL);
+	return MOT_OK;
+}
+
 int64_t mot_floordiv(int64_t n, int64_t d, int64_t *rem)
 {
 	int64_t q = n / d, r = n % d;

@@ -488,6 +488,66 @@ int64_t mot_muldiv(int64_t a, int64_t m, int64_t d, uint32_t *sat);
 /* floor(n / d) for d > 0, and the remainder in [0, d). Exact for all n. */
 int64_t mot_floordiv(int64_t n, int64_t d, int64_t *rem);
 
+/* The unsigned 128-bit product a * b: the high word, the low one in *lo. */
+static inline uint64_t mot_umul_hi(uint64_t a, uint64_t b, uint64_t *lo)
+{
+#if MOT_HAVE_INT128
+	mot_uacc p = (mot_uacc)a * b;
+
+	*lo = (uint64_t)p;
+	return (uint64_t)(p >> 64);
+#else
+	uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
+	uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+	uint64_t mid = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);
+
+	*lo = (mid << 32) | (p00 & 0xffffffffu);
+	return p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+#endif
+}
+
+/*
+ * Division of 128-bit numbers by one 64-bit divisor d, many times: d
+ * normalised (d << s, top bit set) and its reciprocal v = floor((2^128 - 1)
+ * / dn) - 2^64, prepared once (mot_udiv_inv_init(), a division), then each
+ * quotient from two products and at most two corrections (Moeller and
+ * Granlund, "Improved division by invariant integers", 2011, algorithm 4):
+ * exact, the same quotient and remainder as mot_acc_udiv().
+ */
+struct mot_udiv_inv {
+	uint64_t dn; /* d << s */
+	uint64_t v;
+	uint32_t s;
+};
+
+/* Prepare for d > 0 (d == 0 gives MOT_E_INVAL). Init only. */
+int mot_udiv_inv_init(struct mot_udiv_inv *in, uint64_t d);
+
+/* floor((hi 2^64 + lo) / d) and the remainder in *rem, for hi < d (the
+ * quotient fits 64 bits: callers hold it). Real-time safe, no division. */
+static inline uint64_t mot_udiv_by_inv(uint64_t hi, uint64_t lo, const struct mot_udiv_inv *in,
+				       uint64_t *rem)
+{
+	uint64_t u1 = in->s ? (hi << in->s) | (lo >> (64 - in->s)) : hi, u0 = lo << in->s;
+	uint64_t q0, q1, r;
+
+	/* q = v u1 + (u1 + 1) 2^64 + u0, q1 its high word */
+	q1 = mot_umul_hi(in->v, u1, &q0);
+	q0 += u0;
+	q1 += u1 + 1 + (q0 < u0);
+	r = u0 - q1 * in->dn;
+	if (r > q0) {
+		q1--;
+		r += in->dn;
+	}
+	if (r >= in->dn) {
+		q1++;
+		r -= in->dn;
+	}
+	*rem = r >> in->s;
+	return q1;
+}
+
 /* Unsigned 128 / 64 division: floor(x / d), remainder in *rem. x must be
  * non-negative and the quotient must fit 64 bits; otherwise returns
  * UINT64_MAX and sets MOT_SAT_OVERFLOW. */

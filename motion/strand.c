@@ -225,10 +225,11 @@ mot_q32 mot_spin_turns(const struct mot_curve *rpm, struct mot_cursor *cur,
 	 * turns = I * den / (60 num) for the curve's integral I in rpm x frames
 	 * (Q64.64). I * den needs up to 160 bits: it is formed in three 64-bit
 	 * words and divided by 60 num by schoolbook long division, one word at a
-	 * time, then rounded once to Q32.32. Nothing is summed from tick to tick.
+	 * time (each word's quotient exact, from the timing's reciprocal of 60
+	 * num), then rounded once to Q32.32. Nothing is summed from tick to tick.
 	 */
 	mot_acc integ, p;
-	uint64_t w2, w1, w0, q2, q1, q0, r, d, res;
+	uint64_t w2, w1, w0, q2, q1, q0, r, res;
 	bool neg;
 
 	if (mot_curve_integral(&integ, rpm, cur, frame, sat) != MOT_OK) {
@@ -250,11 +251,11 @@ mot_q32 mot_spin_turns(const struct mot_curve *rpm, struct mot_cursor *cur,
 	w1 += mot_acc_lo(p);
 	w2 = mot_acc_hi(p) + (w1 < mot_acc_lo(p));
 
-	d = 60 * (uint64_t)t->num;
-	q2 = w2 / d;
-	r = w2 % d;
-	q1 = mot_acc_udiv(mot_acc_make(r, w1), d, &r, NULL);
-	q0 = mot_acc_udiv(mot_acc_make(r, w0), d, &r, NULL);
+	/* by 60 num through its prepared reciprocal: three quotient words,
+	 * each exact, without a division */
+	q2 = mot_udiv_by_inv(0, w2, &t->per_turn, &r);
+	q1 = mot_udiv_by_inv(r, w1, &t->per_turn, &r);
+	q0 = mot_udiv_by_inv(r, w0, &t->per_turn, &r);
 	/* round(q / 2^32) = (q + 2^31) >> 32 on the 192-bit quotient q */
 	q0 += (uint64_t)1 << 31;
 	if (q0 < ((uint64_t)1 << 31)) {

@@ -30,7 +30,7 @@ int mot_timing_init(struct mot_timing *t, uint32_t num, uint32_t den, uint32_t t
 	t->den = den;
 	t->tick_hz = tick_hz;
 	t->ticks_den = (uint64_t)tick_hz * den;
-	return MOT_OK;
+	return mot_udiv_inv_init(&t->per_turn, 60 * (uint64_t)num);
 }
 
 mot_q32 mot_timing_tick_frame(const struct mot_timing *t, int64_t tick)

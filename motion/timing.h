@@ -30,6 +30,7 @@ struct mot_timing {
 	uint32_t num, den; /* frames per second = num / den, reduced */
 	uint32_t tick_hz;
 	uint64_t ticks_den; /* tick_hz * den: ticks per (num frames) */
+	struct mot_udiv_inv per_turn; /* 60 num: a spin's turns (mot_spin_turns()) */
 };
 
 /*

@@ -6,6 +6,7 @@
 #define mot_muldiv cvp_muldiv_
 #define mot_div cvp_div_
 #define mot_recip_init cvp_recip_init_
+#define mot_udiv_inv_init cvp_udiv_inv_init_
 #define mot_sum_prod_wide cvp_sum_prod_wide_
 #define mot_ease_init cvp_ease_init_
 #define mot_ease_init_ratio cvp_ease_init_ratio_

@@ -7,6 +7,7 @@
 #define mot_muldiv fixp_muldiv_
 #define mot_div fixp_div_
 #define mot_recip_init fixp_recip_init_
+#define mot_udiv_inv_init fixp_udiv_inv_init_
 #define mot_sum_prod_wide fixp_sum_prod_wide_
 #include "fix_portable.h"
 #include "motion/fix.c"
@@ -27,6 +28,14 @@ int64_t fixp_round(int64_t a, int64_t b, unsigned shift, uint32_t *sat)
 uint64_t fixp_udiv(uint64_t hi, uint64_t lo, uint64_t d, uint64_t *rem)
 {
 	return fixp_acc_udiv_(mot_acc_make(hi, lo), d, rem, NULL);
+}
+
+uint64_t fixp_udiv_by_inv(uint64_t hi, uint64_t lo, uint64_t d, uint64_t *rem)
+{
+	struct mot_udiv_inv in;
+
+	fixp_udiv_inv_init_(&in, d);
+	return mot_udiv_by_inv(hi, lo, &in, rem);
 }
 
 int64_t fixp_muldiv(int64_t a, int64_t m, int64_t d)

@@ -131,6 +131,54 @@ static void test_udiv(void **state)
 	}
 }
 
+/* Division by a prepared reciprocal (mot_udiv_by_inv): exact, the same
+ * quotient and remainder as __int128's, on both paths, for divisors of
+ * every bit length and dividends up to (d - 1) 2^64 + 2^64 - 1; and the
+ * edges: d = 1, 2^63, 2^64 - 1, the largest dividend for each. */
+static void test_udiv_inv(void **state)
+{
+	static const uint64_t edge[] = { 1, 2, 3, 60, 60 * 30000ull, (uint64_t)1 << 63,
+					 ((uint64_t)1 << 63) + 1, ~(uint64_t)0, ~(uint64_t)0 - 1 };
+	struct tu_rng rng;
+	long bad = 0, n = 0;
+	unsigned i, k;
+
+	(void)state;
+	tu_seed(&rng, 7);
+	for (i = 0; i < N + sizeof(edge) / sizeof(edge[0]) * 4; i++) {
+		uint64_t d, hi, lo, rem, rem2;
+		uint64_t q, q2;
+		struct mot_udiv_inv in;
+		u128 x;
+
+		if (i < N) {
+			d = tu_u64(&rng) >> (tu_u64(&rng) % 64);
+			d = d ? d : 1;
+			hi = tu_u64(&rng) % d;
+			lo = tu_u64(&rng);
+		} else {
+			k = (i - N) / 4;
+			d = edge[k];
+			hi = (i - N) % 2 ? d - 1 : 0;
+			lo = (i - N) % 4 >= 2 ? ~(uint64_t)0 : 0;
+		}
+		assert_int_equal(mot_udiv_inv_init(&in, d), MOT_OK);
+		q = mot_udiv_by_inv(hi, lo, &in, &rem);
+		q2 = fixp_udiv_by_inv(hi, lo, d, &rem2);
+		x = ((u128)hi << 64) | lo;
+		if (q != (uint64_t)(x / d) || rem != (uint64_t)(x % d) || q2 != q || rem2 != rem)
+			bad++;
+		n++;
+	}
+	assert_int_equal(bad, 0);
+	assert_true(n > N);
+	{
+		struct mot_udiv_inv in;
+
+		assert_int_equal(mot_udiv_inv_init(&in, 0), MOT_E_INVAL);
+	}
+}
+
 static void test_muldiv_div(void **state)
 {
 	struct tu_rng rng;
@@ -231,7 +279,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_mul_round), cmocka_unit_test(test_sum3_ov),
-		cmocka_unit_test(test_udiv),
+		cmocka_unit_test(test_udiv), cmocka_unit_test(test_udiv_inv),
 		cmocka_unit_test(test_muldiv_div), cmocka_unit_test(test_recip),
 		cmocka_unit_test(test_floordiv), cmocka_unit_test(test_sat),
 	};
