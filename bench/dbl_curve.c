@@ -720,9 +720,15 @@ int dbl_curve_init(struct dbl_curve *c, const struct sd_curve *sd, double scale,
 	c->span_ease = e_in != 0 || e_out != 0;
 	if (c->span_ease) {
 		double span = c->span_f1 - c->span_f0;
+		struct dbl_ease_span *e = &c->span;
 
-		dbl_ease_init(&c->span, e_out / span, e_in / span);
-		c->span_inv = 1 / span;
+		e->a = e_out;
+		e->d = span - e_in;
+		e->w = span;
+		e->v = 2 * span / (2 * span - e_out - e_in);
+		e->c = e->v * e_out / 2;
+		e->ka = e_out > 0 ? e->v / (2 * e_out) : 0;
+		e->kb = e_in > 0 ? e->v / (2 * e_in) : 0;
 	}
 	prep_pieces(c, b1, b2);
 	c->integral = integral;

@@ -25,6 +25,14 @@ struct dbl_ease {
 	double ka, kb;  /* v / (2a), v / (2b); 0 when a (b) is 0 */
 };
 
+/* The same over a span in frames, as ease.h's struct mot_ease_span: g(x)
+ * for an offset x into the span, three polynomials in x. */
+struct dbl_ease_span {
+	double a, d, w;   /* A, W - B, W */
+	double v, c;      /* peak speed 2W / (2W - A - B), and v A / 2 */
+	double ka, kb;    /* v / (2A), v / (2B); 0 when A (B) is 0 */
+};
+
 /* Entry j: piece j of the curve and key interval j, as struct mot_curve_seg. */
 struct dbl_seg {
 	double f0, f1, vref, fref;
@@ -49,8 +57,8 @@ struct dbl_curve {
 	struct dbl_seg *seg;
 	double *pw;            /* bezier in power form (curve_bezier.c's rule), else NULL:
 				* the frame's a_1 .. a_m, then the value's */
-	double span_f0, span_f1, span_inv;
-	struct dbl_ease span;
+	double span_f0, span_f1;
+	struct dbl_ease_span span;
 	double area_first, area_last;
 };
 
@@ -118,13 +126,20 @@ struct dbl_piece {
 void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_cursor *cur,
 		     double f);
 
-/* curve.c's span_warp() */
+/* curve.c's span_warp(), for span_f0 < f < span_f1 */
 static inline double dbl_span_warp(const struct dbl_curve *c, double f)
 {
-	double u = (f - c->span_f0) * c->span_inv;
+	const struct dbl_ease_span *e = &c->span;
+	double x = f - c->span_f0, r, g;
 
-	u = dbl_ease_apply(&c->span, u < 0 ? 0 : u > 1 ? 1 : u);
-	return c->span_f0 + u * (c->span_f1 - c->span_f0);
+	if (x < e->a)
+		return c->span_f0 + x * e->ka * x;
+	if (x > e->d) {
+		r = e->w - x;
+		return c->span_f0 + (e->w - r * e->kb * r);
+	}
+	g = e->v * x - e->c;
+	return c->span_f0 + (g < 0 ? 0 : g > e->w ? e->w : g);
 }
 
 /* The piece at a frame of its span (curve.c's piece_value()); false where

@@ -429,10 +429,8 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	if (c->span_ease) {
 		int64_t span = c->span_f1 - c->span_f0;
 
-		err = mot_ease_init_ratio(&c->span, opts->ease_out_frames, opts->ease_in_frames,
-					  span, sat);
-		if (!err)
-			err = mot_recip_init(&c->span_inv, span);
+		err = mot_ease_span_init(&c->span, opts->ease_out_frames, opts->ease_in_frames,
+					 span, sat);
 		if (err)
 			goto fail;
 	}

@@ -174,8 +174,7 @@ struct mot_curve {
 	struct mot_curve_seg *seg;
 	mot_q32 span_f0, span_f1;    /* first and last key frame */
 	mot_q32 beta1, beta2;
-	struct mot_recip span_inv;   /* 1 / (span_f1 - span_f0) */
-	struct mot_ease span;
+	struct mot_ease_span span;   /* the strand-wide ease over span_f1 - span_f0 */
 	mot_acc area_first;          /* integral from frame 0 to the first key */
 	mot_acc area_last;           /* integral from frame 0 to the last key */
 };

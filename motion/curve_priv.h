@@ -216,13 +216,11 @@ static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 }
 
 /* The strand-wide time warp: a frame strictly inside the span to its eased
- * frame, in [span_f0, span_f1] (curve.c, and scene.c's piece memo). */
+ * frame, in [span_f0, span_f1] (curve.c, and scene.c's piece memo): the
+ * profile's polynomials in the frame (ease.h). */
 static inline mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 {
-	int64_t s = frac62(f - c->span_f0, &c->span_inv);
-
-	s = mot_ease_apply62_in(&c->span, s);
-	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
+	return c->span_f0 + mot_ease_span_apply_in(&c->span, f - c->span_f0);
 }
 
 /* ---- segment lookup (curve_locate.c) ------------------------------------------ */

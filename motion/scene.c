@@ -223,7 +223,8 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 
 /* How the memo evaluates its piece (struct mot_node_memo): curve.c's
  * piece_value() with what it decides per evaluation decided once (how),
- * and which of them the first pass takes inline (op). */
+ * and which of them the first pass takes inline (op: all but PIECE_WHOLE,
+ * and a spin joint's). */
 enum {
 	PIECE_HELD,        /* no piece: the value `held` */
 	PIECE_SHIFTED,     /* a hermite piece in s' (curve.h) */
@@ -319,55 +320,19 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
-/* The eased parameter and the warped frame, out of line: inline, the
- * compiler keeps their clamped results as 128-bit values and multiplies
- * them as such. */
+/* The eased parameter, out of line: inline, the compiler keeps its
+ * clamped result as a 128-bit value and multiplies it as such. (The warped
+ * frame, span_warp(), is inline: its polynomials in the frame cost less
+ * than the call.) */
 static __attribute__((noinline)) int64_t piece_ease(const struct mot_ease *e, int64_t u)
 {
 	return mot_ease_apply62_in(e, u);
 }
 
-static __attribute__((noinline)) mot_q32 piece_warp(const struct mot_curve *c, mot_q32 f)
-{
-	return span_warp(c, f);
-}
-
-/* The memo's piece at a frame of its span: false where the warped frame
- * leaves the piece, or where value_of() would take its wide path
- * (curve_learn() then learns again and goes the whole way). */
-static inline __attribute__((always_inline)) bool piece_at(const struct mot_node_memo *m,
-							   mot_q32 f, mot_q32 *out)
-{
-	const struct mot_curve_seg *s = m->piece;
-	int64_t p, q, u;
-	int sh;
-
-	if (m->warp) {
-		f = piece_warp(m->warp, f);
-		if (f < m->glo || f >= m->ghi)
-			return false;
-	}
-	if (!s) {
-		*out = m->held;
-		return true;
-	}
-	if (m->how == PIECE_SHIFTED) {
-		p = poly_eval(s->c, (f - s->f0) << s->ush);
-	} else {
-		u = frac62(f - s->f0, &s->inv_w);
-		if (m->how == PIECE_LINEAR_EASE || m->how == PIECE_CUBIC_EASE)
-			u = piece_ease(&s->ease, u);
-		p = m->how == PIECE_LINEAR || m->how == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
-									    poly_eval(s->c, u);
-	}
-	sh = s->vsh;
-	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
-	       !__builtin_add_overflow(s->vref, q >> sh, out);
-}
-
-/* The first pass's own case (op): a held value or a piece without a
- * strand-wide ease, at a frame of its span; false where value_of() would
- * take its wide path. */
+/* The first pass's own case (op): the memo's piece or held value at a frame
+ * of its span, under a strand-wide ease at the warped frame; false where
+ * the warped frame leaves the piece, or where value_of() would take its
+ * wide path (joint_slow() then learns again and goes the whole way). */
 static inline __attribute__((always_inline)) bool piece_fast(const struct mot_node_memo *m,
 							     mot_q32 f, mot_q32 *out)
 {
@@ -375,6 +340,11 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 	int64_t p, q;
 	int sh;
 
+	if (m->warp) {
+		f = span_warp(m->warp, f);
+		if (f < m->glo || f >= m->ghi)
+			return false;
+	}
 	if (m->op == PIECE_HELD) {
 		*out = m->held;
 		return true;
@@ -400,7 +370,7 @@ static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
 			   struct mot_node_memo *m, mot_q32 f, uint32_t *sat)
 {
 	piece_learn(m, c, cur, f);
-	m->op = !m->warp && m->how != PIECE_WHOLE ? m->how : PIECE_SLOW;
+	m->op = m->how != PIECE_WHOLE ? m->how : PIECE_SLOW;
 	return mot_curve_eval(c, cur, f, sat);
 }
 
@@ -461,12 +431,13 @@ joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_no
 
 /*
  * A joint's value, and its spin speed, where the first pass does not take
- * the memo's value inline (mot_scene_eval()): the memo's piece of any kind
- * when the frame is in its span, else mot_curve_eval(), learning the piece
- * there. Where 128-bit integers are not the compiler's, joint_value()
- * alone: the memo's copies of the arithmetic would cost more code than
- * they save time (a Cortex-M4), and it is the path the other builds check
- * them against (make check-cross). The same bits every way.
+ * the memo's value inline (mot_scene_eval()): a frame outside the memo's
+ * span, or a warped frame that left its piece (piece_fast() said so; it is
+ * the memo's every case but PIECE_SLOW's), learns the piece there and
+ * takes mot_curve_eval(). Where 128-bit integers are not the compiler's,
+ * joint_value() alone: the memo's copies of the arithmetic would cost more
+ * code than they save time (a Cortex-M4), and it is the path the other
+ * builds check them against (make check-cross). The same bits every way.
  */
 static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 						    struct mot_eval *ev,
@@ -476,7 +447,6 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 {
 	const struct mot_curve *c;
 	struct mot_cursor *cur;
-	mot_q32 r;
 
 	if (!small_kernels || n->curve < 0)
 		return joint_value(sc, ev, n, frame, rpm);
@@ -485,8 +455,6 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 	cur = &ev->cursors[n->curve];
 	if (m->how == PIECE_WHOLE)
 		return mot_curve_eval(c, cur, frame, &ev->sat);
-	if (frame >= m->lo && frame < m->hi && piece_at(m, frame, &r))
-		return r;
 	return curve_learn(c, cur, m, frame, &ev->sat);
 }
 
