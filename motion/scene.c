@@ -1052,12 +1052,16 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 	uint32_t i;
 
 	for (; n < end; n++, m++, val++, rpm++) {
-		mot_q32 v = 0, r = 0;
+		mot_q32 v = 0;
 
+		/* the spin speed straight into the pose (joint_slow() writes a
+		 * spin joint's): a local whose address is taken lives on the
+		 * stack, stored and loaded again every turn */
+		*rpm = 0;
 		if (n->kind != MOT_NODE_FREE) {
 			if (!small_kernels || frame < m->lo || frame >= m->hi || m->op == PIECE_SLOW ||
 			    !piece_fast(m, frame, &v))
-				v = joint_slow(sc, ev, n, m, frame, &r);
+				v = joint_slow(sc, ev, n, m, frame, rpm);
 			m->fresh = !warm || v != m->value;
 			if (m->fresh) {
 				m->value = v;
@@ -1074,7 +1078,6 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			}
 		}
 		*val = v;
-		*rpm = r;
 	}
 	for (n = sc->nodes, m = memo; n < end; n++, m++, w++, pos++) {
 		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
