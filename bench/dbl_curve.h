@@ -46,6 +46,12 @@ struct dbl_seg {
 	union {
 		double area;  /* integral from frame 0 to key j */
 		uint16_t us[8]; /* bezier's START_INV: curve_solve.c's table */
+		struct {
+			double xa, xd, vw, c; /* an eased linear or hermite piece: the
+					       * plateau a w <= x <= (1 - b) w, there
+					       * u = x v / w - v a / 2 (ease.h's
+					       * struct mot_ease_fused) */
+		} ef;
 	};
 };
 
@@ -142,6 +148,17 @@ static inline double dbl_span_warp(const struct dbl_curve *c, double f)
 	return c->span_f0 + (g < 0 ? 0 : g > e->w ? e->w : g);
 }
 
+/* curve_priv.h's eased_u(): on the plateau x v / w - v a / 2, else the
+ * fraction and the profile; for the caller to clamp to [0, 1] */
+double dbl_eased_off(const struct dbl_seg *s, double x);
+
+static inline double dbl_eased_u(const struct dbl_seg *s, double x)
+{
+	if (x >= s->ef.xa && x <= s->ef.xd)
+		return x * s->ef.vw - s->ef.c;
+	return dbl_eased_off(s, x);
+}
+
 /* The piece at a frame of its span (curve.c's piece_value()); false where
  * the warped frame leaves it */
 static inline bool dbl_piece_at(const struct dbl_piece *p, double f, double *out)
@@ -158,10 +175,8 @@ static inline bool dbl_piece_at(const struct dbl_piece *p, double f, double *out
 		*out = p->held;
 		return !p->whole;
 	}
-	u = (f - s->f0) * s->inv_w;
+	u = p->eased ? dbl_eased_u(s, f - s->f0) : (f - s->f0) * s->inv_w;
 	u = u < 0 ? 0 : u > 1 ? 1 : u;
-	if (p->eased)
-		u = dbl_ease_apply(&s->ease, u);
 	if (p->linear)
 		*out = s->vref + s->c[1] * u;
 	else

@@ -146,6 +146,8 @@ struct mot_curve_seg {
 	union {
 		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
+		struct mot_ease_fused ef; /* linear, hermite with ease (no integral):
+					   * the plateau of ease in frames (ease.h) */
 	};
 	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
 	struct mot_ease ease;    /* slow-in/out of key interval j */

@@ -132,6 +132,29 @@ int mot_ease_span_init(struct mot_ease_span *e, int64_t a, int64_t b, int64_t w,
 	return MOT_OK;
 }
 
+/* floor(x 2^63 / m) for 0 <= x <= 2^62 < m: below 2^63 */
+static int64_t over_m(int64_t x, int64_t m, bool ceil)
+{
+	uint64_t r, q = mot_acc_udiv(mot_acc_make((uint64_t)x >> 1, (uint64_t)x << 63), (uint64_t)m,
+				     &r, NULL);
+
+	return (int64_t)(q + (ceil && r != 0));
+}
+
+void mot_ease_fused_init(struct mot_ease_fused *f, const struct mot_ease *e,
+			 const struct mot_recip *r)
+{
+	f->xa = INT64_MAX;
+	f->xd = f->m = 0;
+	if (r->shift <= 30)
+		return; /* a width of one unit: frac62's own case, 0 or 1 */
+	/* m < 2^63 and V <= 2^62: M below 2^63 */
+	f->m = mot_acc_round(mot_acc_mul(r->m, e->v), 62, NULL);
+	/* s < a: x' m < a 2^63; s > 1 - b: x' m > (1 - b) 2^63 */
+	f->xa = over_m(e->a, r->m, true);
+	f->xd = over_m(MOT_Q62_ONE - e->b, r->m, false);
+}
+
 int mot_ease_init(struct mot_ease *e, mot_q32 a, mot_q32 b, uint32_t *sat)
 {
 	return mot_ease_init_ratio(e, a, b, MOT_Q32_ONE, sat);

@@ -161,6 +161,27 @@ mot_ease_span_apply_in(const struct mot_ease_span *e, int64_t x)
 	return t < 0 ? 0 : t > e->w ? e->w : t;
 }
 
+/*
+ * A key interval's plateau fused with the fraction of the interval's width
+ * (an eased linear or hermite piece; curve_priv.h's eased_u()). frac62
+ * forms x' = (f - f0) 2^(63 - sh) and s = x' m / 2^63 for the width's
+ * reciprocal m / 2^(sh + 30); on the plateau s' = v (2s - a) / 2 is then
+ * (x' M - a V) / 2^62 with M = m V / 2^62: two products and one
+ * rounding where frac62 and the profile took three and two. Within 3 units
+ * of 2^-62 of the exact s' where the two steps are within 3.5 (the
+ * roundings of m, V and M, each below 2^-62 relative; tests/test_ease.c);
+ * off the plateau (x' below xa or above xd), frac62 and the profile as
+ * they are.
+ */
+struct mot_ease_fused {
+	int64_t xa, xd;  /* the plateau: xa <= x' <= xd (none for a width of 1) */
+	int64_t m;       /* M = m V / 2^62, rounded */
+};
+
+/* Prepare from a prepared profile and the width's reciprocal. Init only. */
+void mot_ease_fused_init(struct mot_ease_fused *f, const struct mot_ease *e,
+			 const struct mot_recip *r);
+
 /* s' for s in Q32.32. s outside [0, 1] is taken as the nearest end and sets
  * MOT_SAT_DOMAIN. Real-time safe. */
 mot_q32 mot_ease_apply(const struct mot_ease *e, mot_q32 s, uint32_t *sat);

@@ -320,19 +320,11 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
-/* The eased parameter, out of line: inline, the compiler keeps its
- * clamped result as a 128-bit value and multiplies it as such. (The warped
- * frame, span_warp(), is inline: its polynomials in the frame cost less
- * than the call.) */
-static __attribute__((noinline)) int64_t piece_ease(const struct mot_ease *e, int64_t u)
-{
-	return mot_ease_apply62_in(e, u);
-}
-
 /* The first pass's own case (op): the memo's piece or held value at a frame
  * of its span, under a strand-wide ease at the warped frame; false where
- * the warped frame leaves the piece, or where value_of() would take its
- * wide path (joint_slow() then learns again and goes the whole way). */
+ * the warped frame leaves the piece, or where the value leaves int64 as
+ * value_of() would find (joint_slow() then learns again and goes the whole
+ * way). */
 static inline __attribute__((always_inline)) bool piece_fast(const struct mot_node_memo *m,
 							     mot_q32 f, mot_q32 *out)
 {
@@ -352,16 +344,17 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 	if (m->op == PIECE_SHIFTED) {
 		p = poly_eval(s->c, (f - s->f0) << s->ush);
 	} else {
-		int64_t u = frac62(f - s->f0, &s->inv_w);
+		int64_t u = m->op >= PIECE_LINEAR_EASE ? eased_u(s, f - s->f0) :
+							 frac62(f - s->f0, &s->inv_w);
 
-		if (m->op >= PIECE_LINEAR_EASE)
-			u = piece_ease(&s->ease, u);
 		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
 									  poly_eval(s->c, u);
 	}
+	/* round(p / 2^sh) = floor((floor(p / 2^(sh - 1)) + 1) / 2), with vsh in
+	 * [1, 62] (curve_learn()): value_of()'s bits, no sum to overflow */
 	sh = s->vsh;
-	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
-	       !__builtin_add_overflow(s->vref, q >> sh, out);
+	q = ((p >> (sh - 1)) + 1) >> 1;
+	return !__builtin_add_overflow(s->vref, q, out);
 }
 
 /* A frame outside the memo's span: learn the piece there, and the value
@@ -370,7 +363,10 @@ static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
 			   struct mot_node_memo *m, mot_q32 f, uint32_t *sat)
 {
 	piece_learn(m, c, cur, f);
-	m->op = m->how != PIECE_WHOLE ? m->how : PIECE_SLOW;
+	/* a piece whose scale value_of() takes the wide way for: out of line */
+	m->op = m->how == PIECE_WHOLE || (m->piece && (m->piece->vsh < 1 || m->piece->vsh > 62)) ?
+			PIECE_SLOW :
+			m->how;
 	return mot_curve_eval(c, cur, f, sat);
 }
 

@@ -5,6 +5,7 @@
  * ends, continuity and monotonicity at the joins, the plateau speed, the
  * identity, and the argument checks.
  */
+#include "motion/curve_priv.h"
 #include "motion/ease.h"
 #include "ref_curve.h"
 #include "testutil.h"
@@ -313,6 +314,53 @@ static void test_ease_span(void **state)
 			 MOT_E_INVAL);
 }
 
+/* An eased piece's parameter (curve_priv.h's eased_u()): on the plateau
+ * fused with the fraction of the width, elsewhere frac62 and the profile;
+ * against the formula at x / w in long double, in units of 2^-62, over
+ * widths of 2 to 2^62 units, uniformly and around the joins. */
+static void test_ease_fused(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst on = { 0, 0 }, off = { 0, 0 }, two = { 0, 0 };
+	int i;
+
+	tu_seed(&rng, 18);
+	for (i = 0; i < N; i++) {
+		struct mot_curve_seg s;
+		mot_q32 a, b;
+		int64_t w = 2 + (int64_t)(tu_u64(&rng) >> (2 + tu_u64(&rng) % 61)), x, xs;
+		unsigned where = (unsigned)(tu_u64(&rng) % 4);
+		ref_t want;
+		int64_t got;
+
+		random_ab(&rng, &a, &b);
+		s = (struct mot_curve_seg){ 0 };
+		assert_int_equal(mot_ease_init(&s.ease, a, b, NULL), MOT_OK);
+		assert_int_equal(mot_recip_init(&s.inv_w, w), MOT_OK);
+		mot_ease_fused_init(&s.ef, &s.ease, &s.inv_w);
+		x = (int64_t)(tu_u64(&rng) % (uint64_t)w);
+		if (where == 1)
+			x = (int64_t)((ref_t)w * ref_q(a)) + (int64_t)(tu_u64(&rng) % 5) - 2;
+		else if (where == 2)
+			x = (int64_t)((ref_t)w * (1 - ref_q(b))) + (int64_t)(tu_u64(&rng) % 5) - 2;
+		x = x < 0 ? 0 : x >= w ? w - 1 : x;
+		got = eased_u(&s, x);
+		want = ref_ease(ref_q(a), ref_q(b), (ref_t)x / (ref_t)w);
+		xs = x << (93 - s.inv_w.shift);
+		tu_worst_add(xs >= s.ef.xa && xs <= s.ef.xd ? &on : &off,
+			     (double)((q62_to_ref(got) - want) * Q62), (double)w);
+		/* the two steps everywhere, for comparison */
+		tu_worst_add(&two,
+			     (double)((q62_to_ref(mot_ease_apply62(&s.ease, frac62(x, &s.inv_w))) -
+				       want) *
+				      Q62),
+			     (double)w);
+	}
+	tu_bound("ease.fused_plateau_vs_ref", &on, 3.5, "units of 2^-62");
+	tu_bound("ease.fused_off_plateau_vs_ref", &off, 4.0, "units of 2^-62");
+	tu_bound("ease.frac_then_profile_vs_ref", &two, 4.0, "units of 2^-62");
+}
+
 static void test_ease_errors(void **state)
 {
 	struct mot_ease e;
@@ -355,6 +403,7 @@ int main(void)
 		cmocka_unit_test(test_ease_joins_monotone),
 		cmocka_unit_test(test_ease_plateau_speed),
 		cmocka_unit_test(test_ease_span),
+		cmocka_unit_test(test_ease_fused),
 		cmocka_unit_test(test_ease_errors),
 	};
 
