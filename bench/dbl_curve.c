@@ -351,12 +351,23 @@ static inline __attribute__((always_inline)) double eval(const struct dbl_curve 
 	s = &c->seg[locate_seg(c, cur, f)];
 	if (c->kind == MOT_INTERP_STEP)
 		return s->vref;
-	u = frac(f - s->f0, s->inv_w);
-	if (c->seg_ease && !dbl_ease_is_identity(&s->ease))
-		u = dbl_ease_apply(&s->ease, u);
+	if (c->seg_ease && !dbl_ease_is_identity(&s->ease)) {
+		u = dbl_eased_u(s, f - s->f0);
+		u = u < 0 ? 0 : u > 1 ? 1 : u;
+	} else {
+		u = frac(f - s->f0, s->inv_w);
+	}
 	if (c->kind == MOT_INTERP_LINEAR)
 		return s->vref + s->c[1] * u;
 	return s->vref + poly_eval(s->c, u);
+}
+
+/* dbl_eased_u() off the plateau, out of line as the core's profile is */
+double dbl_eased_off(const struct dbl_seg *s, double x)
+{
+	double u = x * s->inv_w;
+
+	return dbl_ease_apply(&s->ease, u < 0 ? 0 : u > 1 ? 1 : u);
 }
 
 double dbl_curve_eval(const struct dbl_curve *c, struct dbl_cursor *cur, double f)
@@ -720,11 +731,28 @@ int dbl_curve_init(struct dbl_curve *c, const struct sd_curve *sd, double scale,
 	c->span_ease = e_in != 0 || e_out != 0;
 	if (c->span_ease) {
 		double span = c->span_f1 - c->span_f0;
+		struct dbl_ease_span *e = &c->span;
 
-		dbl_ease_init(&c->span, e_out / span, e_in / span);
-		c->span_inv = 1 / span;
+		e->a = e_out;
+		e->d = span - e_in;
+		e->w = span;
+		e->v = 2 * span / (2 * span - e_out - e_in);
+		e->c = e->v * e_out / 2;
+		e->ka = e_out > 0 ? e->v / (2 * e_out) : 0;
+		e->kb = e_in > 0 ? e->v / (2 * e_in) : 0;
 	}
 	prep_pieces(c, b1, b2);
+	for (i = 0; c->seg_ease && (c->kind == MOT_INTERP_LINEAR || c->kind == MOT_INTERP_HERMITE) &&
+		    i + 1 < n; i++) {
+		struct dbl_seg *s = &c->seg[i];
+		const struct dbl_ease *e = &s->ease;
+		double h = s->f1 - s->f0;
+
+		s->ef.xa = e->a * h;
+		s->ef.xd = (1 - e->b) * h;
+		s->ef.vw = e->v * s->inv_w;
+		s->ef.c = e->v * e->a / 2;
+	}
 	c->integral = integral;
 	if (integral)
 		prep_area(c);

@@ -25,6 +25,14 @@ struct dbl_ease {
 	double ka, kb;  /* v / (2a), v / (2b); 0 when a (b) is 0 */
 };
 
+/* The same over a span in frames, as ease.h's struct mot_ease_span: g(x)
+ * for an offset x into the span, three polynomials in x. */
+struct dbl_ease_span {
+	double a, d, w;   /* A, W - B, W */
+	double v, c;      /* peak speed 2W / (2W - A - B), and v A / 2 */
+	double ka, kb;    /* v / (2A), v / (2B); 0 when A (B) is 0 */
+};
+
 /* Entry j: piece j of the curve and key interval j, as struct mot_curve_seg. */
 struct dbl_seg {
 	double f0, f1, vref, fref;
@@ -38,6 +46,12 @@ struct dbl_seg {
 	union {
 		double area;  /* integral from frame 0 to key j */
 		uint16_t us[8]; /* bezier's START_INV: curve_solve.c's table */
+		struct {
+			double xa, xd, vw, c; /* an eased linear or hermite piece: the
+					       * plateau a w <= x <= (1 - b) w, there
+					       * u = x v / w - v a / 2 (ease.h's
+					       * struct mot_ease_fused) */
+		} ef;
 	};
 };
 
@@ -49,8 +63,8 @@ struct dbl_curve {
 	struct dbl_seg *seg;
 	double *pw;            /* bezier in power form (curve_bezier.c's rule), else NULL:
 				* the frame's a_1 .. a_m, then the value's */
-	double span_f0, span_f1, span_inv;
-	struct dbl_ease span;
+	double span_f0, span_f1;
+	struct dbl_ease_span span;
 	double area_first, area_last;
 };
 
@@ -118,13 +132,31 @@ struct dbl_piece {
 void dbl_piece_learn(struct dbl_piece *p, const struct dbl_curve *c, struct dbl_cursor *cur,
 		     double f);
 
-/* curve.c's span_warp() */
+/* curve.c's span_warp(), for span_f0 < f < span_f1 */
 static inline double dbl_span_warp(const struct dbl_curve *c, double f)
 {
-	double u = (f - c->span_f0) * c->span_inv;
+	const struct dbl_ease_span *e = &c->span;
+	double x = f - c->span_f0, r, g;
 
-	u = dbl_ease_apply(&c->span, u < 0 ? 0 : u > 1 ? 1 : u);
-	return c->span_f0 + u * (c->span_f1 - c->span_f0);
+	if (x < e->a)
+		return c->span_f0 + x * e->ka * x;
+	if (x > e->d) {
+		r = e->w - x;
+		return c->span_f0 + (e->w - r * e->kb * r);
+	}
+	g = e->v * x - e->c;
+	return c->span_f0 + (g < 0 ? 0 : g > e->w ? e->w : g);
+}
+
+/* curve_priv.h's eased_u(): on the plateau x v / w - v a / 2, else the
+ * fraction and the profile; for the caller to clamp to [0, 1] */
+double dbl_eased_off(const struct dbl_seg *s, double x);
+
+static inline double dbl_eased_u(const struct dbl_seg *s, double x)
+{
+	if (x >= s->ef.xa && x <= s->ef.xd)
+		return x * s->ef.vw - s->ef.c;
+	return dbl_eased_off(s, x);
 }
 
 /* The piece at a frame of its span (curve.c's piece_value()); false where
@@ -143,10 +175,8 @@ static inline bool dbl_piece_at(const struct dbl_piece *p, double f, double *out
 		*out = p->held;
 		return !p->whole;
 	}
-	u = (f - s->f0) * s->inv_w;
+	u = p->eased ? dbl_eased_u(s, f - s->f0) : (f - s->f0) * s->inv_w;
 	u = u < 0 ? 0 : u > 1 ? 1 : u;
-	if (p->eased)
-		u = dbl_ease_apply(&s->ease, u);
 	if (p->linear)
 		*out = s->vref + s->c[1] * u;
 	else

@@ -28,9 +28,10 @@ static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,
 		return s->vref;
 	if (s->ush >= 0) /* a hermite piece in s', without ease (curve.h) */
 		return value_of(s->vref, poly_eval(s->c, (f - s->f0) << s->ush), s->vsh, sat);
-	u = frac62(f - s->f0, &s->inv_w);
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
-		u = mot_ease_apply62(&s->ease, u);
+		u = eased_u(s, f - s->f0);
+	else
+		u = frac62(f - s->f0, &s->inv_w);
 	if (c->kind == MOT_INTERP_LINEAR)
 		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
@@ -441,16 +442,23 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	if (c->span_ease) {
 		int64_t span = c->span_f1 - c->span_f0;
 
-		err = mot_ease_init_ratio(&c->span, opts->ease_out_frames, opts->ease_in_frames,
-					  span, sat);
-		if (!err)
-			err = mot_recip_init(&c->span_inv, span);
+		err = mot_ease_span_init(&c->span, opts->ease_out_frames, opts->ease_in_frames,
+					 span, sat);
 		if (err)
 			goto fail;
 	}
 	err = prep_pieces(c, opts->tangents);
 	if (err)
 		goto fail;
+	/* an eased linear or hermite piece: its plateau fused with frac62, in
+	 * ic[]'s place (no integral with an ease) */
+	for (i = 0; c->seg_ease && (kind == MOT_INTERP_LINEAR || kind == MOT_INTERP_HERMITE) &&
+		    i + 1 < nkeys; i++) {
+		struct mot_curve_seg *s = &c->seg[i];
+
+		if (!mot_ease_is_identity(&s->ease))
+			mot_ease_fused_init(&s->ef, &s->ease, &s->inv_w);
+	}
 	c->integral = opts->integral;
 	if (c->integral) {
 		err = mot_cv_prep_area(c);

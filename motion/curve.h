@@ -146,6 +146,8 @@ struct mot_curve_seg {
 	union {
 		int64_t fc[4];   /* frame polynomial F (bspline, beta) */
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
+		struct mot_ease_fused ef; /* linear, hermite with ease (no integral):
+					   * the plateau of ease in frames (ease.h) */
 	};
 	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
 	struct mot_ease ease;    /* slow-in/out of key interval j */
@@ -174,8 +176,7 @@ struct mot_curve {
 	struct mot_curve_seg *seg;
 	mot_q32 span_f0, span_f1;    /* first and last key frame */
 	mot_q32 beta1, beta2;
-	struct mot_recip span_inv;   /* 1 / (span_f1 - span_f0) */
-	struct mot_ease span;
+	struct mot_ease_span span;   /* the strand-wide ease over span_f1 - span_f0 */
 	mot_acc area_first;          /* integral from frame 0 to the first key */
 	mot_acc area_last;           /* integral from frame 0 to the last key */
 };

@@ -215,14 +215,32 @@ static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 	return s > ONE62 ? ONE62 : s;
 }
 
+/* The eased parameter, Q2.62, of an eased linear or hermite piece at an
+ * offset x in [0, f1 - f0): on the profile's plateau fused with the
+ * fraction of the width (struct mot_ease_fused), else frac62 and the
+ * profile. */
+static inline __attribute__((always_inline)) int64_t eased_u(const struct mot_curve_seg *s,
+							     int64_t x)
+{
+	const struct mot_ease_fused *e = &s->ef;
+	int64_t xs = x << (93 - s->inv_w.shift), u; /* frac62's; x = 0 for a width of 1 */
+
+	if (xs >= e->xa && xs <= e->xd) {
+		/* x' M < 2^126, a V < 2^124 */
+		u = mot_ease_round(mot_acc_sub(mot_acc_mul(xs, e->m),
+					       mot_acc_mul(s->ease.a, s->ease.v)),
+				   62);
+		return u < 0 ? 0 : u > ONE62 ? ONE62 : u;
+	}
+	return mot_ease_apply62(&s->ease, frac62(x, &s->inv_w));
+}
+
 /* The strand-wide time warp: a frame strictly inside the span to its eased
- * frame, in [span_f0, span_f1] (curve.c, and scene.c's piece memo). */
+ * frame, in [span_f0, span_f1] (curve.c, and scene.c's piece memo): the
+ * profile's polynomials in the frame (ease.h). */
 static inline mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 {
-	int64_t s = frac62(f - c->span_f0, &c->span_inv);
-
-	s = mot_ease_apply62_in(&c->span, s);
-	return c->span_f0 + mot_acc_round(mot_acc_mul(s, c->span_f1 - c->span_f0), 62, NULL);
+	return c->span_f0 + mot_ease_span_apply_in(&c->span, f - c->span_f0);
 }
 
 /* ---- segment lookup (curve_locate.c) ------------------------------------------ */

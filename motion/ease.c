@@ -88,6 +88,73 @@ int mot_ease_init_ratio(struct mot_ease *e, int64_t a_num, int64_t b_num, int64_
 	return MOT_OK;
 }
 
+/* The mantissa of v/(2L) 2^62 = V / L for a length L > 0 (ease_mantissa),
+ * its shift at most 63 (mot_ease_round's): only for L above 2^60 units
+ * (2^28 frames) is it rounded to fewer bits, as many as v/(2L) 2^62 has. */
+static void span_factor(int64_t v, int64_t l, int64_t *m, uint32_t *shift)
+{
+	ease_mantissa(v, l, m, shift);
+	if (*shift > 63) {
+		unsigned d = *shift - 63;
+
+		*m = (int64_t)(((uint64_t)*m + ((uint64_t)1 << (d - 1))) >> d);
+		*shift = 63;
+	}
+}
+
+int mot_ease_span_init(struct mot_ease_span *e, int64_t a, int64_t b, int64_t w, uint32_t *sat)
+{
+	e->a = e->ka = e->kb = 0;
+	e->w = e->d = w > 0 ? w : 1;
+	e->v = (int64_t)1 << 61;
+	e->ka_shift = e->kb_shift = 1;
+	e->av = mot_acc_zero();
+	if (w <= 0 || a < 0 || b < 0 || a > w || b > w - a)
+		return MOT_E_INVAL;
+	e->a = a;
+	e->d = w - b;
+	/* V = v 2^61 = 2^62 W / (2W - A - B); the divisor is in [W, 2W] (below
+	 * 2^64), the quotient in [2^61, 2^62]. */
+	{
+		uint64_t d = 2 * (uint64_t)w - (uint64_t)a - (uint64_t)b, r;
+		uint64_t q = mot_acc_udiv(mot_acc_make((uint64_t)w >> 2, (uint64_t)w << 62), d, &r,
+					  sat);
+
+		if (r >= d - r)
+			q++;
+		e->v = (int64_t)q;
+	}
+	if (a > 0)
+		span_factor(e->v, a, &e->ka, &e->ka_shift);
+	if (b > 0)
+		span_factor(e->v, b, &e->kb, &e->kb_shift);
+	e->av = mot_acc_mul(a, e->v);
+	return MOT_OK;
+}
+
+/* floor(x 2^63 / m) for 0 <= x <= 2^62 < m: below 2^63 */
+static int64_t over_m(int64_t x, int64_t m, bool ceil)
+{
+	uint64_t r, q = mot_acc_udiv(mot_acc_make((uint64_t)x >> 1, (uint64_t)x << 63), (uint64_t)m,
+				     &r, NULL);
+
+	return (int64_t)(q + (ceil && r != 0));
+}
+
+void mot_ease_fused_init(struct mot_ease_fused *f, const struct mot_ease *e,
+			 const struct mot_recip *r)
+{
+	f->xa = INT64_MAX;
+	f->xd = f->m = 0;
+	if (r->shift <= 30)
+		return; /* a width of one unit: frac62's own case, 0 or 1 */
+	/* m < 2^63 and V <= 2^62: M below 2^63 */
+	f->m = mot_acc_round(mot_acc_mul(r->m, e->v), 62, NULL);
+	/* s < a: x' m < a 2^63; s > 1 - b: x' m > (1 - b) 2^63 */
+	f->xa = over_m(e->a, r->m, true);
+	f->xd = over_m(MOT_Q62_ONE - e->b, r->m, false);
+}
+
 int mot_ease_init(struct mot_ease *e, mot_q32 a, mot_q32 b, uint32_t *sat)
 {
 	return mot_ease_init_ratio(e, a, b, MOT_Q32_ONE, sat);

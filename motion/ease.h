@@ -101,6 +101,87 @@ static inline __attribute__((always_inline)) int64_t mot_ease_apply62_in(const s
 	return t < 0 ? 0 : t > MOT_Q62_ONE ? MOT_Q62_ONE : t;
 }
 
+/*
+ * The same profile over a span of W units (a strand's ease: W, A and B in
+ * Q32.32 frames, raw), applied to an offset x into the span in those units
+ * directly: three polynomials in x, where s = x / W would cost a product
+ * and the warped offset s' W another:
+ *     g = v x^2 / (2A)                  x < A
+ *     g = v (2x - A) / 2                A <= x <= W - B
+ *     g = W - v (W - x)^2 / (2B)        x > W - B
+ * with A, B the accelerating and decelerating lengths and v = 2W / (2W - A
+ * - B), g continuous with a continuous first derivative, the pieces
+ * meeting at A and W - B to within their roundings.
+ *
+ * Precision. v/(2A) and v/(2B) as normalised mantissas (relative error
+ * 2^-63), x multiplied into them first as in the profile above: the
+ * parabolas' g within 0.5 + x 2^-62 units of the exact, the plateau's
+ * within 0.5 + |2x - A| 2^-63 (the rounding of v). For a span below 2^52
+ * units (2^20 frames) that is half a unit and a thousandth; at the most a
+ * Q32.32 span allows, 2^63, 2.5 units, where s' W was within 0.5 + 2.25 W
+ * 2^-62 = 5.
+ */
+struct mot_ease_span {
+	int64_t a, d, w;   /* A, W - B, W */
+	int64_t v;         /* peak speed, Q3.61, in [1, 2] */
+	int64_t ka, kb;    /* v/(2A) 2^62 = ka / 2^ka_shift (0 when A = 0), likewise
+			    * for B; mantissas in [2^60, 2^63), shifts in [1, 63] */
+	uint32_t ka_shift, kb_shift;
+	mot_acc av;        /* A V (V = v 2^61): the plateau's offset */
+};
+
+/* Prepare for lengths A, B >= 0 over a span W > 0 with A + B <= W, else
+ * MOT_E_INVAL (and *e is the identity over W, or over 1 when W <= 0).
+ * Init only (divides). */
+int mot_ease_span_init(struct mot_ease_span *e, int64_t a, int64_t b, int64_t w, uint32_t *sat);
+
+/* g for an offset x strictly inside the span, 0 < x < W; g in [0, W].
+ * Real-time safe: at most two products, no division. */
+static inline __attribute__((always_inline)) int64_t
+mot_ease_span_apply_in(const struct mot_ease_span *e, int64_t x)
+{
+	int64_t t, r;
+
+	if (x < e->a) {
+		/* t = x v/(2A) 2^62 <= v/2 2^62, g = t x / 2^62 */
+		t = mot_ease_round(mot_acc_mul(x, e->ka), e->ka_shift);
+		return mot_ease_round(mot_acc_mul(t, x), 62);
+	}
+	if (x > e->d) {
+		r = e->w - x;
+		t = mot_ease_round(mot_acc_mul(r, e->kb), e->kb_shift);
+		return e->w - mot_ease_round(mot_acc_mul(t, r), 62);
+	}
+	{
+		/* (2 x V - A V) / 2^62: |2 x V| < 2^126 */
+		mot_acc xv = mot_acc_mul(x, e->v);
+
+		t = mot_ease_round(mot_acc_sub(mot_acc_add(xv, xv), e->av), 62);
+	}
+	return t < 0 ? 0 : t > e->w ? e->w : t;
+}
+
+/*
+ * A key interval's plateau fused with the fraction of the interval's width
+ * (an eased linear or hermite piece; curve_priv.h's eased_u()). frac62
+ * forms x' = (f - f0) 2^(63 - sh) and s = x' m / 2^63 for the width's
+ * reciprocal m / 2^(sh + 30); on the plateau s' = v (2s - a) / 2 is then
+ * (x' M - a V) / 2^62 with M = m V / 2^62: two products and one
+ * rounding where frac62 and the profile took three and two. Within 3 units
+ * of 2^-62 of the exact s' where the two steps are within 3.5 (the
+ * roundings of m, V and M, each below 2^-62 relative; tests/test_ease.c);
+ * off the plateau (x' below xa or above xd), frac62 and the profile as
+ * they are.
+ */
+struct mot_ease_fused {
+	int64_t xa, xd;  /* the plateau: xa <= x' <= xd (none for a width of 1) */
+	int64_t m;       /* M = m V / 2^62, rounded */
+};
+
+/* Prepare from a prepared profile and the width's reciprocal. Init only. */
+void mot_ease_fused_init(struct mot_ease_fused *f, const struct mot_ease *e,
+			 const struct mot_recip *r);
+
 /* s' for s in Q32.32. s outside [0, 1] is taken as the nearest end and sets
  * MOT_SAT_DOMAIN. Real-time safe. */
 mot_q32 mot_ease_apply(const struct mot_ease *e, mot_q32 s, uint32_t *sat);

@@ -223,7 +223,8 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 
 /* How the memo evaluates its piece (struct mot_node_memo): curve.c's
  * piece_value() with what it decides per evaluation decided once (how),
- * and which of them the first pass takes inline (op). */
+ * and which of them the first pass takes inline (op: all but PIECE_WHOLE,
+ * and a spin joint's). */
 enum {
 	PIECE_HELD,        /* no piece: the value `held` */
 	PIECE_SHIFTED,     /* a hermite piece in s' (curve.h) */
@@ -319,55 +320,11 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
-/* The eased parameter and the warped frame, out of line: inline, the
- * compiler keeps their clamped results as 128-bit values and multiplies
- * them as such. */
-static __attribute__((noinline)) int64_t piece_ease(const struct mot_ease *e, int64_t u)
-{
-	return mot_ease_apply62_in(e, u);
-}
-
-static __attribute__((noinline)) mot_q32 piece_warp(const struct mot_curve *c, mot_q32 f)
-{
-	return span_warp(c, f);
-}
-
-/* The memo's piece at a frame of its span: false where the warped frame
- * leaves the piece, or where value_of() would take its wide path
- * (curve_learn() then learns again and goes the whole way). */
-static inline __attribute__((always_inline)) bool piece_at(const struct mot_node_memo *m,
-							   mot_q32 f, mot_q32 *out)
-{
-	const struct mot_curve_seg *s = m->piece;
-	int64_t p, q, u;
-	int sh;
-
-	if (m->warp) {
-		f = piece_warp(m->warp, f);
-		if (f < m->glo || f >= m->ghi)
-			return false;
-	}
-	if (!s) {
-		*out = m->held;
-		return true;
-	}
-	if (m->how == PIECE_SHIFTED) {
-		p = poly_eval(s->c, (f - s->f0) << s->ush);
-	} else {
-		u = frac62(f - s->f0, &s->inv_w);
-		if (m->how == PIECE_LINEAR_EASE || m->how == PIECE_CUBIC_EASE)
-			u = piece_ease(&s->ease, u);
-		p = m->how == PIECE_LINEAR || m->how == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
-									    poly_eval(s->c, u);
-	}
-	sh = s->vsh;
-	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
-	       !__builtin_add_overflow(s->vref, q >> sh, out);
-}
-
-/* The first pass's own case (op): a held value or a piece without a
- * strand-wide ease, at a frame of its span; false where value_of() would
- * take its wide path. */
+/* The first pass's own case (op): the memo's piece or held value at a frame
+ * of its span, under a strand-wide ease at the warped frame; false where
+ * the warped frame leaves the piece, or where the value leaves int64 as
+ * value_of() would find (joint_slow() then learns again and goes the whole
+ * way). */
 static inline __attribute__((always_inline)) bool piece_fast(const struct mot_node_memo *m,
 							     mot_q32 f, mot_q32 *out)
 {
@@ -375,6 +332,11 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 	int64_t p, q;
 	int sh;
 
+	if (m->warp) {
+		f = span_warp(m->warp, f);
+		if (f < m->glo || f >= m->ghi)
+			return false;
+	}
 	if (m->op == PIECE_HELD) {
 		*out = m->held;
 		return true;
@@ -382,16 +344,17 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 	if (m->op == PIECE_SHIFTED) {
 		p = poly_eval(s->c, (f - s->f0) << s->ush);
 	} else {
-		int64_t u = frac62(f - s->f0, &s->inv_w);
+		int64_t u = m->op >= PIECE_LINEAR_EASE ? eased_u(s, f - s->f0) :
+							 frac62(f - s->f0, &s->inv_w);
 
-		if (m->op >= PIECE_LINEAR_EASE)
-			u = piece_ease(&s->ease, u);
 		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
 									  poly_eval(s->c, u);
 	}
+	/* round(p / 2^sh) = floor((floor(p / 2^(sh - 1)) + 1) / 2), with vsh in
+	 * [1, 62] (curve_learn()): value_of()'s bits, no sum to overflow */
 	sh = s->vsh;
-	return sh > 0 && sh < 63 && !__builtin_add_overflow(p, (int64_t)1 << (sh - 1), &q) &&
-	       !__builtin_add_overflow(s->vref, q >> sh, out);
+	q = ((p >> (sh - 1)) + 1) >> 1;
+	return !__builtin_add_overflow(s->vref, q, out);
 }
 
 /* A frame outside the memo's span: learn the piece there, and the value
@@ -400,7 +363,10 @@ static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
 			   struct mot_node_memo *m, mot_q32 f, uint32_t *sat)
 {
 	piece_learn(m, c, cur, f);
-	m->op = !m->warp && m->how != PIECE_WHOLE ? m->how : PIECE_SLOW;
+	/* a piece whose scale value_of() takes the wide way for: out of line */
+	m->op = m->how == PIECE_WHOLE || (m->piece && (m->piece->vsh < 1 || m->piece->vsh > 62)) ?
+			PIECE_SLOW :
+			m->how;
 	return mot_curve_eval(c, cur, f, sat);
 }
 
@@ -461,12 +427,13 @@ joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_no
 
 /*
  * A joint's value, and its spin speed, where the first pass does not take
- * the memo's value inline (mot_scene_eval()): the memo's piece of any kind
- * when the frame is in its span, else mot_curve_eval(), learning the piece
- * there. Where 128-bit integers are not the compiler's, joint_value()
- * alone: the memo's copies of the arithmetic would cost more code than
- * they save time (a Cortex-M4), and it is the path the other builds check
- * them against (make check-cross). The same bits every way.
+ * the memo's value inline (mot_scene_eval()): a frame outside the memo's
+ * span, or a warped frame that left its piece (piece_fast() said so; it is
+ * the memo's every case but PIECE_SLOW's), learns the piece there and
+ * takes mot_curve_eval(). Where 128-bit integers are not the compiler's,
+ * joint_value() alone: the memo's copies of the arithmetic would cost more
+ * code than they save time (a Cortex-M4), and it is the path the other
+ * builds check them against (make check-cross). The same bits every way.
  */
 static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 						    struct mot_eval *ev,
@@ -476,7 +443,6 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 {
 	const struct mot_curve *c;
 	struct mot_cursor *cur;
-	mot_q32 r;
 
 	if (!small_kernels || n->curve < 0)
 		return joint_value(sc, ev, n, frame, rpm);
@@ -485,8 +451,6 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 	cur = &ev->cursors[n->curve];
 	if (m->how == PIECE_WHOLE)
 		return mot_curve_eval(c, cur, frame, &ev->sat);
-	if (frame >= m->lo && frame < m->hi && piece_at(m, frame, &r))
-		return r;
 	return curve_learn(c, cur, m, frame, &ev->sat);
 }
 
@@ -1084,12 +1048,16 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 	uint32_t i;
 
 	for (; n < end; n++, m++, val++, rpm++) {
-		mot_q32 v = 0, r = 0;
+		mot_q32 v = 0;
 
+		/* the spin speed straight into the pose (joint_slow() writes a
+		 * spin joint's): a local whose address is taken lives on the
+		 * stack, stored and loaded again every turn */
+		*rpm = 0;
 		if (n->kind != MOT_NODE_FREE) {
 			if (!small_kernels || frame < m->lo || frame >= m->hi || m->op == PIECE_SLOW ||
 			    !piece_fast(m, frame, &v))
-				v = joint_slow(sc, ev, n, m, frame, &r);
+				v = joint_slow(sc, ev, n, m, frame, rpm);
 			m->fresh = !warm || v != m->value;
 			if (m->fresh) {
 				m->value = v;
@@ -1106,7 +1074,6 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			}
 		}
 		*val = v;
-		*rpm = r;
 	}
 	for (n = sc->nodes, m = memo; n < end; n++, m++, w++, pos++) {
 		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;

@@ -12,6 +12,8 @@
 #define mot_ease_init_ratio cvp_ease_init_ratio_
 #define mot_ease_apply cvp_ease_apply_
 #define mot_ease_apply62 cvp_ease_apply62_
+#define mot_ease_fused_init cvp_ease_fused_init_
+#define mot_ease_span_init cvp_ease_span_init_
 #define mot_curve_seg_count cvp_curve_seg_count_
 #define mot_curve_init cvp_curve_init_
 #define mot_curve_eval cvp_curve_eval_

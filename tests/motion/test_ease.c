@@ -5,6 +5,7 @@
  * ends, continuity and monotonicity at the joins, the plateau speed, the
  * identity, and the argument checks.
  */
+#include "motion/curve_priv.h"
 #include "motion/ease.h"
 #include "ref_curve.h"
 #include "testutil.h"
@@ -238,6 +239,128 @@ static void test_ease_plateau_speed(void **state)
 	tu_bound("ease.plateau_speed", &w, 1e-12, "relative");
 }
 
+/* The profile over a span in its own units (a strand's ease in Q32.32
+ * frames, ease.h): against the exact piecewise formula in long double
+ * (A, B, W and x exact in its 64-bit mantissa), in units of the span;
+ * spans below 2^52 (2^20 frames) and up to 2^63 apart. Then no step down
+ * walking 2000 units across each join. */
+static ref_t ref_span(int64_t a, int64_t b, int64_t w, int64_t x)
+{
+	ref_t A = (ref_t)a, B = (ref_t)b, W = (ref_t)w, X = (ref_t)x;
+	ref_t v = 2 * W / (2 * W - A - B);
+
+	if (X < A)
+		return v * X * X / (2 * A);
+	if (X > W - B)
+		return W - v * (W - X) * (W - X) / (2 * B);
+	return v * (2 * X - A) / 2;
+}
+
+static void test_ease_span(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst small = { 0, 0 }, big = { 0, 0 }, down = { 0, 0 };
+	int i, j, t;
+
+	tu_seed(&rng, 17);
+	for (i = 0; i < N; i++) {
+		struct mot_ease_span e;
+		bool huge = i % 4 == 0;
+		int64_t w = 2 + (int64_t)(tu_u64(&rng) >> (huge ? 1 + tu_u64(&rng) % 62 :
+								 12 + tu_u64(&rng) % 50));
+		int64_t a = (int64_t)(tu_u64(&rng) % (uint64_t)(w + 1)), b, x, at[2];
+		unsigned mode = (unsigned)(tu_u64(&rng) % 8);
+		int64_t g;
+
+		b = (int64_t)(tu_u64(&rng) % (uint64_t)(w - a + 1));
+		if (mode == 0)
+			a = 0;
+		else if (mode == 1)
+			b = 0;
+		else if (mode == 2)
+			b = w - a;
+		assert_int_equal(mot_ease_span_init(&e, a, b, w, NULL), MOT_OK);
+		x = 1 + (int64_t)(tu_u64(&rng) % (uint64_t)(w - 1));
+		g = mot_ease_span_apply_in(&e, x);
+		assert_true(g >= 0 && g <= w);
+		tu_worst_add(huge ? &big : &small, (double)((ref_t)g - ref_span(a, b, w, x)),
+			     (double)w);
+		if (huge || i % 64)
+			continue;
+		at[0] = a;
+		at[1] = w - b;
+		for (t = 0; t < 2; t++) {
+			int64_t y = at[t] - 1000, prev;
+
+			y = y < 1 ? 1 : y;
+			prev = mot_ease_span_apply_in(&e, y);
+			for (j = 0; j < 2000 && y + 1 < w; j++) {
+				int64_t cur = mot_ease_span_apply_in(&e, ++y);
+
+				if (cur < prev)
+					tu_worst_add(&down, (double)(prev - cur), (double)w);
+				prev = cur;
+			}
+		}
+	}
+	tu_bound("ease.span_vs_ref", &small, 0.51, "units, spans below 2^52");
+	tu_bound("ease.span_huge_vs_ref", &big, 3.0, "units, spans up to 2^63");
+	tu_bound("ease.span_decrease", &down, 0.0, "units");
+	assert_int_equal(mot_ease_span_init(&(struct mot_ease_span){ 0 }, 2, 3, 4, NULL),
+			 MOT_E_INVAL);
+	assert_int_equal(mot_ease_span_init(&(struct mot_ease_span){ 0 }, -1, 0, 4, NULL),
+			 MOT_E_INVAL);
+	assert_int_equal(mot_ease_span_init(&(struct mot_ease_span){ 0 }, 0, 0, 0, NULL),
+			 MOT_E_INVAL);
+}
+
+/* An eased piece's parameter (curve_priv.h's eased_u()): on the plateau
+ * fused with the fraction of the width, elsewhere frac62 and the profile;
+ * against the formula at x / w in long double, in units of 2^-62, over
+ * widths of 2 to 2^62 units, uniformly and around the joins. */
+static void test_ease_fused(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst on = { 0, 0 }, off = { 0, 0 }, two = { 0, 0 };
+	int i;
+
+	tu_seed(&rng, 18);
+	for (i = 0; i < N; i++) {
+		struct mot_curve_seg s;
+		mot_q32 a, b;
+		int64_t w = 2 + (int64_t)(tu_u64(&rng) >> (2 + tu_u64(&rng) % 61)), x, xs;
+		unsigned where = (unsigned)(tu_u64(&rng) % 4);
+		ref_t want;
+		int64_t got;
+
+		random_ab(&rng, &a, &b);
+		s = (struct mot_curve_seg){ 0 };
+		assert_int_equal(mot_ease_init(&s.ease, a, b, NULL), MOT_OK);
+		assert_int_equal(mot_recip_init(&s.inv_w, w), MOT_OK);
+		mot_ease_fused_init(&s.ef, &s.ease, &s.inv_w);
+		x = (int64_t)(tu_u64(&rng) % (uint64_t)w);
+		if (where == 1)
+			x = (int64_t)((ref_t)w * ref_q(a)) + (int64_t)(tu_u64(&rng) % 5) - 2;
+		else if (where == 2)
+			x = (int64_t)((ref_t)w * (1 - ref_q(b))) + (int64_t)(tu_u64(&rng) % 5) - 2;
+		x = x < 0 ? 0 : x >= w ? w - 1 : x;
+		got = eased_u(&s, x);
+		want = ref_ease(ref_q(a), ref_q(b), (ref_t)x / (ref_t)w);
+		xs = x << (93 - s.inv_w.shift);
+		tu_worst_add(xs >= s.ef.xa && xs <= s.ef.xd ? &on : &off,
+			     (double)((q62_to_ref(got) - want) * Q62), (double)w);
+		/* the two steps everywhere, for comparison */
+		tu_worst_add(&two,
+			     (double)((q62_to_ref(mot_ease_apply62(&s.ease, frac62(x, &s.inv_w))) -
+				       want) *
+				      Q62),
+			     (double)w);
+	}
+	tu_bound("ease.fused_plateau_vs_ref", &on, 3.5, "units of 2^-62");
+	tu_bound("ease.fused_off_plateau_vs_ref", &off, 4.0, "units of 2^-62");
+	tu_bound("ease.frac_then_profile_vs_ref", &two, 4.0, "units of 2^-62");
+}
+
 static void test_ease_errors(void **state)
 {
 	struct mot_ease e;
@@ -279,6 +402,8 @@ int main(void)
 		cmocka_unit_test(test_ease_ends_identity),
 		cmocka_unit_test(test_ease_joins_monotone),
 		cmocka_unit_test(test_ease_plateau_speed),
+		cmocka_unit_test(test_ease_span),
+		cmocka_unit_test(test_ease_fused),
 		cmocka_unit_test(test_ease_errors),
 	};
 
