@@ -400,7 +400,12 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 	if (!iters)
 		iters = &unused;
 	if (c->kind != MOT_INTERP_BEZIER) {
-		s = &c->seg[locate_seg(c, cur, f)];
+		/* the cursor's piece, tested here: mot_cv_locate()'s first test
+		 * without the call */
+		j = cur ? cur->seg : c->nseg;
+		if (j >= c->nseg || f < c->seg[j].f0 || (j + 1 < c->nseg && f >= c->seg[j].f1))
+			j = locate_seg(c, cur, f);
+		s = &c->seg[j];
 		d = round_shift(f - s->fref, -s->fsh, NULL);
 		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), iters);
 		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
