@@ -517,13 +517,15 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 			struct mot_eval *ev, const struct mot_free_strand *fs, mot_q32 frame)
 {
 	struct mot_decomp d;
-	mot_q32 v[MOT_FREE_NCHANNELS], g = mot_warp_apply(&fs->warp, frame, &ev->sat);
+	mot_q32 v[MOT_FREE_NCHANNELS], g = frame;
 	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false;
 	const struct mot_rot_q62 *held = NULL; /* R(d.rot), made at init */
 	struct mot_rot_q62 r;
 	uint64_t ov = 0;
 	uint32_t k, j;
 
+	if (fs->warp.on) /* most strands have none: not even the call */
+		g = mot_warp_apply(&fs->warp, frame, &ev->sat);
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
 		int32_t c = fs->channel[k];
 
