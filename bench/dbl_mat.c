@@ -250,13 +250,19 @@ int dbl_mat_decompose(struct dbl_decomp *out, const struct dbl_mat *m)
 
 void dbl_mat_compose(struct dbl_mat *out, const struct dbl_decomp *d)
 {
-	const double *s = d->scale, *h = d->shear;
 	struct dbl_mat r;
-	int j;
 
 	dbl_quat_to_mat(&r, &d->rot);
+	dbl_mat_compose_r(out, d, &r);
+}
+
+void dbl_mat_compose_r(struct dbl_mat *out, const struct dbl_decomp *d, const struct dbl_mat *r)
+{
+	const double *s = d->scale, *h = d->shear;
+	int j;
+
 	for (j = 0; j < 3; j++) {
-		double r0 = r.m[0][j], r1 = r.m[1][j], r2 = r.m[2][j];
+		double r0 = r->m[0][j], r1 = r->m[1][j], r2 = r->m[2][j];
 
 		out->m[0][j] = s[0] * r0;
 		out->m[1][j] = s[1] * (h[0] * r0 + r1);

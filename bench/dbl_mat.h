@@ -62,5 +62,7 @@ void dbl_squad_inner(struct dbl_quat *out, const struct dbl_quat *prev,
 int dbl_mat_decompose(struct dbl_decomp *out, const struct dbl_mat *m);
 /* rows sx.R0, sy.(hxy.R0 + R1), sz.(hxz.R0 + hyz.R1 + R2), t */
 void dbl_mat_compose(struct dbl_mat *out, const struct dbl_decomp *d);
+/* the same with r = R(d->rot) already made (mot_mat_compose_r) */
+void dbl_mat_compose_r(struct dbl_mat *out, const struct dbl_decomp *d, const struct dbl_mat *r);
 
 #endif /* DBL_MAT_H */

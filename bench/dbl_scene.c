@@ -132,6 +132,9 @@ static int rot_init(struct dbl_rot *r, const struct sd_free *f, struct pool *p)
 		prev = cur;
 		cur = next;
 	}
+	/* the quaternions rot_eval() holds */
+	dbl_quat_to_mat(&r->end[0], n == 1 ? &r->q0 : &r->seg[0].arc.a);
+	dbl_quat_to_mat(&r->end[1], n == 1 ? &r->q0 : &r->seg[n - 2].arc.b);
 	free(q);
 	return 0;
 fail:
@@ -164,8 +167,10 @@ static uint32_t rot_find(const struct dbl_rot *r, struct dbl_cursor *cur, double
 	return lo;
 }
 
-static void rot_eval(struct dbl_quat *out, const struct dbl_rot *r, struct dbl_cursor *cur,
-		     double f)
+/* the rotation, and its matrix made at init where an end key is held
+ * (NULL elsewhere) */
+static const struct dbl_mat *rot_eval(struct dbl_quat *out, const struct dbl_rot *r,
+				      struct dbl_cursor *cur, double f)
 {
 	const struct dbl_rot_seg *sg;
 	struct dbl_quat qa, qb;
@@ -174,11 +179,11 @@ static void rot_eval(struct dbl_quat *out, const struct dbl_rot *r, struct dbl_c
 
 	if (r->n == 1 || f <= r->frame[0]) {
 		*out = r->n == 1 ? r->q0 : r->seg[0].arc.a;
-		return;
+		return &r->end[0];
 	}
 	if (f >= r->frame[r->n - 1]) {
 		*out = r->seg[r->n - 2].arc.b;
-		return;
+		return &r->end[1];
 	}
 	sg = &r->seg[rot_find(r, cur, f)];
 	s = (f - r->frame[sg - r->seg]) * sg->inv_h;
@@ -188,11 +193,12 @@ static void rot_eval(struct dbl_quat *out, const struct dbl_rot *r, struct dbl_c
 	dbl_slerp_eval(&qa, &sg->arc, s);
 	if (!r->squad) {
 		*out = qa;
-		return;
+		return NULL;
 	}
 	dbl_slerp_eval(&qb, &sg->inner, s);
 	dbl_slerp_prepare(&outer, &qa, &qb);
 	dbl_slerp_eval(out, &outer, 2 * s * (1 - s));
+	return NULL;
 }
 
 /* ---- building -------------------------------------------------------------------- */
@@ -425,6 +431,7 @@ static bool free_linear(struct dbl_mat *m, double t[3], const struct dbl_scene *
 			struct dbl_eval *ev, const struct dbl_free *fs, double frame)
 {
 	struct dbl_decomp d;
+	const struct dbl_mat *held; /* R(d.rot), made at init */
 	double v[MOT_FREE_NCHANNELS], g = warp_apply(&fs->warp, frame);
 	bool rot = fs->rot >= 0, shs = false;
 	uint32_t k;
@@ -453,10 +460,14 @@ static bool free_linear(struct dbl_mat *m, double t[3], const struct dbl_scene *
 					 { t[0], t[1], t[2] } } };
 		return true;
 	}
-	rot_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g);
+	held = rot_eval(&d.rot, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
+			g);
 	if (!shs) {
 		/* R */
-		dbl_quat_to_mat(m, &d.rot);
+		if (held)
+			*m = *held;
+		else
+			dbl_quat_to_mat(m, &d.rot);
 		for (k = 0; k < 3; k++)
 			m->m[3][k] = t[k];
 		return true;
@@ -466,7 +477,10 @@ static bool free_linear(struct dbl_mat *m, double t[3], const struct dbl_scene *
 		d.scale[k] = v[MOT_FREE_SX + k];
 		d.shear[k] = v[MOT_FREE_HXY + k];
 	}
-	dbl_mat_compose(m, &d);
+	if (held)
+		dbl_mat_compose_r(m, &d, held);
+	else
+		dbl_mat_compose(m, &d);
 	return true;
 }
 

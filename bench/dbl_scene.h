@@ -11,7 +11,7 @@
  *     de Casteljau for Bezier, ease, closed-form spin integrals);
  *   - rotation tracks: slerp prepared per key interval (and squad's inner
  *     slerp), one sincos per in-between, squad's outer slerp per tick as in
- *     strand.c;
+ *     strand.c; the matrices of the held end keys made at init;
  *   - scene.c's memo: a joint whose value did not change keeps its sine and
  *     cosine, and with its parent unmoved its matrix and position;
  *   - the hierarchy in one pass in index order, as scene.c: the pivot's
@@ -46,6 +46,7 @@ struct dbl_rot {
 	double *frame;
 	struct dbl_quat q0; /* the key of a one-key track */
 	struct dbl_rot_seg *seg;
+	struct dbl_mat end[2]; /* R of the held first and last key (strand.h's end) */
 };
 
 struct dbl_warp {

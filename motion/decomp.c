@@ -164,6 +164,12 @@ static inline uint64_t mag(mot_q32 v)
 
 void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *sat)
 {
+	mot_mat_compose_r(out, d, NULL, sat);
+}
+
+void mot_mat_compose_r(struct mot_mat *out, const struct mot_decomp *d,
+		       const struct mot_rot_q62 *rp, uint32_t *sat)
+{
 	/*
 	 * (S . H) . R with S . H lower-triangular, rows (sx, 0, 0),
 	 * (sy hxy, sy, 0), (sz hxz, sz hyz, sz), and R taken in Q2.62: each
@@ -175,7 +181,8 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 	const mot_q32 sh[3][3] = { { s[0], 0, 0 },
 				   { mot_mul(s[1], h[0], sat), s[1], 0 },
 				   { mot_mul(s[2], h[1], sat), mot_mul(s[2], h[2], sat), s[2] } };
-	int64_t r[3][3];
+	struct mot_rot_q62 own;
+	const int64_t(*r)[3];
 	struct mot_mat m;
 	uint64_t ov = 0, big;
 	int i, j;
@@ -183,7 +190,7 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 	/* every |sh| below 2^62: the OR of their magnitudes is */
 	big = mag(sh[0][0]) | mag(sh[1][0]) | mag(sh[1][1]) | mag(sh[2][0]) | mag(sh[2][1]) |
 	      mag(sh[2][2]);
-	if (big >= (uint64_t)lim || mot_quat_to_rot_q62(r, &d->rot, sat) != MOT_OK) {
+	if (big >= (uint64_t)lim || (!rp && mot_quat_to_rot_q62(own.r, &d->rot, sat) != MOT_OK)) {
 		struct mot_mat a = { { { sh[0][0], 0, 0 }, { sh[1][0], sh[1][1], 0 },
 				       { sh[2][0], sh[2][1], sh[2][2] }, { 0, 0, 0 } } };
 
@@ -194,6 +201,7 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 		mot_mat_mul(out, &a, &m, sat);
 		return;
 	}
+	r = (rp ? rp : &own)->r;
 	/* S . H is lower-triangular: row i has i + 1 products (fix.h's kernel,
 	 * the saturating rounding only when an entry does not fit); the columns
 	 * unrolled where 128-bit integers are native, as scene.c's kernels */

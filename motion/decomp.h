@@ -36,4 +36,10 @@ int mot_mat_decompose(struct mot_decomp *out, struct mot_mat *rot_mat, const str
  * rounding is not multiplied by the scale). About 55 ns. */
 void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *sat);
 
+/* mot_mat_compose() with R(d->rot) in Q2.62 already made: r as
+ * mot_quat_to_rot_q62(r, &d->rot) makes it when that returns MOT_OK and
+ * saturates nothing (the same bits then), or NULL to make it here. */
+void mot_mat_compose_r(struct mot_mat *out, const struct mot_decomp *d,
+		       const struct mot_rot_q62 *r, uint32_t *sat);
+
 #endif /* MOT_DECOMP_H */

@@ -38,6 +38,11 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
  * beyond +-2 saturate. */
 int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat);
 
+/* Such a matrix kept (a rotation track's held end keys, strand.h). */
+struct mot_rot_q62 {
+	int64_t r[3][3];
+};
+
 /* Quaternion of the proper rotation in m's linear part (Shoemake, on the
  * trace, largest-diagonal branch otherwise); result normalised, w >= 0. */
 void mot_quat_from_mat(struct mot_quat *out, const struct mot_mat *m, uint32_t *sat);

@@ -481,12 +481,15 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 			struct mot_eval *ev, const struct mot_free_strand *fs, mot_q32 frame)
 {
 	struct mot_decomp d;
-	mot_q32 v[MOT_FREE_NCHANNELS], g = mot_warp_apply(&fs->warp, frame, &ev->sat);
+	mot_q32 v[MOT_FREE_NCHANNELS], g = frame;
 	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false;
-	int64_t r[3][3];
+	const struct mot_rot_q62 *held = NULL; /* R(d.rot), made at init */
+	struct mot_rot_q62 r;
 	uint64_t ov = 0;
 	uint32_t k, j;
 
+	if (fs->warp.on) /* most strands have none: not even the call */
+		g = mot_warp_apply(&fs->warp, frame, &ev->sat);
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
 		int32_t c = fs->channel[k];
 
@@ -518,14 +521,17 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 		return true;
 	}
 	if (fs->rot >= 0)
-		mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
-				   &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g, &ev->sat);
+		held = mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
+					  &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g,
+					  &ev->sat);
 	else
 		quat_of_curves(&d.rot, sc, ev, fs->quat, g);
-	if (!shs && mot_quat_to_rot_q62(r, &d.rot, &ev->sat) == MOT_OK) {
+	if (!shs && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
+		const struct mot_rot_q62 *rr = held ? held : &r;
+
 		for (k = 0; k < 3; k++)
 			for (j = 0; j < 3; j++)
-				m->m[k][j] = mot_acc_round_ov(mot_acc_from(r[k][j], 0), 30, &ov);
+				m->m[k][j] = mot_acc_round_ov(mot_acc_from(rr->r[k][j], 0), 30, &ov);
 		return true; /* |r| < 2^63: ov stays 0 */
 	}
 	for (k = 0; k < 3; k++) {
@@ -533,7 +539,7 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 		d.scale[k] = v[MOT_FREE_SX + k];
 		d.shear[k] = v[MOT_FREE_HXY + k];
 	}
-	mot_mat_compose(m, &d, &ev->sat);
+	mot_mat_compose_r(m, &d, held, &ev->sat);
 	return true;
 }
 

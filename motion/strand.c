@@ -20,6 +20,25 @@ static void quat_align(struct mot_quat *out, const struct mot_quat *a, const str
 		quat_neg(out);
 }
 
+/* The matrices of the held end keys (struct mot_rot_track), once the rest
+ * of the track is set. */
+static void rot_ends(struct mot_rot_track *r)
+{
+	struct mot_quat q[2];
+	uint32_t sat = 0;
+	bool ok = true;
+	unsigned e;
+
+	r->ends_ok = false;
+	/* the quaternions the track holds (the first key's side of the sphere
+	 * or the last's, as its arcs have them) */
+	mot_rot_track_eval(&q[0], r, NULL, r->keys[0].frame, NULL);
+	mot_rot_track_eval(&q[1], r, NULL, r->keys[r->nkeys - 1].frame, NULL);
+	for (e = 0; e < 2; e++)
+		ok = mot_quat_to_rot_q62(r->end[e].r, &q[e], &sat) == MOT_OK && ok;
+	r->ends_ok = ok && !sat;
+}
+
 int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, uint32_t nkeys,
 		       bool squad, struct mot_rot_seg *seg, uint32_t nseg, uint32_t *sat)
 {
@@ -80,6 +99,7 @@ int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, 
 	r->compact = false;
 	r->keys = keys;
 	r->seg = seg;
+	rot_ends(r);
 	return MOT_OK;
 }
 
@@ -101,6 +121,7 @@ int mot_rot_track_init_compact(struct mot_rot_track *r, const struct mot_rot_key
 	r->compact = true;
 	r->keys = keys;
 	r->seg = NULL;
+	rot_ends(r);
 	return MOT_OK;
 }
 
@@ -136,8 +157,10 @@ static uint32_t rot_find(const struct mot_rot_track *r, struct mot_cursor *cur, 
 	return lo;
 }
 
-void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
-			struct mot_cursor *cur, mot_q32 frame, uint32_t *sat)
+const struct mot_rot_q62 *mot_rot_track_eval(struct mot_quat *out,
+					     const struct mot_rot_track *r,
+					     struct mot_cursor *cur, mot_q32 frame,
+					     uint32_t *sat)
 {
 	const struct mot_rot_seg *sg;
 	struct mot_quat qa, qb;
@@ -146,11 +169,11 @@ void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
 
 	if (r->nkeys == 1 || frame <= r->keys[0].frame) {
 		*out = r->nkeys == 1 || r->compact ? r->keys[0].q : r->seg[0].arc.a;
-		return;
+		return r->ends_ok ? &r->end[0] : NULL;
 	}
 	if (frame >= r->keys[r->nkeys - 1].frame) {
 		*out = r->compact ? r->keys[r->nkeys - 1].q : r->seg[r->nkeys - 2].arc.b;
-		return;
+		return r->ends_ok ? &r->end[1] : NULL;
 	}
 	i = rot_find(r, cur, frame);
 	if (r->compact) {
@@ -158,7 +181,7 @@ void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
 
 		s = mot_muldiv(frame - k[i].frame, MOT_Q32_ONE, k[i + 1].frame - k[i].frame, sat);
 		mot_quat_slerp(out, &k[i].q, &k[i + 1].q, s, sat);
-		return;
+		return NULL;
 	}
 	sg = &r->seg[i];
 	s = mot_recip_ratio(frame - r->keys[i].frame, &sg->inv_h, sat);
@@ -169,11 +192,12 @@ void mot_rot_track_eval(struct mot_quat *out, const struct mot_rot_track *r,
 	mot_slerp_eval(&qa, &sg->arc, s, sat);
 	if (!r->squad) {
 		*out = qa;
-		return;
+		return NULL;
 	}
 	mot_slerp_eval(&qb, &sg->inner, s, sat);
 	/* 2 s (1 - s) */
 	mot_quat_slerp(out, &qa, &qb, 2 * mot_mul(s, MOT_Q32_ONE - s, sat), sat);
+	return NULL;
 }
 
 /* ---- strand-wide warp ----------------------------------------------------------- */

@@ -3,7 +3,8 @@
  * test_curve_keys.c - what the importers added to the core, against long
  * double references: hermite curves with explicit tangents (curve.h's
  * mot_tangent), compact curves and rotation tracks (keys only, for sampled
- * motion), and a rotation kept as four curves normalised (strand.h).
+ * motion), and a rotation kept as four curves normalised (strand.h); and
+ * the matrices of the end keys that rotation tracks hold.
  */
 #include <math.h>
 #include <stdio.h>
@@ -301,6 +302,86 @@ static void test_rot_compact(void **state)
 	}
 }
 
+/* Outside its keys a track returns the held key's matrix made at init
+ * (strand.h): exactly mot_quat_to_rot_q62() of the quaternion it returns,
+ * for prepared slerp and squad tracks and compact ones, keys on either side
+ * of the sphere (a prepared track holds its last key as its last arc has
+ * it), and NULL inside the keys; never for keys whose matrix saturates. */
+static void test_rot_ends(void **state)
+{
+	static const struct mot_quat bad[2] = {
+		{ MOT_Q32_ONE + MOT_Q32_ONE / 4, MOT_Q32_ONE + MOT_Q32_ONE / 4, 0, 0 }, /* saturates */
+		{ (mot_q32)1 << 62, 0, 0, 0 },                                          /* out of range */
+	};
+	struct tu_rng r;
+	int trial, mode, s;
+	unsigned b;
+
+	(void)state;
+	tu_seed(&r, 23);
+	for (trial = 0; trial < 300; trial++) {
+		struct mot_rot_key k[NK];
+		struct mot_rot_seg seg[NK];
+		uint32_t n = 1 + (uint32_t)(tu_u64(&r) % NK), i;
+		double f = 0;
+
+		for (i = 0; i < n; i++) {
+			struct ref_quat rq;
+
+			f += tu_uniform(&r, 0.125, 30);
+			k[i].frame = (mot_q32)llround(f * 4294967296.0);
+			ref_rand_quat(&rq, &r);
+			ref_to_quat(&k[i].q, &rq);
+			k[i].ease_in = k[i].ease_out = 0;
+		}
+		for (mode = 0; mode < 3; mode++) {
+			struct mot_rot_track t;
+			struct mot_cursor cur = { 0, 0 };
+			uint32_t sat = 0;
+
+			if (mode < 2)
+				assert_int_equal(mot_rot_track_init(&t, k, n, mode == 1, seg, NK, &sat),
+						 MOT_OK);
+			else
+				assert_int_equal(mot_rot_track_init_compact(&t, k, n), MOT_OK);
+			for (s = -20; s <= 1020; s++) {
+				mot_q32 qf = k[0].frame + (k[n - 1].frame - k[0].frame) / 1000 * s +
+					     (s < 0 ? s : s > 1000 ? s - 1000 : 0) * MOT_Q32_ONE;
+				const struct mot_rot_q62 *held;
+				struct mot_quat q;
+				int64_t m[3][3];
+				uint32_t sat2 = 0;
+
+				if (s == 1000)
+					qf = k[n - 1].frame;
+				held = mot_rot_track_eval(&q, &t, &cur, qf, &sat);
+				if (n > 1 && qf > k[0].frame && qf < k[n - 1].frame) {
+					assert_null(held);
+					continue;
+				}
+				assert_non_null(held);
+				assert_int_equal(mot_quat_to_rot_q62(m, &q, &sat2), MOT_OK);
+				assert_int_equal(sat2, 0);
+				assert_memory_equal(m, held->r, sizeof(m));
+			}
+			assert_int_equal(sat, 0);
+		}
+	}
+	for (b = 0; b < 2; b++) {
+		struct mot_rot_key k[2] = { { 0, { MOT_Q32_ONE, 0, 0, 0 }, 0, 0 },
+					    { MOT_Q32_ONE, bad[b], 0, 0 } };
+		struct mot_rot_seg seg[1];
+		struct mot_rot_track t;
+		struct mot_quat q;
+		uint32_t sat = 0;
+
+		assert_int_equal(mot_rot_track_init_compact(&t, k, 2), MOT_OK);
+		assert_null(mot_rot_track_eval(&q, &t, NULL, -MOT_Q32_ONE, &sat));
+		assert_int_equal(mot_rot_track_init(&t, k, 2, false, seg, 1, &sat), MOT_OK);
+		assert_null(mot_rot_track_eval(&q, &t, NULL, 2 * MOT_Q32_ONE, &sat));
+	}
+}
+
 static mot_q32 q32(double x)
 {
 	return (mot_q32)llround(x * 4294967296.0);
@@ -409,6 +490,7 @@ int main(void)
 		cmocka_unit_test(test_tangents),	cmocka_unit_test(test_tangent_errors),
 		cmocka_unit_test(test_compact),		cmocka_unit_test(test_compact_errors),
 		cmocka_unit_test(test_rot_compact),	cmocka_unit_test(test_quat_curves),
+		cmocka_unit_test(test_rot_ends),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
