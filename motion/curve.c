@@ -150,36 +150,16 @@ static __attribute__((noinline)) mot_q32 eval_warped(const struct mot_curve *c,
 	return s ? piece_value(c, s, f, sat) : eval_any(c, cur, frame, sat);
 }
 
-/*
- * Playback's common case first, kept small: the held ends, or a piece of an
- * interpolating curve that the cursor holds, or the next one. It is
- * eval()'s own path for that case, step for step, so the bits are the
- * same; everything else goes the whole way.
- */
-mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
-		       uint32_t *sat)
+/* mot_curve_eval() for a plain curve (c->plain) strictly inside its span:
+ * out of the way of the approximating curves' tail call, which then saves
+ * no register (this path's calls make it save some). */
+static __attribute__((noinline)) mot_q32 eval_plain(const struct mot_curve *c,
+						    struct mot_cursor *cur, mot_q32 frame,
+						    uint32_t *sat)
 {
 	const struct mot_curve_seg *s;
 	int64_t u;
 
-	if (!c || !cur)
-		return eval_any(c, cur, frame, sat);
-	if (!c->plain) {
-		/* an approximating curve without eases: eval()'s way to the solve,
-		 * which it ends with, as a tail call (half a random scene's curves) */
-		if (c->kind < MOT_INTERP_BSPLINE || c->span_ease || c->seg_ease || c->compact ||
-		    c->nkeys == 0)
-			return eval_any(c, cur, frame, sat);
-		if (frame <= c->span_f0)
-			return c->keys[0].value;
-		if (frame >= c->span_f1)
-			return c->keys[c->nkeys - 1].value;
-		return mot_cv_approx_eval(c, cur, frame, NULL, sat);
-	}
-	if (frame <= c->span_f0)
-		return c->keys[0].value;
-	if (frame >= c->span_f1)
-		return c->keys[c->nkeys - 1].value;
 	if (c->span_ease)
 		return eval_warped(c, cur, frame, sat);
 	s = held_piece(c, cur, frame);
@@ -195,6 +175,35 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
 	if (c->kind == MOT_INTERP_LINEAR)
 		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+}
+
+/*
+ * Playback's common case first, kept small: the held ends, or a piece of an
+ * interpolating curve that the cursor holds, or the next one. It is
+ * eval()'s own path for that case, step for step, so the bits are the
+ * same; everything else goes the whole way.
+ */
+mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+		       uint32_t *sat)
+{
+	if (!c || !cur)
+		return eval_any(c, cur, frame, sat);
+	if (!c->plain) {
+		/* an approximating curve without eases: eval()'s way to the solve,
+		 * which it ends with, as a tail call (half a random scene's curves) */
+		if (!c->solve)
+			return eval_any(c, cur, frame, sat);
+		if (frame <= c->span_f0)
+			return c->keys[0].value;
+		if (frame >= c->span_f1)
+			return c->keys[c->nkeys - 1].value;
+		return mot_cv_approx_eval(c, cur, frame, NULL, sat);
+	}
+	if (frame <= c->span_f0)
+		return c->keys[0].value;
+	if (frame >= c->span_f1)
+		return c->keys[c->nkeys - 1].value;
+	return eval_plain(c, cur, frame, sat);
 }
 
 int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)
@@ -261,11 +270,11 @@ uint64_t mot_curve_bound(const struct mot_curve *c)
 	}
 	m = c->nkeys - 1;
 	if (c->power) {
-		/* the value's coefficients, slots m .. 2m - 1 (power_value) */
+		/* the value's coefficients, from slot power_vslot(m) */
 		int64_t a[MOT_BEZIER_MAX_KEYS];
 
 		for (i = 0; i < m; i++)
-			a[i] = *power_slot(c, m + i);
+			a[i] = *power_slot(c, power_vslot(m) + i);
 		return add_sat(b, poly_bound(c->seg[0].vref, a, m, m, c->seg[0].vsh));
 	}
 	/* de Casteljau: convex combinations of the offsets, a rounding a level */
@@ -392,6 +401,7 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	c->keys = keys;
 	c->seg = seg;
 	c->seg_ease = c->span_ease = c->integral = c->power = c->plain = c->compact = false;
+	c->solve = false;
 	if (!opts)
 		opts = &defaults;
 	if (mot_curve_seg_count(kind, 1) == 0 || (nkeys > 0 && !keys))
@@ -466,6 +476,8 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 			goto fail;
 	}
 	c->plain = kind <= MOT_INTERP_HERMITE && nkeys > 1 && !c->compact;
+	c->solve = kind >= MOT_INTERP_BSPLINE && nkeys > 0 && !c->compact && !c->span_ease &&
+		   !c->seg_ease;
 	for (i = 0; c->plain && !c->span_ease && i + 1 < nkeys; i++) {
 		struct mot_curve_seg *s = &c->seg[i];
 
@@ -475,6 +487,6 @@ int mot_curve_init(struct mot_curve *c, enum mot_interp kind, const struct mot_k
 	return MOT_OK;
 fail:
 	c->nkeys = 0;
-	c->integral = c->plain = false;
+	c->integral = c->plain = c->solve = false;
 	return err;
 }

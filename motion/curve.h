@@ -172,6 +172,8 @@ struct mot_curve {
 	bool integral;
 	bool plain;             /* step, linear or hermite with 2 keys or more, prepared */
 	bool compact;           /* keys only (opts->compact) */
+	bool solve;             /* bspline, beta or bezier with keys and no ease, not
+				 * compact: mot_curve_eval() goes straight to the solve */
 	const struct mot_key *keys;
 	struct mot_curve_seg *seg;
 	mot_q32 span_f0, span_f1;    /* first and last key frame */

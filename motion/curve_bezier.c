@@ -26,8 +26,8 @@
  * curves (many keys, or keys far apart: 12 keys over +-1000 units, 32 keys
  * of any size) keep de Casteljau. The coefficients live in the c[] and
  * fc[] of the curve's entries, which a Bezier curve does not otherwise use:
- * the frame's a_1 .. a_m in slots 0 .. m - 1, the value's in m .. 2m - 1
- * (the n - 1 entries hold 8 (n - 1) >= 2m slots; power_slot).
+ * the frame's a_1 .. a_m in slots 0 .. m - 1, the value's from slot
+ * power_vslot(m) (the n - 1 entries hold 8 (n - 1) slots, enough for both).
  */
 #define POWER_MIN_SHIFT 8
 
@@ -75,7 +75,7 @@ static void prep_power(struct mot_curve *c)
 		int sh = 61 - (int)len[side];
 
 		for (j = 0; j < m; j++) {
-			uint32_t slot = side * m + j;
+			uint32_t slot = side ? power_vslot(m) + j : j;
 
 			*power_slot(c, slot) = a[side][j] * ((int64_t)1 << sh);
 		}

@@ -120,14 +120,17 @@ static inline int64_t round_shift(int64_t x, int sh, uint32_t *sat)
 	if (sh > 0)
 		return sh >= 127 ? 0 : mot_acc_round(mot_acc_from(x, 0), (unsigned)sh, sat);
 	if (sh < 0) {
-		int64_t lim = sh > -63 ? INT64_MAX >> -sh : 0;
+		/* x 2^k fits iff shifting it back gives x: fewer instructions than
+		 * a bound (on the solve's every sample, a frame's offset to its
+		 * piece's scale) */
+		unsigned k = (unsigned)-sh;
+		int64_t y = k < 64 ? (int64_t)((uint64_t)x << k) : 0;
 
-		if (x > lim || x < -lim - 1) {
-			if (sat)
-				*sat |= MOT_SAT_OVERFLOW;
-			return x < 0 ? INT64_MIN : INT64_MAX;
-		}
-		return x * ((int64_t)1 << -sh);
+		if ((k < 64 && y >> k == x) || x == 0)
+			return y;
+		if (sat)
+			*sat |= MOT_SAT_OVERFLOW;
+		return x < 0 ? INT64_MIN : INT64_MAX;
 	}
 	return x;
 }
@@ -274,13 +277,22 @@ static inline uint32_t locate_key(const struct mot_curve *c, struct mot_cursor *
 /* ---- Bezier in power form (curve_bezier.c) --------------------------------------- */
 
 /* Slot j of the power form's coefficients: the frame's a_1 .. a_m in slots
- * 0 .. m - 1, the value's in m .. 2m - 1, kept in the c[] and fc[] of the
- * curve's entries, 8 an entry. */
+ * 0 .. m - 1, the value's from slot power_vslot(m), kept in the c[] and fc[]
+ * of the curve's entries, 8 an entry. */
 static inline int64_t *power_slot(const struct mot_curve *c, uint32_t j)
 {
 	struct mot_curve_seg *s = &c->seg[j / 8];
 
 	return j % 8 < 4 ? &s->c[j % 4] : &s->fc[j % 4];
+}
+
+/* The value's first slot: 8 for 2 <= m <= 8 (the m entries hold 8 m slots),
+ * so that the frame's are entry 0's and the value's entry 1's, each at
+ * places the solve's unrolled Horner knows (curve_solve.c); else m, after
+ * the frame's. */
+static inline uint32_t power_vslot(uint32_t m)
+{
+	return m >= 2 && m <= 8 ? 8 : m;
 }
 
 /* ---- preparation, by kind (init only) --------------------------------------------- */

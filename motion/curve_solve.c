@@ -89,7 +89,8 @@ static int64_t cbrt62(int64_t x)
  * of the part) at s in [0, 1] (Q2.62): u0 + s (m0 + s ((3 du - 2 m0 - m1) +
  * s (m0 + m1 - 2 du))), du = u1 - u0 (|coefficients| < 2^62: mul62 holds
  * them), clamped to [0, 1] in Q2.62. */
-static int64_t herm62(int64_t u0, int64_t u1, int64_t m0, int64_t m1, int64_t s)
+static inline __attribute__((always_inline)) int64_t
+herm62(int64_t u0, int64_t u1, int64_t m0, int64_t m1, int64_t s)
 {
 	int64_t du = u1 - u0, r;
 
@@ -128,6 +129,70 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
 	*f = mul62(r, u);
 	*df = d;
 }
+
+/*
+ * The same for 1 <= m <= 8, unrolled: the coefficients a_1 .. a_m are in
+ * the c[] and fc[] of one entry (power_slot, power_vslot), each step's
+ * place and factor k a constant, entered at the degree's step (without the
+ * loop's index arithmetic and multiplications by k: a fifth of a Bezier
+ * solve). The same products and sums as power_frame(), so the same bits.
+ * With df NULL (a constant: inlined) the value's Horner, without the
+ * derivative.
+ */
+#define POWER_A(j) ((j) < 4 ? s->c[(j)] : s->fc[(j) - 4])
+#define POWER_STEP(k)                                                       \
+	do {                                                                \
+		r = mul62(r, u) + POWER_A((k) - 1);                         \
+		if (df)                                                     \
+			d = mul62(d, u) + (int64_t)(k) * POWER_A((k) - 1);  \
+	} while (0)
+#define POWER_TOP(k)                                                        \
+	case k:                                                             \
+		r = POWER_A((k) - 1);                                       \
+		d = (int64_t)(k) * r;                                       \
+		goto step##k
+
+static inline __attribute__((always_inline)) int64_t
+power_horner8(const struct mot_curve_seg *s, uint32_t m, int64_t u, int64_t *df)
+{
+	int64_t r, d;
+
+	switch (m) {
+	POWER_TOP(8);
+	POWER_TOP(7);
+	POWER_TOP(6);
+	POWER_TOP(5);
+	POWER_TOP(4);
+	POWER_TOP(3);
+	POWER_TOP(2);
+	default:
+		r = POWER_A(0);
+		d = r;
+		goto step1;
+	}
+step8:
+	POWER_STEP(7);
+step7:
+	POWER_STEP(6);
+step6:
+	POWER_STEP(5);
+step5:
+	POWER_STEP(4);
+step4:
+	POWER_STEP(3);
+step3:
+	POWER_STEP(2);
+step2:
+	POWER_STEP(1);
+step1:
+	if (df)
+		*df = d;
+	return mul62(r, u);
+}
+
+#undef POWER_TOP
+#undef POWER_STEP
+#undef POWER_A
 
 /* De Casteljau's algorithm, for the curves the power form would not keep
  * precise: at u on the keys' frames (or values) relative to the first key,
@@ -315,7 +380,10 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		bool newton;
 
 		if (form == FORM_POWER) {
-			power_frame(pw, c->nkeys - 1, u, &f, &df);
+			if (pw)
+				power_frame(pw, c->nkeys - 1, u, &f, &df);
+			else
+				f = power_horner8(s, c->nkeys - 1, u, &df);
 		} else if (form == FORM_CASTELJAU) {
 			bezier_frame(c, u, &f, &df);
 		} else {
@@ -417,16 +485,21 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, iters);
 		return bezier_value(c, u, sat);
 	}
-	/* the frame's coefficients are power_slot(c, 0 .. m - 1): the first
-	 * entry's c[] holds up to four of them in a row, read in place */
+	/* the frame's coefficients are power_slot(c, 0 .. m - 1): entry 0's for
+	 * m <= 8, read in place (pw NULL), and the value's entry 1's
+	 * (power_vslot); else copied */
 	m = c->nkeys - 1;
-	fw = s->c;
-	if (m > 4) {
+	fw = NULL;
+	if (m > 8) {
 		for (j = 0; j < m; j++)
 			pw[j] = *power_slot(c, j);
 		fw = pw;
 	}
 	u = solve_u(FORM_POWER, c, s, fw, d, u, iters);
+	if (m <= 8) {
+		r = m > 1 ? power_horner8(&c->seg[1], m, u, NULL) : mul62(s->c[1], u);
+		return value_of(s->vref, r, s->vsh, sat);
+	}
 	/* the value's, power_frame()'s Horner without the derivative */
 	r = *power_slot(c, 2 * m - 1);
 	for (j = m - 1; j >= 1; j--)
