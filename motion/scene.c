@@ -145,12 +145,11 @@ int mot_scene_validate(const struct mot_scene *sc)
 	return MOT_OK;
 }
 
-/* The small case (see node_world below): the longest chain its bounds
- * hold for (2^20 levels of rotations grow P_lin's norm by less than
- * e^(2^20 2^-23) even with the least exact axis mot_scene_validate()
- * passes), the largest offset (2^18 units) and parent translation (2^29
- * units). */
-#define SMALL_DEPTH ((uint32_t)1 << 20)
+/* The small case (see node_world below): the largest linear part (a
+ * bound on W_lin's 2-norm below 2^40 raw: every entry of it, and of a
+ * child's P_lin, below 2^8), the largest offset (2^18 units) and parent
+ * translation (2^29 units). */
+#define SMALL_LIN ((uint64_t)1 << 40)
 #define SMALL_OFFSET ((uint64_t)1 << 50)
 #define SMALL_TRANS ((uint64_t)1 << 61)
 #define SMALL_LIN_SHIFT 8 /* |P_lin| entries below 2^8 */
@@ -160,8 +159,110 @@ static uint64_t add_sat(uint64_t a, uint64_t b)
 	return a + b < a ? UINT64_MAX : a + b;
 }
 
+/* ceil(a b / 2^32) or more for raw magnitudes, UINT64_MAX from 2^42 up:
+ * 32-bit halves, every partial product below 2^53 */
+static uint64_t mul_up(uint64_t a, uint64_t b)
+{
+	const uint64_t lo = 0xffffffffu;
+	uint64_t ah = a >> 32, al = a & lo, bh = b >> 32, bl = b & lo;
+
+	if (a >= (uint64_t)1 << 42 || b >= (uint64_t)1 << 42)
+		return UINT64_MAX;
+	return (ah * bh << 32) + ah * bl + al * bh + (al * bl >> 32) + 1;
+}
+
+/* A rotation as used, rounded, times a linear part of 2-norm below l, the
+ * product rounded: below (1 + 2^-22) l + 3 (node_world's proof). */
+static uint64_t lin_rot(uint64_t l)
+{
+	return l >= SMALL_LIN ? UINT64_MAX : l + (l >> 22) + 4;
+}
+
+static uint64_t max_u64(uint64_t a, uint64_t b)
+{
+	return a > b ? a : b;
+}
+
+/* ceil(sqrt(x)) */
+static uint64_t sqrt_up(uint64_t x)
+{
+	uint64_t r = 0, b;
+
+	for (b = (uint64_t)1 << 31; b; b >>= 1)
+		if ((r + b) * (r + b) <= x)
+			r += b;
+	return r * r < x ? r + 1 : r;
+}
+
+/*
+ * A bound on the 2-norm of a free node's S . H as free_linear() makes it
+ * (raw): rows (sx, 0, 0), (sy hxy, sy, 0), (sz hxz, sz hyz, sz), each
+ * product rounded once (a unit), the channels' values within their curves'
+ * bounds (1 and 0 without a curve), B those bounds entry by entry. |A|_2^2
+ * is the spectral radius of A^T A, at most its largest row sum, at most
+ * B^T B's: row i sums B_ki r_k over k, r_k the sum of B's row k.
+ */
+static uint64_t scale_shear_bound(const struct mot_scene *sc, const struct mot_free_strand *fs)
+{
+	uint64_t b[6], e10, e20, e21, r0, r1, r2, g;
+	unsigned k;
+
+	for (k = 0; k < 6; k++) {
+		int32_t c = fs->channel[MOT_FREE_SX + k];
+
+		b[k] = c >= 0 ? mot_curve_bound(&sc->curves[c]) : k < 3 ? (uint64_t)ONE : 0;
+	}
+	e10 = add_sat(mul_up(b[1], b[3]), 1);
+	e20 = add_sat(mul_up(b[2], b[4]), 1);
+	e21 = add_sat(mul_up(b[2], b[5]), 1);
+	r0 = b[0];
+	r1 = add_sat(e10, b[1]);
+	r2 = add_sat(add_sat(e20, e21), b[2]);
+	g = add_sat(add_sat(mul_up(b[0], r0), mul_up(e10, r1)), mul_up(e20, r2));
+	g = max_u64(g, add_sat(mul_up(b[1], r1), mul_up(e21, r2)));
+	g = max_u64(g, mul_up(b[2], r2));
+	/* sqrt(g 2^-32) 2^32 = sqrt(g) 2^16 */
+	return g >= (uint64_t)1 << 62 ? UINT64_MAX : sqrt_up(g) << 16;
+}
+
+/*
+ * A bound on the 2-norm of a node's W_lin (raw) from one on its parent's,
+ * l, UINT64_MAX for none: the same for a prismatic joint or a free node
+ * without rotation, scale or shear (W_lin = P_lin, copied), lin_rot() for a
+ * rotation alone, and for a free node that scales or shears the bound of
+ * its S . H times l, times the rotation's 1 + 2^-22 and with a unit an
+ * entry of M's own rounding where it has one, and the product's rounding.
+ */
+static uint64_t lin_bound(const struct mot_scene *sc, const struct mot_node *n, uint64_t l)
+{
+	const struct mot_free_strand *fs;
+	bool rot, shs = false;
+	uint64_t a;
+	unsigned k;
+
+	switch (n->kind) {
+	case MOT_NODE_REVOLUTE:
+		return lin_rot(l);
+	case MOT_NODE_PRISMATIC:
+		return l;
+	default:
+		if (n->strand < 0)
+			return l;
+		fs = &sc->free[n->strand];
+		rot = fs->rot >= 0 || fs->quat[0] >= 0;
+		for (k = MOT_FREE_SX; k < MOT_FREE_NCHANNELS; k++)
+			shs = shs || fs->channel[k] >= 0;
+		if (!shs)
+			return rot ? lin_rot(l) : l;
+		a = scale_shear_bound(sc, fs);
+		if (rot) /* M = (S . H) . R~ rounded: below (1 + 2^-22) a + 3 */
+			a = lin_rot(a);
+		return add_sat(mul_up(a, l), 3);
+	}
+}
+
 /* The largest |t| component of a node over its whole timeline (raw), 0 for
- * a revolute joint; UINT64_MAX for a free node that scales or shears. */
+ * a revolute joint. */
 static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *n)
 {
 	uint64_t b = 0;
@@ -177,13 +278,11 @@ static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *
 	default:
 		if (n->strand < 0)
 			return 0;
-		for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+		for (k = MOT_FREE_TX; k <= MOT_FREE_TZ; k++) {
 			int32_t c = sc->free[n->strand].channel[k];
 			uint64_t v = c >= 0 ? mot_curve_bound(&sc->curves[c]) : 0;
 
-			if (k >= MOT_FREE_SX && c >= 0)
-				return UINT64_MAX;
-			b = k < MOT_FREE_SX && v > b ? v : b;
+			b = v > b ? v : b;
 		}
 		return b;
 	}
@@ -191,15 +290,16 @@ static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *
 
 /*
  * What the memo knows of a node before any evaluation: whether it is of the
- * small case, and a bound on its translation for its children. Under a
- * parent whose world translation is below B, with P_lin below 2^8: pos
- * below B + (|p|_1 + |t|_1) 2^8, W_t below that + |p|_1 2^8, raw.
+ * small case, and bounds on its linear part and translation for its
+ * children. Under a parent whose world translation is below B, with P_lin
+ * and W_lin below 2^8: pos below B + (|p|_1 + |t|_1) 2^8, W_t below that +
+ * |p|_1 2^8, raw.
  */
 static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 			 const struct mot_node *n, const struct mot_node_memo *up)
 {
 	uint64_t t = offset_bound(sc, n), p1 = 0, bt;
-	uint32_t chain = up ? up->chain : 1;
+	uint64_t lp = up ? up->lin : (uint64_t)ONE; /* the identity's */
 	bool off = t < SMALL_OFFSET;
 	uint32_t k;
 
@@ -211,9 +311,9 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 	for (k = 0; k < 3; k++)
 		if (n->pivot[k])
 			m->prow = n->pivot[(k + 1) % 3] || n->pivot[(k + 2) % 3] ? 3 : k;
-	m->chain = chain && chain <= SMALL_DEPTH && t != UINT64_MAX ? chain + 1 : 0;
+	m->lin = lin_bound(sc, n, lp);
 	bt = up ? up->bound : 0;
-	m->small = m->chain && off && bt < SMALL_TRANS;
+	m->small = lp < SMALL_LIN && m->lin < SMALL_LIN && off && bt < SMALL_TRANS;
 	m->bound = UINT64_MAX;
 	if (m->small) /* p, t below 2^50: (2 |p|_1 + |t|_1) 2^8 < 2^62, no wrap */
 		m->bound = bt + ((2 * p1 + 3 * t) << SMALL_LIN_SHIFT) + 2;
@@ -635,18 +735,34 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  * the node with the saturating sums, which give the same bits otherwise.
  *
  * Known bounds (the small case). Most nodes are known before the products
- * to need no overflow test at all. Under at most 2^20 parents that only
- * rotate (no scale or shear channel up the chain) every entry of P_lin
- * stays below 2^8 in magnitude: a rotation, rounded, grows P_lin's norm by a
- * factor below 1 + 2^-23 a level, even with the least exact axis
- * mot_scene_validate() lets through. With the node's pivot and translation
- * below 2^18 units over the whole timeline (the curves' bounds) and P_t
- * below 2^29 units (its parent's bound, summed down the chain), every sum
- * stays below 2^94 and every result below 2^63. mot_eval_reset() works that
- * out once per node (memo_prepare). The kernels below then drop the tests,
- * and P_t, whose share of each sum is a whole number of units of the
+ * to need no overflow test at all. mot_eval_reset() bounds the 2-norm of
+ * every node's W_lin once (memo_prepare, lin_bound), from the identity's 1
+ * at a root down: |W_lin|_2 <= |M|_2 |P_lin|_2 + |E|_2, where E, W_lin's
+ * rounding, is below a unit an entry (|E|_2 <= |E|_F < 3 units). A
+ * rotation as the kernels use it, rounded, has |R|_2 below 1 + 2^-22:
+ * about an axis sqrt(c^2 + s^2), within 2^-31 of 1 (the sine's error); a
+ * tilted one with |a|^2 = 1 + d is normal, its eigenvalues 1 and
+ * c - (1 - c) d +- i s |a|, of modulus below 1 + 2 |d| + 2^-31, |d| below
+ * 3 2^-25 for the least exact axis mot_scene_validate() passes, plus its
+ * entries' rounding (below 3 2^-32); a free node's from a quaternion unit
+ * within a few units (mot_quat_normalize(), slerp; quat.h), and R(q) =
+ * |q|^2 R(q/|q|) + (1 - |q|^2) I is within 2 ||q|^2 - 1| of a rotation's
+ * norm. A free node that scales or shears has M =
+ * (S . H) . R rounded once an entry, S . H's own products rounded once
+ * (a unit each): |M|_2 <= |S.H|_2 (1 + 2^-22) + 3 units, |S.H|_2 at most
+ * the mean of its largest column and row sums, from its channels' bounds
+ * over the whole timeline (mot_curve_bound()); without a rotation M = S.H.
+ * Where both the parent's and the node's bound are below 2^8 every entry of
+ * P_lin and W_lin is below 2^8 in magnitude (and the sums that make W_lin
+ * fit, M's entries below 2^10). With the node's pivot and translation below
+ * 2^18 units over the whole timeline (the curves' bounds) and P_t below
+ * 2^29 units (its parent's bound, summed down the chain), every sum stays
+ * below 2^94 and every result below 2^63. The kernels below then drop the
+ * tests, and P_t, whose share of each sum is a whole number of units of the
  * result, is added after the rounding instead of before: the same bits, a
- * fifth fewer instructions.
+ * fifth fewer instructions. The bounds hold whichever kernel a parent took:
+ * where they hold nothing overflows, and the tested kernels give the same
+ * bits.
  */
 
 static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_mat *par,

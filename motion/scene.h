@@ -129,7 +129,7 @@ struct mot_node_memo {
 	const struct mot_curve_seg *piece;
 	const struct mot_curve *warp;
 	mot_q32 glo, ghi;
-	uint32_t chain; /* 1 + depth under parents that only rotate, 0 else */
+	uint64_t lin;   /* bound on |W_lin|'s 2-norm (raw), UINT64_MAX: none */
 	uint64_t bound; /* bound on |W_t| (raw), UINT64_MAX: none */
 };
 

@@ -643,6 +643,99 @@ static void test_wide_sums(void **state)
 	scene_built_free(&b);
 }
 
+/*
+ * The small case under scale and shear (scene.c, memo_prepare()): a chain
+ * of free nodes that scale by up to 1.5 and shear by up to 0.2, each with a
+ * joint turning below it, is small all the way down; one that scales by
+ * up to 100 (three levels: 10^6 and more would not fit) is small while the
+ * bound on its linear part stays below 2^8 (the first free node and its
+ * joint) and not from the second free node down.
+ * Either way the bits are the tested kernels' (an evaluation reset before
+ * every tick with the small case switched off).
+ */
+#define SCALED_LEVELS 6
+
+static void test_scaled_small(void **state)
+{
+	static const struct sd_key up15[] = { { 0, 1, 0, 0, 0, 0, 0 }, { 24, 1.5, 0, 0, 0, 0, 0 } };
+	static const struct sd_key up100[] = { { 0, 1, 0, 0, 0, 0, 0 }, { 24, 100, 0, 0, 0, 0, 0 } };
+	static const struct sd_key shear[] = { { 0, 0, 0, 0, 0, 0, 0 }, { 24, 0.2, 0, 0, 0, 0, 0 } };
+	static const struct sd_key turn[] = { { 0, 0, 0, 0, 0, 0, 0 }, { 24, 90, 0, 0, 0, 0, 0 } };
+	static const char *const names[2 * SCALED_LEVELS] = { "f0", "j0", "f1", "j1", "f2", "j2",
+							      "f3", "j3", "f4", "j4", "f5", "j5" };
+	uint32_t s, i, k;
+
+	for (s = 0; s < 2; s++) {
+		struct sd_node n[2 * SCALED_LEVELS];
+		struct scene_desc d;
+		struct scene_build_err e;
+		struct scene_built b;
+		struct mot_eval warm, cold;
+		struct mot_pose pw, pc;
+		const struct mot_timing *t;
+		int64_t tk, n1;
+
+		memset(n, 0, sizeof(n));
+		for (i = 0; i < 2 * SCALED_LEVELS; i++) {
+			n[i].name = names[i];
+			n[i].parent = (int32_t)i - 1;
+			n[i].pivot[0] = 1;
+			n[i].pivot[1] = 0.25;
+			if (i % 2 == 0) {
+				n[i].kind = MOT_NODE_FREE;
+				n[i].has_free = true;
+				for (k = MOT_FREE_SX; k <= MOT_FREE_SZ; k++)
+					n[i].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 2,
+									     s ? up100 : up15, 1, 0,
+									     0, 0, false };
+				for (k = MOT_FREE_HXY; k <= MOT_FREE_HYZ; k++)
+					n[i].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 2,
+									     shear, 1, 0, 0, 0,
+									     false };
+			} else {
+				n[i].kind = MOT_NODE_REVOLUTE;
+				n[i].axis_id = MOT_AXIS_Z;
+				n[i].axis[2] = 1;
+				n[i].value = (struct sd_curve){ MOT_INTERP_LINEAR, 2, turn, 1, 0, 0, 0,
+								false };
+			}
+		}
+		memset(&d, 0, sizeof(d));
+		d.rate_num = 24;
+		d.rate_den = 1;
+		d.tick_hz = 1000;
+		d.frame_last = 24;
+		d.nnodes = s ? SCALED_LEVELS : 2 * SCALED_LEVELS;
+		d.nodes = n;
+		assert_int_equal(scene_build(&b, &d, &e), 0);
+		assert_int_equal(scene_eval_new(&warm, &b.sc), 0);
+		assert_int_equal(scene_eval_new(&cold, &b.sc), 0);
+		assert_int_equal(scene_pose_new(&pw, &b.sc), 0);
+		assert_int_equal(scene_pose_new(&pc, &b.sc), 0);
+		for (i = 0; i < b.sc.nnodes; i++)
+			assert_int_equal(warm.memo[i].small, s == 0 || i < 2);
+		t = &b.sc.timing;
+		n1 = mot_timing_trigger_tick(t, 25);
+		for (tk = -3; tk < n1; tk += 7) {
+			mot_q32 f = mot_timing_tick_frame(t, tk);
+
+			mot_scene_eval(&b.sc, &warm, f, &pw);
+			assert_int_equal(mot_eval_reset(&cold, &b.sc), MOT_OK);
+			for (i = 0; i < b.sc.nnodes; i++)
+				cold.memo[i].small = 0;
+			mot_scene_eval(&b.sc, &cold, f, &pc);
+			assert_same_pose(&b.sc, &pw, &pc);
+		}
+		assert_int_equal(warm.sat, 0);
+		assert_int_equal(cold.sat, 0);
+		scene_pose_free(&pw);
+		scene_pose_free(&pc);
+		scene_eval_free(&warm);
+		scene_eval_free(&cold);
+		scene_built_free(&b);
+	}
+}
+
 static void test_no_keys(void **state)
 {
 	struct mot_rot_track rt;
@@ -663,7 +756,7 @@ int main(void)
 		cmocka_unit_test(test_random_access), cmocka_unit_test(test_spin_day),
 		cmocka_unit_test(test_camera_pan),  cmocka_unit_test(test_bad_input),
 		cmocka_unit_test(test_no_keys),     cmocka_unit_test(test_wide_sums),
-		cmocka_unit_test(test_shortcuts),
+		cmocka_unit_test(test_shortcuts),   cmocka_unit_test(test_scaled_small),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
