@@ -145,37 +145,33 @@ int mot_scene_validate(const struct mot_scene *sc)
 	return MOT_OK;
 }
 
-/* The small case (see node_world below): the largest linear part (a
- * bound on W_lin's 2-norm below 2^40 raw: every entry of it, and of a
- * child's P_lin, below 2^8), the largest offset (2^18 units) and parent
- * translation (2^29 units). */
-#define SMALL_LIN ((uint64_t)1 << 40)
-#define SMALL_OFFSET ((uint64_t)1 << 50)
-#define SMALL_TRANS ((uint64_t)1 << 61)
-#define SMALL_LIN_SHIFT 8 /* |P_lin| entries below 2^8 */
+/* The small case (see node_world below): every bound, and every result,
+ * below 2^62 raw; an offset (pivot, translation) below 2^61, so that p + t
+ * fits. */
+#define SMALL_LIM ((uint64_t)1 << 62)
+#define SMALL_OFFSET ((uint64_t)1 << 61)
 
 static uint64_t add_sat(uint64_t a, uint64_t b)
 {
 	return a + b < a ? UINT64_MAX : a + b;
 }
 
-/* ceil(a b / 2^32) or more for raw magnitudes, UINT64_MAX from 2^42 up:
- * 32-bit halves, every partial product below 2^53 */
+/* ceil(a b / 2^32) or more for raw magnitudes, UINT64_MAX where that
+ * does not fit */
 static uint64_t mul_up(uint64_t a, uint64_t b)
 {
-	const uint64_t lo = 0xffffffffu;
-	uint64_t ah = a >> 32, al = a & lo, bh = b >> 32, bl = b & lo;
+	uint64_t lo, hi = mot_umul_hi(a, b, &lo);
 
-	if (a >= (uint64_t)1 << 42 || b >= (uint64_t)1 << 42)
+	if (hi >> 32)
 		return UINT64_MAX;
-	return (ah * bh << 32) + ah * bl + al * bh + (al * bl >> 32) + 1;
+	return add_sat(hi << 32 | lo >> 32, 1);
 }
 
 /* A rotation as used, rounded, times a linear part of 2-norm below l, the
  * product rounded: below (1 + 2^-22) l + 3 (node_world's proof). */
 static uint64_t lin_rot(uint64_t l)
 {
-	return l >= SMALL_LIN ? UINT64_MAX : l + (l >> 22) + 4;
+	return l >= SMALL_LIM ? UINT64_MAX : l + (l >> 22) + 4;
 }
 
 static uint64_t max_u64(uint64_t a, uint64_t b)
@@ -291,14 +287,15 @@ static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *
 /*
  * What the memo knows of a node before any evaluation: whether it is of the
  * small case, and bounds on its linear part and translation for its
- * children. Under a parent whose world translation is below B, with P_lin
- * and W_lin below 2^8: pos below B + (|p|_1 + |t|_1) 2^8, W_t below that +
- * |p|_1 2^8, raw.
+ * children. Under a parent whose world translation is below B and linear
+ * part below lp (2-norm, so every entry), the node's own below l, with a
+ * pivot of 1-norm p1 and a translation below t a component: pos below
+ * B + (p1 + 3 t) lp + 1 and W_t below that + p1 l + 1, raw.
  */
 static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 			 const struct mot_node *n, const struct mot_node_memo *up)
 {
-	uint64_t t = offset_bound(sc, n), p1 = 0, bt;
+	uint64_t t = offset_bound(sc, n), p1 = 0, bt, sum;
 	uint64_t lp = up ? up->lin : (uint64_t)ONE; /* the identity's */
 	bool off = t < SMALL_OFFSET;
 	uint32_t k;
@@ -313,10 +310,11 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 			m->prow = n->pivot[(k + 1) % 3] || n->pivot[(k + 2) % 3] ? 3 : k;
 	m->lin = lin_bound(sc, n, lp);
 	bt = up ? up->bound : 0;
-	m->small = lp < SMALL_LIN && m->lin < SMALL_LIN && off && bt < SMALL_TRANS;
-	m->bound = UINT64_MAX;
-	if (m->small) /* p, t below 2^50: (2 |p|_1 + |t|_1) 2^8 < 2^62, no wrap */
-		m->bound = bt + ((2 * p1 + 3 * t) << SMALL_LIN_SHIFT) + 2;
+	/* (2 p1 + 3 t) max(lp, l) + 2 */
+	sum = add_sat(add_sat(p1, p1), add_sat(add_sat(t, t), t));
+	sum = add_sat(add_sat(bt, mul_up(sum, max_u64(lp, m->lin))), 2);
+	m->small = lp < SMALL_LIM && m->lin < SMALL_LIM && off && sum < SMALL_LIM;
+	m->bound = m->small ? sum : UINT64_MAX;
 }
 
 /* ---- a joint's curve: the piece memo ----------------------------------------- */
@@ -752,12 +750,15 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  * (a unit each): |M|_2 <= |S.H|_2 (1 + 2^-22) + 3 units, |S.H|_2 at most
  * the mean of its largest column and row sums, from its channels' bounds
  * over the whole timeline (mot_curve_bound()); without a rotation M = S.H.
- * Where both the parent's and the node's bound are below 2^8 every entry of
- * P_lin and W_lin is below 2^8 in magnitude (and the sums that make W_lin
- * fit, M's entries below 2^10). With the node's pivot and translation below
- * 2^18 units over the whole timeline (the curves' bounds) and P_t below
- * 2^29 units (its parent's bound, summed down the chain), every sum stays
- * below 2^94 and every result below 2^63. The kernels below then drop the
+ * Each entry of a matrix is below its 2-norm, and the terms of an entry of
+ * W_lin = M . P_lin sum to at most |M|_2 |P_lin|_2 in magnitude (a row of M
+ * times a column of P, Cauchy-Schwarz); those of pos and W_t to at most
+ * |p + t|_1 |P_lin|_2 + |p|_1 |W_lin|_2 beside P_t (memo_prepare()). Where
+ * the parent's and the node's bounds, the node's pivot and translation
+ * over the whole timeline (the curves' bounds) and that sum with P_t's
+ * bound (its parent's, summed down the chain) are below 2^62 raw, p + t
+ * fits, every sum stays below 2^95 (no wrap of 128 bits) and every result,
+ * with or without P_t, below 2^62. The kernels below then drop the
  * tests, and P_t, whose share of each sum is a whole number of units of the
  * result, is added after the rounding instead of before: the same bits, a
  * fifth fewer instructions. The bounds hold whichever kernel a parent took:
