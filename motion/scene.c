@@ -569,6 +569,12 @@ static void quat_of_curves(struct mot_quat *q, const struct mot_scene *sc, struc
 	}
 }
 
+/* |v| as an unsigned number (exact for every v) */
+static inline uint64_t mag(mot_q32 v)
+{
+	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+}
+
 /*
  * The linear part S . H . R and the translation of a free node (channels
  * without keys at their rest values). Returns false when the node has no
@@ -580,7 +586,7 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 {
 	struct mot_decomp d;
 	mot_q32 v[MOT_FREE_NCHANNELS], g = frame;
-	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false;
+	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false, fits;
 	const struct mot_rot_q62 *held = NULL; /* R(d.rot), made at init */
 	struct mot_rot_q62 r;
 	uint64_t ov = 0;
@@ -588,6 +594,10 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 
 	if (fs->warp.on) /* most strands have none: not even the call */
 		g = mot_warp_apply(&fs->warp, frame, &ev->sat);
+	/* the channels' indices and rest values constants where unrolled */
+#if MOT_HAVE_INT128
+	_Pragma("GCC unroll 9")
+#endif
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
 		int32_t c = fs->channel[k];
 
@@ -624,13 +634,32 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 					  &ev->sat);
 	else
 		quat_of_curves(&d.rot, sc, ev, fs->quat, g);
-	if (!shs && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
-		const struct mot_rot_q62 *rr = held ? held : &r;
+	/* scales and shears below 2^8 (every real one): S . H's products
+	 * below 2^48 raw, its rows' sums with R below 2^113 and every entry
+	 * below 2^51, so mot_mat_compose_r()'s tests are known to pass; the
+	 * rotation made first only where that would make it */
+	fits = !shs || (mag(v[MOT_FREE_SX]) | mag(v[MOT_FREE_SY]) | mag(v[MOT_FREE_SZ]) |
+			mag(v[MOT_FREE_HXY]) | mag(v[MOT_FREE_HXZ]) | mag(v[MOT_FREE_HYZ])) <
+			       (uint64_t)1 << 40;
+	if (fits && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
+		const int64_t(*rr)[3] = (held ? held : &r)->r;
 
-		for (k = 0; k < 3; k++)
-			for (j = 0; j < 3; j++)
-				m->m[k][j] = mot_acc_round_ov(mot_acc_from(rr->r[k][j], 0), 30, &ov);
-		return true; /* |r| < 2^63: ov stays 0 */
+		if (!shs) {
+			for (k = 0; k < 3; k++)
+				for (j = 0; j < 3; j++)
+					m->m[k][j] = mot_acc_round_ov(mot_acc_from(rr[k][j], 0), 30,
+								      &ov);
+			return true; /* |r| < 2^63: ov stays 0 */
+		}
+		/* mot_mat_compose_r()'s bits without its tests (mot_mul()'s
+		 * where it fits) */
+		mot_compose_rows(m, v[MOT_FREE_SX],
+				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SY], v[MOT_FREE_HXY]), 32, &ov),
+				 v[MOT_FREE_SY],
+				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SZ], v[MOT_FREE_HXZ]), 32, &ov),
+				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SZ], v[MOT_FREE_HYZ]), 32, &ov),
+				 v[MOT_FREE_SZ], rr, &ov);
+		return true; /* ov stays 0 */
 	}
 	for (k = 0; k < 3; k++) {
 		d.translate[k] = t[k];
