@@ -569,6 +569,21 @@ static void quat_of_curves(struct mot_quat *q, const struct mot_scene *sc, struc
 	}
 }
 
+/* A free node's rotation as a quaternion: its track's (the held end's
+ * matrix made at init returned, as mot_rot_track_eval() returns it) or its
+ * four curves'. */
+static const struct mot_rot_q62 *free_quat(struct mot_quat *q, const struct mot_scene *sc,
+					   struct mot_eval *ev, const struct mot_free_strand *fs,
+					   mot_q32 g)
+{
+	if (fs->rot < 0) {
+		quat_of_curves(q, sc, ev, fs->quat, g);
+		return NULL;
+	}
+	return mot_rot_track_eval(q, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
+				  g, &ev->sat);
+}
+
 /* |v| as an unsigned number (exact for every v) */
 static inline uint64_t mag(mot_q32 v)
 {
@@ -588,13 +603,16 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 	mot_q32 v[MOT_FREE_NCHANNELS], g = frame;
 	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false, fits;
 	const struct mot_rot_q62 *held = NULL; /* R(d.rot), made at init */
+	const struct mot_curve *const curves = sc->curves;
+	struct mot_cursor *const cursors = ev->cursors;
 	struct mot_rot_q62 r;
 	uint64_t ov = 0;
 	uint32_t k, j;
 
 	if (fs->warp.on) /* most strands have none: not even the call */
 		g = mot_warp_apply(&fs->warp, frame, &ev->sat);
-	/* the channels' indices and rest values constants where unrolled */
+	/* the channels' indices and rest values constants where unrolled, the
+	 * arrays loaded once (not again after every call) */
 #if MOT_HAVE_INT128
 	_Pragma("GCC unroll 9")
 #endif
@@ -602,7 +620,7 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 		int32_t c = fs->channel[k];
 
 		if (c >= 0) {
-			v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g, &ev->sat);
+			v[k] = mot_curve_eval(&curves[c], &cursors[c], g, &ev->sat);
 			shs = shs || k >= MOT_FREE_SX;
 		} else {
 			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
@@ -628,12 +646,12 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 					 { t[0], t[1], t[2] } } };
 		return true;
 	}
+	/* a held end key's matrix without the call (the track's quaternion
+	 * only where mot_mat_compose_r() takes it, below) */
 	if (fs->rot >= 0)
-		held = mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
-					  &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g,
-					  &ev->sat);
-	else
-		quat_of_curves(&d.rot, sc, ev, fs->quat, g);
+		held = mot_rot_track_end(&sc->rot[fs->rot], g);
+	if (!held)
+		held = free_quat(&d.rot, sc, ev, fs, g);
 	/* scales and shears below 2^8 (every real one): S . H's products
 	 * below 2^48 raw, its rows' sums with R below 2^113 and every entry
 	 * below 2^51, so mot_mat_compose_r()'s tests are known to pass; the
@@ -666,6 +684,8 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 		d.scale[k] = v[MOT_FREE_SX + k];
 		d.shear[k] = v[MOT_FREE_HXY + k];
 	}
+	if (held) /* the same end, and its quaternion */
+		free_quat(&d.rot, sc, ev, fs, g);
 	mot_mat_compose_r(m, &d, held, &ev->sat);
 	return true;
 }
