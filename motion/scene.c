@@ -1089,7 +1089,7 @@ revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
  * an axis, the common case of a rig; p = 0 too), in the small case: the
  * other components' products are exact zeros, and of the sums above only
  * pos = P_t + p_k P_k and W_t = P_t + p_k (P_k - W_k) remain (W_o = P_o:
- * 0 for k = o), the difference exact (|entries| below 2^40 raw, the small
+ * 0 for k = o), the difference exact (|entries| below 2^62 raw, the small
  * case's bound). Two products a column where there were five; the same
  * bits. k at run time, the axis a constant where inlined.
  */
