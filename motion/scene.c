@@ -655,10 +655,13 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 	/* scales and shears below 2^8 (every real one): S . H's products
 	 * below 2^48 raw, its rows' sums with R below 2^113 and every entry
 	 * below 2^51, so mot_mat_compose_r()'s tests are known to pass; the
-	 * rotation made first only where that would make it */
-	fits = !shs || (mag(v[MOT_FREE_SX]) | mag(v[MOT_FREE_SY]) | mag(v[MOT_FREE_SZ]) |
-			mag(v[MOT_FREE_HXY]) | mag(v[MOT_FREE_HXZ]) | mag(v[MOT_FREE_HYZ])) <
-			       (uint64_t)1 << 40;
+	 * rotation made first only where that would make it. Where 128-bit
+	 * integers are not the compiler's compose_r() does it all (one copy
+	 * of the sums: less code, as the kernels above) */
+	fits = !shs || (small_kernels &&
+			(mag(v[MOT_FREE_SX]) | mag(v[MOT_FREE_SY]) | mag(v[MOT_FREE_SZ]) |
+			 mag(v[MOT_FREE_HXY]) | mag(v[MOT_FREE_HXZ]) | mag(v[MOT_FREE_HYZ])) <
+				(uint64_t)1 << 40);
 	if (fits && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
 		const int64_t(*rr)[3] = (held ? held : &r)->r;
 
