@@ -6,14 +6,6 @@
 #include "decomp.h"
 #include "trig.h"
 
-/* Loops of three unrolled where 128-bit integers are native (gcc -O2 keeps
- * them loops; scene.c's kernels do the same), kept loops elsewhere. */
-#if MOT_HAVE_INT128
-#define UNROLL3 _Pragma("GCC unroll 3")
-#else
-#define UNROLL3
-#endif
-
 /* R . v for a unit row R in Q2.62 and v in Q32.32 (below 2^60), rounded
  * once to Q32.32. */
 static mot_q32 dot62(const int64_t r[3], const mot_q32 v[3])
@@ -205,14 +197,7 @@ void mot_mat_compose_r(struct mot_mat *out, const struct mot_decomp *d,
 	/* S . H is lower-triangular: row i has i + 1 products (fix.h's kernel,
 	 * the saturating rounding only when an entry does not fit); the columns
 	 * unrolled where 128-bit integers are native, as scene.c's kernels */
-	UNROLL3
-	for (j = 0; j < 3; j++) {
-		m.m[0][j] = mot_acc_floor_ov(mot_acc_mac(mot_acc_start(0, 62), sh[0][0], r[0][j]), 62,
-					     &ov);
-		m.m[1][j] = mot_sum2_ov(sh[1][0], r[0][j], sh[1][1], r[1][j], 0, 62, &ov);
-		m.m[2][j] = mot_sum3_ov(sh[2][0], r[0][j], sh[2][1], r[1][j], sh[2][2], r[2][j], 0,
-					62, &ov);
-	}
+	mot_compose_rows(&m, sh[0][0], sh[1][0], sh[1][1], sh[2][0], sh[2][1], sh[2][2], r, &ov);
 	for (i = 0; ov && i < 3; i++)
 		for (j = 0; j < 3; j++) {
 			mot_acc acc = mot_acc_mul(sh[i][0], r[0][j]);

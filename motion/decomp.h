@@ -42,4 +42,28 @@ void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *
 void mot_mat_compose_r(struct mot_mat *out, const struct mot_decomp *d,
 		       const struct mot_rot_q62 *r, uint32_t *sat);
 
+/*
+ * mot_mat_compose_r()'s sums: rows 0..2 of out = (S . H) . R for S . H's
+ * lower triangle (sx; sy hxy, sy; sz hxz, sz hyz, sz) and R in Q2.62, each
+ * entry one sum rounded once (fix.h's kernel, an entry that does not fit
+ * ORed into *ov). Inline for the callers that know every entry fits (a
+ * constant unused ov: no test left).
+ */
+static inline __attribute__((always_inline)) void
+mot_compose_rows(struct mot_mat *out, mot_q32 sx, mot_q32 sy_hxy, mot_q32 sy, mot_q32 sz_hxz,
+		 mot_q32 sz_hyz, mot_q32 sz, const int64_t r[3][3], uint64_t *ov)
+{
+	unsigned j;
+
+#if MOT_HAVE_INT128
+	_Pragma("GCC unroll 3")
+#endif
+	for (j = 0; j < 3; j++) {
+		out->m[0][j] = mot_acc_floor_ov(mot_acc_mac(mot_acc_start(0, 62), sx, r[0][j]), 62,
+						ov);
+		out->m[1][j] = mot_sum2_ov(sy_hxy, r[0][j], sy, r[1][j], 0, 62, ov);
+		out->m[2][j] = mot_sum3_ov(sz_hxz, r[0][j], sz_hyz, r[1][j], sz, r[2][j], 0, 62, ov);
+	}
+}
+
 #endif /* MOT_DECOMP_H */

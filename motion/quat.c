@@ -450,7 +450,8 @@ static __attribute__((noinline)) void slerp_sum_sat(struct mot_quat *out,
 				  mot_sum_prod(l + 4, r, 2, sat), mot_sum_prod(l + 6, r, 2, sat) };
 }
 
-void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
+static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
+				     uint32_t *sat)
 {
 	struct mot_sc sc;
 	mot_q32 sn, cs;
@@ -485,6 +486,11 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 	}
 }
 
+void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
+{
+	slerp_eval_in(out, s, t, sat);
+}
+
 /*
  * One slerp for components below 2 in magnitude (every unit quaternion):
  * the arc of mot_slerp_prepare(), the same d and u bit for bit, but no unit
@@ -504,8 +510,8 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
  * u below 2^42 and |u|^2 below 2^86, the last sum below 2^106: no sum wraps
  * and every rounded value fits.
  */
-static bool slerp_once(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
-		       mot_q32 t, uint32_t *sat)
+static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a,
+				  const struct mot_quat *b, mot_q32 t, uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
 	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, theta, sn, cs;
@@ -577,15 +583,35 @@ static bool slerp_once(struct mot_quat *out, const struct mot_quat *a, const str
 	return true;
 }
 
-void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
-		    mot_q32 t, uint32_t *sat)
+/* mot_slerp_prepare() and mot_slerp_eval(), out of slerp_once()'s way */
+static __attribute__((noinline)) void slerp_long(struct mot_quat *out, const struct mot_quat *a,
+						 const struct mot_quat *b, mot_q32 t,
+						 uint32_t *sat)
 {
 	struct mot_slerp s;
 
-	if (slerp_once(out, a, b, t, sat))
-		return;
 	mot_slerp_prepare(&s, a, b, sat);
 	mot_slerp_eval(out, &s, t, sat);
+}
+
+void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
+		    mot_q32 t, uint32_t *sat)
+{
+	if (!slerp_once(out, a, b, t, sat))
+		slerp_long(out, a, b, t, sat);
+}
+
+void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
+		    const struct mot_slerp *inner, mot_q32 t, uint32_t *sat)
+{
+	struct mot_quat qa, qb;
+	mot_q32 h;
+
+	slerp_eval_in(&qa, arc, t, sat);
+	slerp_eval_in(&qb, inner, t, sat);
+	h = 2 * mot_mul(t, ONE - t, sat); /* 2 t (1 - t) */
+	if (!slerp_once(out, &qa, &qb, h, sat))
+		slerp_long(out, &qa, &qb, h, sat);
 }
 
 /* ---- squad -------------------------------------------------------------------- */

@@ -94,6 +94,11 @@ void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct
  * (about 370 ns each); mot_quat_squad() takes its three slerps one-shot
  * (mot_quat_slerp).
  */
+/* squad(t) of a segment whose two arcs are prepared (q(i) to q(i+1) and
+ * s(i) to s(i+1)): their slerps at t, then the one-shot slerp between
+ * them at 2t(1-t), in one call. */
+void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
+		    const struct mot_slerp *inner, mot_q32 t, uint32_t *sat);
 void mot_squad_inner(struct mot_quat *out, const struct mot_quat *prev,
 		     const struct mot_quat *cur, const struct mot_quat *next, uint32_t *sat);
 void mot_quat_squad(struct mot_quat *out, const struct mot_quat *q0, const struct mot_quat *q1,

@@ -145,37 +145,33 @@ int mot_scene_validate(const struct mot_scene *sc)
 	return MOT_OK;
 }
 
-/* The small case (see node_world below): the largest linear part (a
- * bound on W_lin's 2-norm below 2^40 raw: every entry of it, and of a
- * child's P_lin, below 2^8), the largest offset (2^18 units) and parent
- * translation (2^29 units). */
-#define SMALL_LIN ((uint64_t)1 << 40)
-#define SMALL_OFFSET ((uint64_t)1 << 50)
-#define SMALL_TRANS ((uint64_t)1 << 61)
-#define SMALL_LIN_SHIFT 8 /* |P_lin| entries below 2^8 */
+/* The small case (see node_world below): every bound, and every result,
+ * below 2^62 raw; an offset (pivot, translation) below 2^61, so that p + t
+ * fits. */
+#define SMALL_LIM ((uint64_t)1 << 62)
+#define SMALL_OFFSET ((uint64_t)1 << 61)
 
 static uint64_t add_sat(uint64_t a, uint64_t b)
 {
 	return a + b < a ? UINT64_MAX : a + b;
 }
 
-/* ceil(a b / 2^32) or more for raw magnitudes, UINT64_MAX from 2^42 up:
- * 32-bit halves, every partial product below 2^53 */
+/* ceil(a b / 2^32) or more for raw magnitudes, UINT64_MAX where that
+ * does not fit */
 static uint64_t mul_up(uint64_t a, uint64_t b)
 {
-	const uint64_t lo = 0xffffffffu;
-	uint64_t ah = a >> 32, al = a & lo, bh = b >> 32, bl = b & lo;
+	uint64_t lo, hi = mot_umul_hi(a, b, &lo);
 
-	if (a >= (uint64_t)1 << 42 || b >= (uint64_t)1 << 42)
+	if (hi >> 32)
 		return UINT64_MAX;
-	return (ah * bh << 32) + ah * bl + al * bh + (al * bl >> 32) + 1;
+	return add_sat(hi << 32 | lo >> 32, 1);
 }
 
 /* A rotation as used, rounded, times a linear part of 2-norm below l, the
  * product rounded: below (1 + 2^-22) l + 3 (node_world's proof). */
 static uint64_t lin_rot(uint64_t l)
 {
-	return l >= SMALL_LIN ? UINT64_MAX : l + (l >> 22) + 4;
+	return l >= SMALL_LIM ? UINT64_MAX : l + (l >> 22) + 4;
 }
 
 static uint64_t max_u64(uint64_t a, uint64_t b)
@@ -291,14 +287,15 @@ static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *
 /*
  * What the memo knows of a node before any evaluation: whether it is of the
  * small case, and bounds on its linear part and translation for its
- * children. Under a parent whose world translation is below B, with P_lin
- * and W_lin below 2^8: pos below B + (|p|_1 + |t|_1) 2^8, W_t below that +
- * |p|_1 2^8, raw.
+ * children. Under a parent whose world translation is below B and linear
+ * part below lp (2-norm, so every entry), the node's own below l, with a
+ * pivot of 1-norm p1 and a translation below t a component: pos below
+ * B + (p1 + 3 t) lp + 1 and W_t below that + p1 l + 1, raw.
  */
 static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 			 const struct mot_node *n, const struct mot_node_memo *up)
 {
-	uint64_t t = offset_bound(sc, n), p1 = 0, bt;
+	uint64_t t = offset_bound(sc, n), p1 = 0, bt, sum;
 	uint64_t lp = up ? up->lin : (uint64_t)ONE; /* the identity's */
 	bool off = t < SMALL_OFFSET;
 	uint32_t k;
@@ -313,10 +310,11 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 			m->prow = n->pivot[(k + 1) % 3] || n->pivot[(k + 2) % 3] ? 3 : k;
 	m->lin = lin_bound(sc, n, lp);
 	bt = up ? up->bound : 0;
-	m->small = lp < SMALL_LIN && m->lin < SMALL_LIN && off && bt < SMALL_TRANS;
-	m->bound = UINT64_MAX;
-	if (m->small) /* p, t below 2^50: (2 |p|_1 + |t|_1) 2^8 < 2^62, no wrap */
-		m->bound = bt + ((2 * p1 + 3 * t) << SMALL_LIN_SHIFT) + 2;
+	/* (2 p1 + 3 t) max(lp, l) + 2 */
+	sum = add_sat(add_sat(p1, p1), add_sat(add_sat(t, t), t));
+	sum = add_sat(add_sat(bt, mul_up(sum, max_u64(lp, m->lin))), 2);
+	m->small = lp < SMALL_LIM && m->lin < SMALL_LIM && off && sum < SMALL_LIM;
+	m->bound = m->small ? sum : UINT64_MAX;
 }
 
 /* ---- a joint's curve: the piece memo ----------------------------------------- */
@@ -571,6 +569,27 @@ static void quat_of_curves(struct mot_quat *q, const struct mot_scene *sc, struc
 	}
 }
 
+/* A free node's rotation as a quaternion: its track's (the held end's
+ * matrix made at init returned, as mot_rot_track_eval() returns it) or its
+ * four curves'. */
+static const struct mot_rot_q62 *free_quat(struct mot_quat *q, const struct mot_scene *sc,
+					   struct mot_eval *ev, const struct mot_free_strand *fs,
+					   mot_q32 g)
+{
+	if (fs->rot < 0) {
+		quat_of_curves(q, sc, ev, fs->quat, g);
+		return NULL;
+	}
+	return mot_rot_track_eval(q, &sc->rot[fs->rot], &ev->cursors[sc->ncurves + (uint32_t)fs->rot],
+				  g, &ev->sat);
+}
+
+/* |v| as an unsigned number (exact for every v) */
+static inline uint64_t mag(mot_q32 v)
+{
+	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+}
+
 /*
  * The linear part S . H . R and the translation of a free node (channels
  * without keys at their rest values). Returns false when the node has no
@@ -582,19 +601,26 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 {
 	struct mot_decomp d;
 	mot_q32 v[MOT_FREE_NCHANNELS], g = frame;
-	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false;
+	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false, fits;
 	const struct mot_rot_q62 *held = NULL; /* R(d.rot), made at init */
+	const struct mot_curve *const curves = sc->curves;
+	struct mot_cursor *const cursors = ev->cursors;
 	struct mot_rot_q62 r;
 	uint64_t ov = 0;
 	uint32_t k, j;
 
 	if (fs->warp.on) /* most strands have none: not even the call */
 		g = mot_warp_apply(&fs->warp, frame, &ev->sat);
+	/* the channels' indices and rest values constants where unrolled, the
+	 * arrays loaded once (not again after every call) */
+#if MOT_HAVE_INT128
+	_Pragma("GCC unroll 9")
+#endif
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
 		int32_t c = fs->channel[k];
 
 		if (c >= 0) {
-			v[k] = mot_curve_eval(&sc->curves[c], &ev->cursors[c], g, &ev->sat);
+			v[k] = mot_curve_eval(&curves[c], &cursors[c], g, &ev->sat);
 			shs = shs || k >= MOT_FREE_SX;
 		} else {
 			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
@@ -620,25 +646,49 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 					 { t[0], t[1], t[2] } } };
 		return true;
 	}
+	/* a held end key's matrix without the call (the track's quaternion
+	 * only where mot_mat_compose_r() takes it, below) */
 	if (fs->rot >= 0)
-		held = mot_rot_track_eval(&d.rot, &sc->rot[fs->rot],
-					  &ev->cursors[sc->ncurves + (uint32_t)fs->rot], g,
-					  &ev->sat);
-	else
-		quat_of_curves(&d.rot, sc, ev, fs->quat, g);
-	if (!shs && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
-		const struct mot_rot_q62 *rr = held ? held : &r;
+		held = mot_rot_track_end(&sc->rot[fs->rot], g);
+	if (!held)
+		held = free_quat(&d.rot, sc, ev, fs, g);
+	/* scales and shears below 2^8 (every real one): S . H's products
+	 * below 2^48 raw, its rows' sums with R below 2^113 and every entry
+	 * below 2^51, so mot_mat_compose_r()'s tests are known to pass; the
+	 * rotation made first only where that would make it. Where 128-bit
+	 * integers are not the compiler's compose_r() does it all (one copy
+	 * of the sums: less code, as the kernels above) */
+	fits = !shs || (small_kernels &&
+			(mag(v[MOT_FREE_SX]) | mag(v[MOT_FREE_SY]) | mag(v[MOT_FREE_SZ]) |
+			 mag(v[MOT_FREE_HXY]) | mag(v[MOT_FREE_HXZ]) | mag(v[MOT_FREE_HYZ])) <
+				(uint64_t)1 << 40);
+	if (fits && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
+		const int64_t(*rr)[3] = (held ? held : &r)->r;
 
-		for (k = 0; k < 3; k++)
-			for (j = 0; j < 3; j++)
-				m->m[k][j] = mot_acc_round_ov(mot_acc_from(rr->r[k][j], 0), 30, &ov);
-		return true; /* |r| < 2^63: ov stays 0 */
+		if (!shs) {
+			for (k = 0; k < 3; k++)
+				for (j = 0; j < 3; j++)
+					m->m[k][j] = mot_acc_round_ov(mot_acc_from(rr[k][j], 0), 30,
+								      &ov);
+			return true; /* |r| < 2^63: ov stays 0 */
+		}
+		/* mot_mat_compose_r()'s bits without its tests (mot_mul()'s
+		 * where it fits) */
+		mot_compose_rows(m, v[MOT_FREE_SX],
+				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SY], v[MOT_FREE_HXY]), 32, &ov),
+				 v[MOT_FREE_SY],
+				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SZ], v[MOT_FREE_HXZ]), 32, &ov),
+				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SZ], v[MOT_FREE_HYZ]), 32, &ov),
+				 v[MOT_FREE_SZ], rr, &ov);
+		return true; /* ov stays 0 */
 	}
 	for (k = 0; k < 3; k++) {
 		d.translate[k] = t[k];
 		d.scale[k] = v[MOT_FREE_SX + k];
 		d.shear[k] = v[MOT_FREE_HXY + k];
 	}
+	if (held) /* the same end, and its quaternion */
+		free_quat(&d.rot, sc, ev, fs, g);
 	mot_mat_compose_r(m, &d, held, &ev->sat);
 	return true;
 }
@@ -752,12 +802,15 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
  * (a unit each): |M|_2 <= |S.H|_2 (1 + 2^-22) + 3 units, |S.H|_2 at most
  * the mean of its largest column and row sums, from its channels' bounds
  * over the whole timeline (mot_curve_bound()); without a rotation M = S.H.
- * Where both the parent's and the node's bound are below 2^8 every entry of
- * P_lin and W_lin is below 2^8 in magnitude (and the sums that make W_lin
- * fit, M's entries below 2^10). With the node's pivot and translation below
- * 2^18 units over the whole timeline (the curves' bounds) and P_t below
- * 2^29 units (its parent's bound, summed down the chain), every sum stays
- * below 2^94 and every result below 2^63. The kernels below then drop the
+ * Each entry of a matrix is below its 2-norm, and the terms of an entry of
+ * W_lin = M . P_lin sum to at most |M|_2 |P_lin|_2 in magnitude (a row of M
+ * times a column of P, Cauchy-Schwarz); those of pos and W_t to at most
+ * |p + t|_1 |P_lin|_2 + |p|_1 |W_lin|_2 beside P_t (memo_prepare()). Where
+ * the parent's and the node's bounds, the node's pivot and translation
+ * over the whole timeline (the curves' bounds) and that sum with P_t's
+ * bound (its parent's, summed down the chain) are below 2^62 raw, p + t
+ * fits, every sum stays below 2^95 (no wrap of 128 bits) and every result,
+ * with or without P_t, below 2^62. The kernels below then drop the
  * tests, and P_t, whose share of each sum is a whole number of units of the
  * result, is added after the rounding instead of before: the same bits, a
  * fifth fewer instructions. The bounds hold whichever kernel a parent took:
@@ -1039,7 +1092,7 @@ revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
  * an axis, the common case of a rig; p = 0 too), in the small case: the
  * other components' products are exact zeros, and of the sums above only
  * pos = P_t + p_k P_k and W_t = P_t + p_k (P_k - W_k) remain (W_o = P_o:
- * 0 for k = o), the difference exact (|entries| below 2^40 raw, the small
+ * 0 for k = o), the difference exact (|entries| below 2^62 raw, the small
  * case's bound). Two products a column where there were five; the same
  * bits. k at run time, the axis a constant where inlined.
  */

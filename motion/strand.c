@@ -163,7 +163,6 @@ const struct mot_rot_q62 *mot_rot_track_eval(struct mot_quat *out,
 					     uint32_t *sat)
 {
 	const struct mot_rot_seg *sg;
-	struct mot_quat qa, qb;
 	mot_q32 s;
 	uint32_t i;
 
@@ -189,14 +188,10 @@ const struct mot_rot_q62 *mot_rot_track_eval(struct mot_quat *out,
 		s = MOT_Q32_ONE;
 	if (!mot_ease_is_identity(&sg->ease))
 		s = mot_ease_apply(&sg->ease, s, sat);
-	mot_slerp_eval(&qa, &sg->arc, s, sat);
-	if (!r->squad) {
-		*out = qa;
-		return NULL;
-	}
-	mot_slerp_eval(&qb, &sg->inner, s, sat);
-	/* 2 s (1 - s) */
-	mot_quat_slerp(out, &qa, &qb, 2 * mot_mul(s, MOT_Q32_ONE - s, sat), sat);
+	if (r->squad)
+		mot_squad_eval(out, &sg->arc, &sg->inner, s, sat);
+	else
+		mot_slerp_eval(out, &sg->arc, s, sat);
 	return NULL;
 }
 

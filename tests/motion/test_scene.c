@@ -647,9 +647,9 @@ static void test_wide_sums(void **state)
  * The small case under scale and shear (scene.c, memo_prepare()): a chain
  * of free nodes that scale by up to 1.5 and shear by up to 0.2, each with a
  * joint turning below it, is small all the way down; one that scales by
- * up to 100 (three levels: 10^6 and more would not fit) is small while the
- * bound on its linear part stays below 2^8 (the first free node and its
- * joint) and not from the second free node down.
+ * up to 1030 without shear (three levels: 1030^3 is above 2^30, and every
+ * result still fits) is small while the bounds stay below 2^30 (the first
+ * two free nodes and their joints) and not from the third free node down.
  * Either way the bits are the tested kernels' (an evaluation reset before
  * every tick with the small case switched off).
  */
@@ -658,7 +658,8 @@ static void test_wide_sums(void **state)
 static void test_scaled_small(void **state)
 {
 	static const struct sd_key up15[] = { { 0, 1, 0, 0, 0, 0, 0 }, { 24, 1.5, 0, 0, 0, 0, 0 } };
-	static const struct sd_key up100[] = { { 0, 1, 0, 0, 0, 0, 0 }, { 24, 100, 0, 0, 0, 0, 0 } };
+	static const struct sd_key up1030[] = { { 0, 1, 0, 0, 0, 0, 0 },
+						 { 24, 1030, 0, 0, 0, 0, 0 } };
 	static const struct sd_key shear[] = { { 0, 0, 0, 0, 0, 0, 0 }, { 24, 0.2, 0, 0, 0, 0, 0 } };
 	static const struct sd_key turn[] = { { 0, 0, 0, 0, 0, 0, 0 }, { 24, 90, 0, 0, 0, 0, 0 } };
 	static const char *const names[2 * SCALED_LEVELS] = { "f0", "j0", "f1", "j1", "f2", "j2",
@@ -686,9 +687,9 @@ static void test_scaled_small(void **state)
 				n[i].has_free = true;
 				for (k = MOT_FREE_SX; k <= MOT_FREE_SZ; k++)
 					n[i].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 2,
-									     s ? up100 : up15, 1, 0,
+									     s ? up1030 : up15, 1, 0,
 									     0, 0, false };
-				for (k = MOT_FREE_HXY; k <= MOT_FREE_HYZ; k++)
+				for (k = MOT_FREE_HXY; k <= MOT_FREE_HYZ && !s; k++)
 					n[i].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 2,
 									     shear, 1, 0, 0, 0,
 									     false };
@@ -713,7 +714,7 @@ static void test_scaled_small(void **state)
 		assert_int_equal(scene_pose_new(&pw, &b.sc), 0);
 		assert_int_equal(scene_pose_new(&pc, &b.sc), 0);
 		for (i = 0; i < b.sc.nnodes; i++)
-			assert_int_equal(warm.memo[i].small, s == 0 || i < 2);
+			assert_int_equal(warm.memo[i].small, s == 0 || i < 4);
 		t = &b.sc.timing;
 		n1 = mot_timing_trigger_tick(t, 25);
 		for (tk = -3; tk < n1; tk += 7) {
