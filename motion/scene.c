@@ -443,12 +443,14 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 	}
 	if (m->op == PIECE_SHIFTED) {
 		p = poly_eval(s->c, (f - s->f0) << s->ush);
+	} else if (m->op == PIECE_LINEAR) {
+		p = mul62(s->c[1], frac62(f - s->f0, &s->inv_w));
+	} else if (m->op == PIECE_CUBIC) {
+		p = poly_eval(s->c, frac62(f - s->f0, &s->inv_w));
 	} else {
-		int64_t u = m->op >= PIECE_LINEAR_EASE ? eased_u(s, f - s->f0) :
-							 frac62(f - s->f0, &s->inv_w);
+		int64_t u = eased_u(s, f - s->f0);
 
-		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
-									  poly_eval(s->c, u);
+		p = m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) : poly_eval(s->c, u);
 	}
 	/* round(p / 2^sh) = floor((floor(p / 2^(sh - 1)) + 1) / 2), with vsh in
 	 * [1, 62] (curve_learn()): value_of()'s bits, no sum to overflow */
