@@ -658,28 +658,24 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
  * quaternion route costs a half-angle sincos, three roundings of the
  * quaternion and fifteen products.
  */
-/* Row k of tilted_rot()'s matrix, (k, j, l) = (k, k+1, k+2) mod 3 as
- * constants where inlined: R[k][j] is the pair (j, l) of l's triple, R[k][l]
- * the pair (l, j) of j's. */
-static inline __attribute__((always_inline)) void tilted_row(mot_q32 r[3],
-							     const struct mot_node *n,
-							     mot_q32 s, mot_q32 omc, unsigned k)
+/* The pair R[j][l], R[l][j] of tilted_rot()'s matrix for (k, j, l) = (k,
+ * k+1, k+2) mod 3: one sum (1 - c) a_j a_l and one term s a_k, added and
+ * subtracted, and the diagonal entry R[k][k]. Constants where inlined. */
+static inline __attribute__((always_inline)) void tilted_pair(struct mot_mat *r,
+							      const struct mot_node *n,
+							      mot_q32 s, mot_q32 omc, unsigned k)
 {
 	const unsigned j = (k + 1) % 3, l = (k + 2) % 3;
 	uint64_t ov = 0; /* terms below 2^96: never set */
-	/* a_j, a_l in Q2.62, exactly (|a| <= 1 + 2^-25, validated) */
-	int64_t aj = (int64_t)((uint64_t)n->axis[j] << 30);
-	int64_t al = (int64_t)((uint64_t)n->axis[l] << 30);
+	/* a_k in Q2.62, exactly (|a| <= 1 + 2^-25, validated) */
+	mot_acc sym = mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[k]);
+	mot_acc asym = mot_acc_mul(s, (int64_t)((uint64_t)n->axis[k] << 30));
 
-	r[k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
-					    mot_acc_mul(omc, n->rot_sq[k])),
-				62, &ov);
-	r[j] = mot_acc_floor_ov(mot_acc_add(mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[l]),
-					    mot_acc_mul(s, al)),
-				62, &ov);
-	r[l] = mot_acc_floor_ov(mot_acc_sub(mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[j]),
-					    mot_acc_mul(s, aj)),
-				62, &ov);
+	r->m[k][k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
+						  mot_acc_mul(omc, n->rot_sq[k])),
+				      62, &ov);
+	r->m[j][l] = mot_acc_floor_ov(mot_acc_add(sym, asym), 62, &ov);
+	r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(sym, asym), 62, &ov);
 }
 
 static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
@@ -690,12 +686,12 @@ static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 	unsigned k;
 
 	if (small_kernels) {
-		tilted_row(r->m[0], n, s, omc, 0);
-		tilted_row(r->m[1], n, s, omc, 1);
-		tilted_row(r->m[2], n, s, omc, 2);
+		tilted_pair(r, n, s, omc, 0);
+		tilted_pair(r, n, s, omc, 1);
+		tilted_pair(r, n, s, omc, 2);
 	} else {
 		for (k = 0; k < 3; k++) /* one copy: less code */
-			tilted_row(r->m[k], n, s, omc, k);
+			tilted_pair(r, n, s, omc, k);
 	}
 	r->m[3][0] = r->m[3][1] = r->m[3][2] = 0;
 }
@@ -824,10 +820,10 @@ static inline __attribute__((always_inline)) mot_q32 trans_end(mot_acc x, mot_q3
 static inline __attribute__((always_inline)) void
 node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
 	      const struct mot_mat *restrict m, const mot_q32 p[3], const mot_q32 t[3], bool small,
-	      uint32_t *sat, const struct mot_node *tilt, mot_q32 ts, mot_q32 tomc)
+	      uint32_t *sat)
 {
 	const mot_q32(*restrict y)[3] = par->m;
-	mot_q32 q[3], row[3];
+	mot_q32 q[3];
 	uint64_t ov = 0, unused = 0;
 	unsigned i, j;
 
@@ -836,15 +832,7 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
 	UNROLL3
 	for (i = 0; i < 3; i++) {
-		mot_q32 m0, m1, m2;
-
-		/* a tilted joint's rotation made row by row as it is used
-		 * (tilted_world(): small only, m unused) */
-		if (tilt)
-			tilted_row(row, tilt, ts, tomc, i);
-		m0 = tilt ? row[0] : m->m[i][0];
-		m1 = tilt ? row[1] : m->m[i][1];
-		m2 = tilt ? row[2] : m->m[i][2];
+		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
 
 		UNROLL3
 		for (j = 0; j < 3; j++)
@@ -873,9 +861,9 @@ static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		       const mot_q32 p[3], const mot_q32 t[3], bool small, uint32_t *sat)
 {
 	if (small_kernels && small)
-		node_world_in(w, pos, par, m, p, t, true, sat, NULL, 0, 0);
+		node_world_in(w, pos, par, m, p, t, true, sat);
 	else
-		node_world_in(w, pos, par, m, p, t, false, sat, NULL, 0, 0);
+		node_world_in(w, pos, par, m, p, t, false, sat);
 }
 
 /* A revolute joint about a tilted axis: its rotation, then node_world()
@@ -887,14 +875,13 @@ static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	static const mot_q32 zero[3] = { 0, 0, 0 };
 	struct mot_mat r;
 
+	tilted_rot(&r, n, s, c);
 	if (small_kernels && small) {
-		/* no overflow to redo: the rotation need not be kept whole */
-		node_world_in(w, pos, par, NULL, n->pivot, zero, true, sat, n, s, ONE - c);
+		node_world_in(w, pos, par, &r, n->pivot, zero, true, sat);
 		return;
 	}
-	tilted_rot(&r, n, s, c);
 	if (small_kernels)
-		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat, NULL, 0, 0);
+		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat);
 	else /* one copy: less code */
 		node_world(w, pos, par, &r, n->pivot, zero, false, sat);
 }
