@@ -420,6 +420,23 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
+/*
+ * frac62()'s u for an offset x in [0, d) of a piece of width d, as the
+ * memo's span guarantees: x < d < 2^(shift - 30) (mot_recip_init()), so
+ * neither of frac62()'s ends past 0 is taken and x = 0 gives 0 by the
+ * product itself (also for d = 1, shift 30). The same bits without the
+ * branches, whose constants would make the callers' products full 128-bit
+ * ones (a merge of 128-bit values where a 64-bit u was).
+ */
+static inline __attribute__((always_inline)) int64_t piece_u(int64_t x, const struct mot_recip *r)
+{
+	uint64_t ov = 0; /* below 2^126: never set */
+	int64_t s = mot_acc_round_ov(
+		mot_acc_mul((int64_t)((uint64_t)x << (93 - r->shift)), r->m), 63, &ov);
+
+	return s > ONE62 ? ONE62 : s;
+}
+
 /* The first pass's own case (op): the memo's piece or held value at a frame
  * of its span, under a strand-wide ease at the warped frame; false where
  * the warped frame leaves the piece, or where the value leaves int64 as
@@ -444,9 +461,9 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 	if (m->op == PIECE_SHIFTED) {
 		p = poly_eval(s->c, (f - s->f0) << s->ush);
 	} else if (m->op == PIECE_LINEAR) {
-		p = mul62(s->c[1], frac62(f - s->f0, &s->inv_w));
+		p = mul62(s->c[1], piece_u(f - s->f0, &s->inv_w));
 	} else if (m->op == PIECE_CUBIC) {
-		p = poly_eval(s->c, frac62(f - s->f0, &s->inv_w));
+		p = poly_eval(s->c, piece_u(f - s->f0, &s->inv_w));
 	} else {
 		int64_t u = eased_u(s, f - s->f0);
 
@@ -1154,7 +1171,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 	struct mot_node_memo *memo = ev->memo, *m = memo;
 	const bool warm = ev->memo_world == out->world && out->by == ev && !ev->sat;
 	const struct mot_node *n = sc->nodes, *end = n + sc->nnodes;
-	struct mot_mat *w = out->world;
+	struct mot_mat *const world = out->world, *w = world;
 	mot_q32(*pos)[3] = out->pos, *val = out->value, *rpm = out->rpm;
 	uint32_t i;
 
@@ -1187,7 +1204,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		*val = v;
 	}
 	for (n = sc->nodes, m = memo; n < end; n++, m++, w++, pos++) {
-		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
+		const struct mot_mat *par = n->parent >= 0 ? &world[n->parent] : &mat_id;
 		const bool still = warm && (n->parent < 0 || !memo[n->parent].moved);
 		struct mot_mat local;
 		mot_q32 t[3];
