@@ -695,6 +695,8 @@ static inline __attribute__((always_inline)) void tilted_pair(struct mot_mat *r,
 	r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(sym, asym), 62, &ov);
 }
 
+/* The rotation's rows 0..2 (row 3, the translation, is the caller's: the
+ * kernels never read it) */
 static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 							     const struct mot_node *n, mot_q32 s,
 							     mot_q32 c)
@@ -710,7 +712,6 @@ static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 		for (k = 0; k < 3; k++) /* one copy: less code */
 			tilted_pair(r, n, s, omc, k);
 	}
-	r->m[3][0] = r->m[3][1] = r->m[3][2] = 0;
 }
 
 /* Local matrix of a free node: T(-p) . S . H . R . T(p) . T(t). */
@@ -1130,10 +1131,12 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 	case MOT_NODE_REVOLUTE:
 		v = joint_value(sc, ev, n, frame, &r);
 		mot_sincos(v, &s, &c);
-		if (n->axis_id == MOT_AXIS_VEC)
+		if (n->axis_id == MOT_AXIS_VEC) {
 			tilted_rot(out, n, s, c);
-		else
+			out->m[3][0] = out->m[3][1] = out->m[3][2] = 0;
+		} else {
 			axis_rot(out, n->axis_id, s, c);
+		}
 		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
