@@ -348,16 +348,27 @@ static void piece_forget(struct mot_node_memo *m)
 	m->ghi = MOT_Q32_MIN;
 }
 
+/* A joint the first pass never takes inline (PIECE_SLOW) has an empty span
+ * (lo > hi): every frame is outside it, so the pass tests the span alone,
+ * and joint_slow() goes by how (a span it learnt is not kept). */
+static void slow_span(struct mot_node_memo *m)
+{
+	m->lo = MOT_Q32_MAX;
+	m->hi = MOT_Q32_MIN;
+}
+
 /* The memo of a joint without a curve: its rest value, or a spin, always. */
 static void piece_fixed(struct mot_node_memo *m, const struct mot_node *n)
 {
 	piece_forget(m);
 	if (n->kind == MOT_NODE_FREE || n->curve >= 0)
 		return;
-	m->lo = MOT_Q32_MIN;
-	m->hi = MOT_Q32_MAX;
 	m->held = n->rest;
 	m->op = m->how = n->spin >= 0 ? PIECE_SLOW : PIECE_HELD;
+	if (m->op == PIECE_HELD) { /* always; a spin's span stays empty (slow_span()) */
+		m->lo = MOT_Q32_MIN;
+		m->hi = MOT_Q32_MAX;
+	}
 }
 
 /*
@@ -486,6 +497,8 @@ static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
 	m->op = m->how == PIECE_WHOLE || (m->piece && (m->piece->vsh < 1 || m->piece->vsh > 62)) ?
 			PIECE_SLOW :
 			m->how;
+	if (m->op == PIECE_SLOW)
+		slow_span(m);
 	return mot_curve_eval(c, cur, f, sat);
 }
 
@@ -547,9 +560,10 @@ joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_no
 /*
  * A joint's value, and its spin speed, where the first pass does not take
  * the memo's value inline (mot_scene_eval()): a frame outside the memo's
- * span, or a warped frame that left its piece (piece_fast() said so; it is
- * the memo's every case but PIECE_SLOW's), learns the piece there and
- * takes mot_curve_eval(). Where 128-bit integers are not the compiler's,
+ * span (every frame of a PIECE_SLOW joint's, which is empty: a spin, or the
+ * whole curve as how says), or a warped frame that left its piece
+ * (piece_fast() said so), learns the piece there and takes
+ * mot_curve_eval(). Where 128-bit integers are not the compiler's,
  * joint_value() alone: the memo's copies of the arithmetic would cost more
  * code than they save time (a Cortex-M4), and it is the path the other
  * builds check them against (make check-cross). The same bits every way.
@@ -1186,8 +1200,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		 * stack, stored and loaded again every turn */
 		*rpm = 0;
 		if (n->kind != MOT_NODE_FREE) {
-			if (!small_kernels || frame < m->lo || frame >= m->hi || m->op == PIECE_SLOW ||
-			    !piece_fast(m, frame, &v))
+			if (!small_kernels || frame < m->lo || frame >= m->hi || !piece_fast(m, frame, &v))
 				v = joint_slow(sc, ev, n, m, frame, rpm);
 			m->fresh = !warm || v != m->value;
 			if (m->fresh) {
