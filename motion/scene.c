@@ -346,16 +346,27 @@ static void piece_forget(struct mot_node_memo *m)
 	m->ghi = MOT_Q32_MIN;
 }
 
+/* A joint the first pass never takes inline (PIECE_SLOW) has an empty span
+ * (lo > hi): every frame is outside it, so the pass tests the span alone,
+ * and joint_slow() goes by how (a span it learnt is not kept). */
+static void slow_span(struct mot_node_memo *m)
+{
+	m->lo = MOT_Q32_MAX;
+	m->hi = MOT_Q32_MIN;
+}
+
 /* The memo of a joint without a curve: its rest value, or a spin, always. */
 static void piece_fixed(struct mot_node_memo *m, const struct mot_node *n)
 {
 	piece_forget(m);
 	if (n->kind == MOT_NODE_FREE || n->curve >= 0)
 		return;
-	m->lo = MOT_Q32_MIN;
-	m->hi = MOT_Q32_MAX;
 	m->held = n->rest;
 	m->op = m->how = n->spin >= 0 ? PIECE_SLOW : PIECE_HELD;
+	if (m->op == PIECE_HELD) { /* always; a spin's span stays empty (slow_span()) */
+		m->lo = MOT_Q32_MIN;
+		m->hi = MOT_Q32_MAX;
+	}
 }
 
 /*
@@ -418,6 +429,23 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
+/*
+ * frac62()'s u for an offset x in [0, d) of a piece of width d, as the
+ * memo's span guarantees: x < d < 2^(shift - 30) (mot_recip_init()), so
+ * neither of frac62()'s ends past 0 is taken and x = 0 gives 0 by the
+ * product itself (also for d = 1, shift 30). The same bits without the
+ * branches, whose constants would make the callers' products full 128-bit
+ * ones (a merge of 128-bit values where a 64-bit u was).
+ */
+static inline __attribute__((always_inline)) int64_t piece_u(int64_t x, const struct mot_recip *r)
+{
+	uint64_t ov = 0; /* below 2^126: never set */
+	int64_t s = mot_acc_round_ov(
+		mot_acc_mul((int64_t)((uint64_t)x << (93 - r->shift)), r->m), 63, &ov);
+
+	return s > ONE62 ? ONE62 : s;
+}
+
 /* The first pass's own case (op): the memo's piece or held value at a frame
  * of its span, under a strand-wide ease at the warped frame; false where
  * the warped frame leaves the piece, or where the value leaves int64 as
@@ -441,12 +469,14 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 	}
 	if (m->op == PIECE_SHIFTED) {
 		p = poly_eval(s->c, (f - s->f0) << s->ush);
+	} else if (m->op == PIECE_LINEAR) {
+		p = mul62(s->c[1], piece_u(f - s->f0, &s->inv_w));
+	} else if (m->op == PIECE_CUBIC) {
+		p = poly_eval(s->c, piece_u(f - s->f0, &s->inv_w));
 	} else {
-		int64_t u = m->op >= PIECE_LINEAR_EASE ? eased_u(s, f - s->f0) :
-							 frac62(f - s->f0, &s->inv_w);
+		int64_t u = eased_u(s, f - s->f0);
 
-		p = m->op == PIECE_LINEAR || m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) :
-									  poly_eval(s->c, u);
+		p = m->op == PIECE_LINEAR_EASE ? mul62(s->c[1], u) : poly_eval(s->c, u);
 	}
 	/* round(p / 2^sh) = floor((floor(p / 2^(sh - 1)) + 1) / 2), with vsh in
 	 * [1, 62] (curve_learn()): value_of()'s bits, no sum to overflow */
@@ -465,6 +495,8 @@ static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
 	m->op = m->how == PIECE_WHOLE || (m->piece && (m->piece->vsh < 1 || m->piece->vsh > 62)) ?
 			PIECE_SLOW :
 			m->how;
+	if (m->op == PIECE_SLOW)
+		slow_span(m);
 	return mot_curve_eval(c, cur, f, sat);
 }
 
@@ -526,9 +558,10 @@ joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_no
 /*
  * A joint's value, and its spin speed, where the first pass does not take
  * the memo's value inline (mot_scene_eval()): a frame outside the memo's
- * span, or a warped frame that left its piece (piece_fast() said so; it is
- * the memo's every case but PIECE_SLOW's), learns the piece there and
- * takes mot_curve_eval(). Where 128-bit integers are not the compiler's,
+ * span (every frame of a PIECE_SLOW joint's, which is empty: a spin, or the
+ * whole curve as how says), or a warped frame that left its piece
+ * (piece_fast() said so), learns the piece there and takes
+ * mot_curve_eval(). Where 128-bit integers are not the compiler's,
  * joint_value() alone: the memo's copies of the arithmetic would cost more
  * code than they save time (a Cortex-M4), and it is the path the other
  * builds check them against (make check-cross). The same bits every way.
@@ -706,30 +739,28 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
  * quaternion route costs a half-angle sincos, three roundings of the
  * quaternion and fifteen products.
  */
-/* Row k of tilted_rot()'s matrix, (k, j, l) = (k, k+1, k+2) mod 3 as
- * constants where inlined: R[k][j] is the pair (j, l) of l's triple, R[k][l]
- * the pair (l, j) of j's. */
-static inline __attribute__((always_inline)) void tilted_row(mot_q32 r[3],
-							     const struct mot_node *n,
-							     mot_q32 s, mot_q32 omc, unsigned k)
+/* The pair R[j][l], R[l][j] of tilted_rot()'s matrix for (k, j, l) = (k,
+ * k+1, k+2) mod 3: one sum (1 - c) a_j a_l and one term s a_k, added and
+ * subtracted, and the diagonal entry R[k][k]. Constants where inlined. */
+static inline __attribute__((always_inline)) void tilted_pair(struct mot_mat *r,
+							      const struct mot_node *n,
+							      mot_q32 s, mot_q32 omc, unsigned k)
 {
 	const unsigned j = (k + 1) % 3, l = (k + 2) % 3;
 	uint64_t ov = 0; /* terms below 2^96: never set */
-	/* a_j, a_l in Q2.62, exactly (|a| <= 1 + 2^-25, validated) */
-	int64_t aj = (int64_t)((uint64_t)n->axis[j] << 30);
-	int64_t al = (int64_t)((uint64_t)n->axis[l] << 30);
+	/* a_k in Q2.62, exactly (|a| <= 1 + 2^-25, validated) */
+	mot_acc sym = mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[k]);
+	mot_acc asym = mot_acc_mul(s, (int64_t)((uint64_t)n->axis[k] << 30));
 
-	r[k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
-					    mot_acc_mul(omc, n->rot_sq[k])),
-				62, &ov);
-	r[j] = mot_acc_floor_ov(mot_acc_add(mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[l]),
-					    mot_acc_mul(s, al)),
-				62, &ov);
-	r[l] = mot_acc_floor_ov(mot_acc_sub(mot_acc_mac(mot_acc_start(0, 62), omc, n->rot_pr[j]),
-					    mot_acc_mul(s, aj)),
-				62, &ov);
+	r->m[k][k] = mot_acc_floor_ov(mot_acc_sub(mot_acc_start(ONE, 62),
+						  mot_acc_mul(omc, n->rot_sq[k])),
+				      62, &ov);
+	r->m[j][l] = mot_acc_floor_ov(mot_acc_add(sym, asym), 62, &ov);
+	r->m[l][j] = mot_acc_floor_ov(mot_acc_sub(sym, asym), 62, &ov);
 }
 
+/* The rotation's rows 0..2 (row 3, the translation, is the caller's: the
+ * kernels never read it) */
 static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 							     const struct mot_node *n, mot_q32 s,
 							     mot_q32 c)
@@ -738,14 +769,13 @@ static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 	unsigned k;
 
 	if (small_kernels) {
-		tilted_row(r->m[0], n, s, omc, 0);
-		tilted_row(r->m[1], n, s, omc, 1);
-		tilted_row(r->m[2], n, s, omc, 2);
+		tilted_pair(r, n, s, omc, 0);
+		tilted_pair(r, n, s, omc, 1);
+		tilted_pair(r, n, s, omc, 2);
 	} else {
 		for (k = 0; k < 3; k++) /* one copy: less code */
-			tilted_row(r->m[k], n, s, omc, k);
+			tilted_pair(r, n, s, omc, k);
 	}
-	r->m[3][0] = r->m[3][1] = r->m[3][2] = 0;
 }
 
 /* Local matrix of a free node: T(-p) . S . H . R . T(p) . T(t). */
@@ -875,10 +905,10 @@ static inline __attribute__((always_inline)) mot_q32 trans_end(mot_acc x, mot_q3
 static inline __attribute__((always_inline)) void
 node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
 	      const struct mot_mat *restrict m, const mot_q32 p[3], const mot_q32 t[3], bool small,
-	      uint32_t *sat, const struct mot_node *tilt, mot_q32 ts, mot_q32 tomc)
+	      uint32_t *sat)
 {
 	const mot_q32(*restrict y)[3] = par->m;
-	mot_q32 q[3], row[3];
+	mot_q32 q[3];
 	uint64_t ov = 0, unused = 0;
 	unsigned i, j;
 
@@ -887,15 +917,7 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
 	UNROLL3
 	for (i = 0; i < 3; i++) {
-		mot_q32 m0, m1, m2;
-
-		/* a tilted joint's rotation made row by row as it is used
-		 * (tilted_world(): small only, m unused) */
-		if (tilt)
-			tilted_row(row, tilt, ts, tomc, i);
-		m0 = tilt ? row[0] : m->m[i][0];
-		m1 = tilt ? row[1] : m->m[i][1];
-		m2 = tilt ? row[2] : m->m[i][2];
+		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
 
 		UNROLL3
 		for (j = 0; j < 3; j++)
@@ -924,9 +946,9 @@ static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		       const mot_q32 p[3], const mot_q32 t[3], bool small, uint32_t *sat)
 {
 	if (small_kernels && small)
-		node_world_in(w, pos, par, m, p, t, true, sat, NULL, 0, 0);
+		node_world_in(w, pos, par, m, p, t, true, sat);
 	else
-		node_world_in(w, pos, par, m, p, t, false, sat, NULL, 0, 0);
+		node_world_in(w, pos, par, m, p, t, false, sat);
 }
 
 /* A revolute joint about a tilted axis: its rotation, then node_world()
@@ -938,14 +960,13 @@ static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	static const mot_q32 zero[3] = { 0, 0, 0 };
 	struct mot_mat r;
 
+	tilted_rot(&r, n, s, c);
 	if (small_kernels && small) {
-		/* no overflow to redo: the rotation need not be kept whole */
-		node_world_in(w, pos, par, NULL, n->pivot, zero, true, sat, n, s, ONE - c);
+		node_world_in(w, pos, par, &r, n->pivot, zero, true, sat);
 		return;
 	}
-	tilted_rot(&r, n, s, c);
 	if (small_kernels)
-		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat, NULL, 0, 0);
+		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat);
 	else /* one copy: less code */
 		node_world(w, pos, par, &r, n->pivot, zero, false, sat);
 }
@@ -1177,10 +1198,12 @@ void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_
 	case MOT_NODE_REVOLUTE:
 		v = joint_value(sc, ev, n, frame, &r);
 		mot_sincos(v, &s, &c);
-		if (n->axis_id == MOT_AXIS_VEC)
+		if (n->axis_id == MOT_AXIS_VEC) {
 			tilted_rot(out, n, s, c);
-		else
+			out->m[3][0] = out->m[3][1] = out->m[3][2] = 0;
+		} else {
 			axis_rot(out, n->axis_id, s, c);
+		}
 		mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
 		break;
 	case MOT_NODE_PRISMATIC:
@@ -1218,7 +1241,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 	struct mot_node_memo *memo = ev->memo, *m = memo;
 	const bool warm = ev->memo_world == out->world && out->by == ev && !ev->sat;
 	const struct mot_node *n = sc->nodes, *end = n + sc->nnodes;
-	struct mot_mat *w = out->world;
+	struct mot_mat *const world = out->world, *w = world;
 	mot_q32(*pos)[3] = out->pos, *val = out->value, *rpm = out->rpm;
 	uint32_t i;
 
@@ -1230,8 +1253,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		 * stack, stored and loaded again every turn */
 		*rpm = 0;
 		if (n->kind != MOT_NODE_FREE) {
-			if (!small_kernels || frame < m->lo || frame >= m->hi || m->op == PIECE_SLOW ||
-			    !piece_fast(m, frame, &v))
+			if (!small_kernels || frame < m->lo || frame >= m->hi || !piece_fast(m, frame, &v))
 				v = joint_slow(sc, ev, n, m, frame, rpm);
 			m->fresh = !warm || v != m->value;
 			if (m->fresh) {
@@ -1251,7 +1273,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		*val = v;
 	}
 	for (n = sc->nodes, m = memo; n < end; n++, m++, w++, pos++) {
-		const struct mot_mat *par = n->parent >= 0 ? &out->world[n->parent] : &mat_id;
+		const struct mot_mat *par = n->parent >= 0 ? &world[n->parent] : &mat_id;
 		const bool still = warm && (n->parent < 0 || !memo[n->parent].moved);
 		struct mot_mat local;
 		mot_q32 t[3];

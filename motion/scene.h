@@ -122,7 +122,7 @@ struct mot_node_memo {
 	 * strand-wide ease (warp: the curve), at the warped frame, and only
 	 * where that is between glo and ghi. What the curve is at a frame,
 	 * whatever came before: an empty span (lo > hi) until an evaluation
-	 * finds it. */
+	 * finds it, and always where op says out of line. */
 	uint16_t op, how;
 	mot_q32 lo, hi;
 	mot_q32 held;
