@@ -18,40 +18,37 @@
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-30, with |q| < 2^62;
- * false when it would not fit. One 64-bit division of |r| moved up to 62
- * bits by d cut to its top 31: a quotient of 31 or 32 bits, exact, so the
- * same on every target. A Newton step of the curve solve needs only a good
- * direction and size, the solve's own convergence makes up the rest. The
- * division is the hardware's where it has one for 64 bits (x86_64,
- * aarch64: a dozen cycles, where a reciprocal by products took two dozen
- * and four times the instructions) and libgcc's elsewhere.
+ * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-29.4, with |q| <
+ * 2^62; false when it would not fit. The top 32 bits a of |r| times a
+ * reciprocal x = 2^63 / b of d's top 32 bits b: one 64-bit division, exact,
+ * so the same on every target (the hardware's on x86_64 and aarch64, a
+ * dozen cycles; libgcc's elsewhere), and a 32 x 32 product. Three
+ * truncations of at most 2^-31 each (a, b and x), within the 2^-29 of a
+ * step that the tolerances allow for (curve_approx.c, newton_bits()); a
+ * Newton step of the curve solve needs only a good direction and size, the
+ * solve's own convergence makes up the rest. The product a x is in [2^62,
+ * 2^64), so q is it shifted right, never left: fewer tests than a quotient
+ * of |r| moved up to 62 bits, which q had to be shifted either way from.
  */
 static inline bool ratio62(int64_t r, int64_t d, int64_t *q)
 {
-	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, a, b, x;
-	int cr, cd, e;
+	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, p;
+	int cr, cd, sh;
 
 	if (ar == 0) {
 		*q = 0;
 		return true;
 	}
-	/* both normalised by their leading zeros (d > 0): |r| to [2^61, 2^62),
-	 * its bits below 2^(lr - 62) dropped, and d to [2^30, 2^31) */
 	cr = __builtin_clzll(ar);
 	cd = __builtin_clzll((uint64_t)d);
-	a = (ar << cr) >> 2;
-	b = ((uint64_t)d << cd) >> 33;
-	x = a / b; /* (2^30, 2^32): |r| / d = x 2^(lr - ld - 31), lr = 64 - cr */
-	e = cd - cr + 31;
-	if (e >= 0) {
-		if (e > 31 || x >> (62 - e))
-			return false; /* |q| >= 2^62 */
-		x <<= e;
-	} else {
-		x = -e >= 64 ? 0 : x >> -e;
-	}
-	*q = r < 0 ? -(int64_t)x : (int64_t)x;
+	/* |r| ~ a 2^(32 - cr), d ~ b 2^(32 - cd), a and b in [2^31, 2^32), x in
+	 * (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(cd - cr - 1) */
+	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / (((uint64_t)d << cd) >> 32));
+	sh = cr - cd + 1;
+	if (sh <= 0 || (sh == 1 && p >> 63))
+		return false; /* |q| >= 2^62 */
+	p = sh >= 64 ? 0 : p >> sh;
+	*q = r < 0 ? -(int64_t)p : (int64_t)p;
 	return true;
 }
 
