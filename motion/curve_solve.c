@@ -433,7 +433,11 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		u = un;
 	}
 	*iters = it > NEWTON_MAX_IT ? NEWTON_MAX_IT : it;
-	return u;
+	/* u is in [0, 1] already: the test tells the compiler so, and the
+	 * value's Horner (inlined after this) multiplies u's int64, one product
+	 * a step, where it multiplied u sign-extended at the loop's exits to
+	 * 128 bits (three products and their sum) */
+	return u < 0 ? 0 : u;
 }
 
 /* The Newton start of piece s at the frame offset x = f - f0, by its rule. */
@@ -473,7 +477,7 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		s = &c->seg[j];
 		d = round_shift(f - s->fref, -s->fsh, NULL);
 		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), iters);
-		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+			return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 	}
 	s = &c->seg[0];
 	d = round_shift(f - s->fref, -s->fsh, NULL);
