@@ -67,13 +67,19 @@ static inline int64_t mul62f(int64_t a, int64_t u)
 	return mot_acc_floor_ov(mot_acc_mul(a, u), 62, &ov);
 }
 
-/* P'(u) = c1 + u (2 c2 + u 3 c3) (poly_deriv()) with floored products. */
-static inline int64_t poly_deriv_f(const int64_t c[4], int64_t u)
+/*
+ * A spline piece's frame F(u) = c0 + u (c1 + u (c2 + u c3)), poly_eval()'s
+ * products and so its bits, and its derivative from the same steps in one
+ * product more: with a = c3 u, t1 = c2 + a and t2 = c1 + u t1,
+ * F'(u) = c1 + 2 c2 u + 3 c3 u^2 = t2 + u (t1 + a), where poly_deriv() took
+ * two (|t1 + a| <= |c2| + 2 |c3| <= 2^62, |F'| < 2^63).
+ */
+static inline int64_t poly_frame(const int64_t c[4], int64_t u, int64_t *df)
 {
-	int64_t r = 3 * c[3];
+	int64_t a = mul62(c[3], u), t1 = a + c[2], t2 = mul62(t1, u) + c[1];
 
-	r = mul62f(r, u) + 2 * c[2];
-	return mul62f(r, u) + c[1];
+	*df = t2 + mul62f(t1 + a, u);
+	return mul62(t2, u) + c[0];
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
@@ -408,8 +414,7 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		} else if (form == FORM_CASTELJAU) {
 			bezier_frame(c, u, &f, &df);
 		} else {
-			f = poly_eval(s->fc, u);
-			df = poly_deriv_f(s->fc, u);
+			f = poly_frame(s->fc, u, &df);
 		}
 		f -= d;
 		if (f == 0)
