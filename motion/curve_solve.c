@@ -344,24 +344,38 @@ void mot_cv_bezier_start(struct mot_curve *c)
 }
 
 /* The start at the chord fraction t in [0, 1] from that table: part
- * j = floor(nt t) (t to 32 bits), its cubic at s = nt t - j. */
+ * j = floor(nt t) (t to 32 bits), its cubic at s = nt t - j. Knot j + 1's
+ * u and knot j's slope are in part j's entry e (j / 4), at r = j % 4 and
+ * 4 + r; knot j's u one place before (the entry before's last for r = 0)
+ * and knot j + 1's slope one after (the next entry's first for r = 3, or
+ * e's us[3] after the last knot). */
 static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 {
 	const struct mot_curve_seg *sg = c->seg;
 	uint32_t nt = 4 * (c->nkeys - 1);
 	uint64_t x = (uint64_t)(t >> 30) * nt;
-	uint32_t j = (uint32_t)(x >> 32);
-	int64_t s = (int64_t)((x & 0xffffffffu) << 30), m1;
+	uint32_t j = (uint32_t)(x >> 32), r;
+	int64_t s = (int64_t)((x & 0xffffffffu) << 30), u0, u1, m1;
+	const uint16_t *e;
 
 	if (j >= nt) {
 		j = nt - 1;
 		s = ONE62;
 	}
-	m1 = (int64_t)(j + 1 < nt ? sg[(j + 1) / 4].us[4 + (j + 1) % 4] : sg[(nt - 1) / 4].us[3])
-	     << 44;
-	return herm62(j ? (int64_t)sg[(j - 1) / 4].us[(j - 1) % 4] << 43 : 0,
-		      j + 1 < nt ? (int64_t)sg[j / 4].us[j % 4] << 43 : (int64_t)1 << 58,
-		      (int64_t)sg[j / 4].us[4 + j % 4] << 44, m1, s);
+	e = sg[j / 4].us;
+	r = j % 4;
+	u0 = r ? (int64_t)e[r - 1] << 43 : j ? (int64_t)sg[j / 4 - 1].us[3] << 43 : 0;
+	if (r < 3) {
+		u1 = (int64_t)e[r] << 43;
+		m1 = (int64_t)e[5 + r] << 44;
+	} else if (j + 1 < nt) {
+		u1 = (int64_t)e[3] << 43;
+		m1 = (int64_t)sg[j / 4 + 1].us[4] << 44;
+	} else {
+		u1 = (int64_t)1 << 58;
+		m1 = (int64_t)e[3] << 44;
+	}
+	return herm62(u0, u1, (int64_t)e[4 + r] << 44, m1, s);
 }
 
 /* ---- the solve ------------------------------------------------------------------ */
