@@ -56,9 +56,8 @@ static inline bool ratio62(int64_t r, int64_t d, int64_t *q)
  * floor(a * u / 2^62) for |u| <= 2^62: mul62() without its rounding (two
  * instructions of five on x86_64), for the numbers that need no more than
  * a unit of error a product (the rounding's is half): a derivative, whose
- * top 32 bits are all that ratio62() reads, and the Newton start, within
- * 2^-16 of the root. The frame's and the value's Horner keep mul62(): the
- * root and the answer are theirs.
+ * top 32 bits are all that ratio62() reads. The frame's and the value's
+ * Horner keep mul62(): the root and the answer are theirs.
  */
 static inline int64_t mul62f(int64_t a, int64_t u)
 {
@@ -114,16 +113,20 @@ static int64_t cbrt62(int64_t x)
 
 /* The cubic Hermite from u0, u1 (Q6.58) with slopes m0, m1 (Q6.58, in units
  * of the part) at s in [0, 1] (Q2.62): u0 + s (m0 + s ((3 du - 2 m0 - m1) +
- * s (m0 + m1 - 2 du))), du = u1 - u0 (|coefficients| < 2^62: mul62 holds
- * them), clamped to [0, 1] in Q2.62. */
+ * s (m0 + m1 - 2 du))), du = u1 - u0, clamped to [0, 1] in Q2.62. The
+ * products are of 32-bit halves, a 64-bit product each (no 128-bit one):
+ * off by 2^-26 at most, where the table keeps u to 2^-16 and a start
+ * needs no more. The slopes are at most 3 du (inv_start(),
+ * mot_cv_bezier_start()): the partial sums stay below 2^62.6, their tops
+ * below 2^31.6, the products below 2^62.6. */
 static inline __attribute__((always_inline)) int64_t
 herm62(int64_t u0, int64_t u1, int64_t m0, int64_t m1, int64_t s)
 {
-	int64_t du = u1 - u0, r;
+	int64_t du = u1 - u0, r, t = s >> 31;
 
-	r = mul62f(m0 + m1 - 2 * du, s) + 3 * du - 2 * m0 - m1;
-	r = mul62f(r, s) + m0;
-	r = mul62f(r, s) + u0;
+	r = ((m0 + m1 - 2 * du) >> 31) * t + 3 * du - 2 * m0 - m1;
+	r = (r >> 31) * t + m0;
+	r = (r >> 31) * t + u0;
 	return r <= 0 ? 0 : r >= (int64_t)1 << 58 ? ONE62 : r * 16;
 }
 
@@ -520,7 +523,7 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		s = &c->seg[j];
 		d = round_shift(f - s->fref, -s->fsh, NULL);
 		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), iters);
-			return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 	}
 	s = &c->seg[0];
 	d = round_shift(f - s->fref, -s->fsh, NULL);
