@@ -71,14 +71,15 @@ static inline int64_t mul62f(int64_t a, int64_t u)
  * products and so its bits, and its derivative from the same steps in one
  * product more: with a = c3 u, t1 = c2 + a and t2 = c1 + u t1,
  * F'(u) = c1 + 2 c2 u + 3 c3 u^2 = t2 + u (t1 + a), where poly_deriv() took
- * two (|t1 + a| <= |c2| + 2 |c3| <= 2^62, |F'| < 2^63).
+ * two (|t1 + a| <= |c2| + 2 |c3| <= 2^62, |F'| < 2^63). c0 in place of c[0]:
+ * the solve's F(u) - d with c0 = c[0] - d, the same sum.
  */
-static inline int64_t poly_frame(const int64_t c[4], int64_t u, int64_t *df)
+static inline int64_t poly_frame(const int64_t c[4], int64_t c0, int64_t u, int64_t *df)
 {
 	int64_t a = mul62(c[3], u), t1 = a + c[2], t2 = mul62(t1, u) + c[1];
 
 	*df = t2 + mul62f(t1 + a, u);
-	return mul62(t2, u) + c[0];
+	return mul62(t2, u) + c0;
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
@@ -415,6 +416,9 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	const int64_t *pw, int64_t d, int64_t u, int *iters)
 {
 	const int64_t tol = (int64_t)1 << (62 - s->ntol);
+	/* a piece's F(u) - d as F's Horner with c0 - d, F(0) - d: at most the
+	 * piece's frame range, as F(u) - d is */
+	const int64_t c0 = form == FORM_SPLINE ? s->fc[0] - d : 0;
 	bool lo_known = false, hi_known = false;
 	int64_t lo = 0, hi = ONE62, dx = ONE62, dxold = ONE62;
 	int it;
@@ -431,9 +435,10 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		} else if (form == FORM_CASTELJAU) {
 			bezier_frame(c, u, &f, &df);
 		} else {
-			f = poly_frame(s->fc, u, &df);
+			f = poly_frame(s->fc, c0, u, &df);
 		}
-		f -= d;
+		if (form != FORM_SPLINE)
+			f -= d;
 		if (f == 0)
 			break;
 		if (f < 0) {
