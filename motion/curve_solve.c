@@ -117,9 +117,10 @@ static int64_t cbrt62(int64_t x)
  * s (m0 + m1 - 2 du))), du = u1 - u0, clamped to [0, 1] in Q2.62. The
  * products are of 32-bit halves, a 64-bit product each (no 128-bit one):
  * off by 2^-26 at most, where the table keeps u to 2^-16 and a start
- * needs no more. The slopes are at most 3 du (inv_start(),
- * mot_cv_bezier_start()): the partial sums stay below 2^62.6, their tops
- * below 2^31.6, the products below 2^62.6. */
+ * needs no more. The slopes are at most 3 (inv_start(),
+ * mot_cv_bezier_start(): 3 2^58 here) and |du| at most 2^58: the partial
+ * sums stay below 2^62.6, their tops below 2^31.6, the products below
+ * 2^62.6. */
 static inline __attribute__((always_inline)) int64_t
 herm62(int64_t u0, int64_t u1, int64_t m0, int64_t m1, int64_t s)
 {
