@@ -18,41 +18,68 @@
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-30, with |q| < 2^62;
- * false when it would not fit. One 64-bit division of |r| moved up to 62
- * bits by d cut to its top 31: a quotient of 31 or 32 bits, exact, so the
- * same on every target. A Newton step of the curve solve needs only a good
- * direction and size, the solve's own convergence makes up the rest. The
- * division is the hardware's where it has one for 64 bits (x86_64,
- * aarch64: a dozen cycles, where a reciprocal by products took two dozen
- * and four times the instructions) and libgcc's elsewhere.
+ * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-29.4, with |q| <
+ * 2^62; false when it would not fit. The top 32 bits a of |r| times a
+ * reciprocal x = 2^63 / b of d's top 32 bits b: one 64-bit division, exact,
+ * so the same on every target (the hardware's on x86_64 and aarch64, a
+ * dozen cycles; libgcc's elsewhere), and a 32 x 32 product. Three
+ * truncations of at most 2^-31 each (a, b and x), within the 2^-29 of a
+ * step that the tolerances allow for (curve_approx.c, newton_bits()); a
+ * Newton step of the curve solve needs only a good direction and size, the
+ * solve's own convergence makes up the rest. The product a x is in [2^62,
+ * 2^64), so q is it shifted right, never left: fewer tests than a quotient
+ * of |r| moved up to 62 bits, which q had to be shifted either way from.
  */
 static inline bool ratio62(int64_t r, int64_t d, int64_t *q)
 {
-	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, a, b, x;
-	int cr, cd, e;
+	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, p;
+	int cr, cd, sh;
 
 	if (ar == 0) {
 		*q = 0;
 		return true;
 	}
-	/* both normalised by their leading zeros (d > 0): |r| to [2^61, 2^62),
-	 * its bits below 2^(lr - 62) dropped, and d to [2^30, 2^31) */
 	cr = __builtin_clzll(ar);
 	cd = __builtin_clzll((uint64_t)d);
-	a = (ar << cr) >> 2;
-	b = ((uint64_t)d << cd) >> 33;
-	x = a / b; /* (2^30, 2^32): |r| / d = x 2^(lr - ld - 31), lr = 64 - cr */
-	e = cd - cr + 31;
-	if (e >= 0) {
-		if (e > 31 || x >> (62 - e))
-			return false; /* |q| >= 2^62 */
-		x <<= e;
-	} else {
-		x = -e >= 64 ? 0 : x >> -e;
-	}
-	*q = r < 0 ? -(int64_t)x : (int64_t)x;
+	/* |r| ~ a 2^(32 - cr), d ~ b 2^(32 - cd), a and b in [2^31, 2^32), x in
+	 * (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(cd - cr - 1) */
+	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / (((uint64_t)d << cd) >> 32));
+	sh = cr - cd + 1;
+	if (sh <= 0 || (sh == 1 && p >> 63))
+		return false; /* |q| >= 2^62 */
+	p = sh >= 64 ? 0 : p >> sh;
+	*q = r < 0 ? -(int64_t)p : (int64_t)p;
 	return true;
+}
+
+/*
+ * floor(a * u / 2^62) for |u| <= 2^62: mul62() without its rounding (two
+ * instructions of five on x86_64), for the numbers that need no more than
+ * a unit of error a product (the rounding's is half): a derivative, whose
+ * top 32 bits are all that ratio62() reads. The frame's and the value's
+ * Horner keep mul62(): the root and the answer are theirs.
+ */
+static inline int64_t mul62f(int64_t a, int64_t u)
+{
+	uint64_t ov = 0; /* |a u| < 2^125: the result fits */
+
+	return mot_acc_floor_ov(mot_acc_mul(a, u), 62, &ov);
+}
+
+/*
+ * A spline piece's frame F(u) = c0 + u (c1 + u (c2 + u c3)), poly_eval()'s
+ * products and so its bits, and its derivative from the same steps in one
+ * product more: with a = c3 u, t1 = c2 + a and t2 = c1 + u t1,
+ * F'(u) = c1 + 2 c2 u + 3 c3 u^2 = t2 + u (t1 + a), where poly_deriv() took
+ * two (|t1 + a| <= |c2| + 2 |c3| <= 2^62, |F'| < 2^63). c0 in place of c[0]:
+ * the solve's F(u) - d with c0 = c[0] - d, the same sum.
+ */
+static inline int64_t poly_frame(const int64_t c[4], int64_t c0, int64_t u, int64_t *df)
+{
+	int64_t a = mul62(c[3], u), t1 = a + c[2], t2 = mul62(t1, u) + c[1];
+
+	*df = t2 + mul62f(t1 + a, u);
+	return mul62(t2, u) + c0;
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
@@ -87,16 +114,21 @@ static int64_t cbrt62(int64_t x)
 
 /* The cubic Hermite from u0, u1 (Q6.58) with slopes m0, m1 (Q6.58, in units
  * of the part) at s in [0, 1] (Q2.62): u0 + s (m0 + s ((3 du - 2 m0 - m1) +
- * s (m0 + m1 - 2 du))), du = u1 - u0 (|coefficients| < 2^62: mul62 holds
- * them), clamped to [0, 1] in Q2.62. */
+ * s (m0 + m1 - 2 du))), du = u1 - u0, clamped to [0, 1] in Q2.62. The
+ * products are of 32-bit halves, a 64-bit product each (no 128-bit one):
+ * off by 2^-26 at most, where the table keeps u to 2^-16 and a start
+ * needs no more. The slopes are at most 3 (inv_start(),
+ * mot_cv_bezier_start(): 3 2^58 here) and |du| at most 2^58: the partial
+ * sums stay below 2^62.6, their tops below 2^31.6, the products below
+ * 2^62.6. */
 static inline __attribute__((always_inline)) int64_t
 herm62(int64_t u0, int64_t u1, int64_t m0, int64_t m1, int64_t s)
 {
-	int64_t du = u1 - u0, r;
+	int64_t du = u1 - u0, r, t = s >> 31;
 
-	r = mul62(m0 + m1 - 2 * du, s) + 3 * du - 2 * m0 - m1;
-	r = mul62(r, s) + m0;
-	r = mul62(r, s) + u0;
+	r = ((m0 + m1 - 2 * du) >> 31) * t + 3 * du - 2 * m0 - m1;
+	r = (r >> 31) * t + m0;
+	r = (r >> 31) * t + u0;
 	return r <= 0 ? 0 : r >= (int64_t)1 << 58 ? ONE62 : r * 16;
 }
 
@@ -124,7 +156,7 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
 
 	for (k = m - 1; k >= 1; k--) {
 		r = mul62(r, u) + a[k - 1];
-		d = mul62(d, u) + (int64_t)k * a[k - 1];
+		d = mul62f(d, u) + (int64_t)k * a[k - 1];
 	}
 	*f = mul62(r, u);
 	*df = d;
@@ -144,7 +176,7 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
 	do {                                                                \
 		r = mul62(r, u) + POWER_A((k) - 1);                         \
 		if (df)                                                     \
-			d = mul62(d, u) + (int64_t)(k) * POWER_A((k) - 1);  \
+			d = mul62f(d, u) + (int64_t)(k) * POWER_A((k) - 1); \
 	} while (0)
 #define POWER_TOP(k)                                                        \
 	case k:                                                             \
@@ -317,24 +349,38 @@ void mot_cv_bezier_start(struct mot_curve *c)
 }
 
 /* The start at the chord fraction t in [0, 1] from that table: part
- * j = floor(nt t) (t to 32 bits), its cubic at s = nt t - j. */
+ * j = floor(nt t) (t to 32 bits), its cubic at s = nt t - j. Knot j + 1's
+ * u and knot j's slope are in part j's entry e (j / 4), at r = j % 4 and
+ * 4 + r; knot j's u one place before (the entry before's last for r = 0)
+ * and knot j + 1's slope one after (the next entry's first for r = 3, or
+ * e's us[3] after the last knot). */
 static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 {
 	const struct mot_curve_seg *sg = c->seg;
 	uint32_t nt = 4 * (c->nkeys - 1);
 	uint64_t x = (uint64_t)(t >> 30) * nt;
-	uint32_t j = (uint32_t)(x >> 32);
-	int64_t s = (int64_t)((x & 0xffffffffu) << 30), m1;
+	uint32_t j = (uint32_t)(x >> 32), r;
+	int64_t s = (int64_t)((x & 0xffffffffu) << 30), u0, u1, m1;
+	const uint16_t *e;
 
 	if (j >= nt) {
 		j = nt - 1;
 		s = ONE62;
 	}
-	m1 = (int64_t)(j + 1 < nt ? sg[(j + 1) / 4].us[4 + (j + 1) % 4] : sg[(nt - 1) / 4].us[3])
-	     << 44;
-	return herm62(j ? (int64_t)sg[(j - 1) / 4].us[(j - 1) % 4] << 43 : 0,
-		      j + 1 < nt ? (int64_t)sg[j / 4].us[j % 4] << 43 : (int64_t)1 << 58,
-		      (int64_t)sg[j / 4].us[4 + j % 4] << 44, m1, s);
+	e = sg[j / 4].us;
+	r = j % 4;
+	u0 = r ? (int64_t)e[r - 1] << 43 : j ? (int64_t)sg[j / 4 - 1].us[3] << 43 : 0;
+	if (r < 3) {
+		u1 = (int64_t)e[r] << 43;
+		m1 = (int64_t)e[5 + r] << 44;
+	} else if (j + 1 < nt) {
+		u1 = (int64_t)e[3] << 43;
+		m1 = (int64_t)sg[j / 4 + 1].us[4] << 44;
+	} else {
+		u1 = (int64_t)1 << 58;
+		m1 = (int64_t)e[3] << 44;
+	}
+	return herm62(u0, u1, (int64_t)e[4 + r] << 44, m1, s);
 }
 
 /* ---- the solve ------------------------------------------------------------------ */
@@ -371,6 +417,9 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	const int64_t *pw, int64_t d, int64_t u, int *iters)
 {
 	const int64_t tol = (int64_t)1 << (62 - s->ntol);
+	/* a piece's F(u) - d as F's Horner with c0 - d, F(0) - d: at most the
+	 * piece's frame range, as F(u) - d is */
+	const int64_t c0 = form == FORM_SPLINE ? s->fc[0] - d : 0;
 	bool lo_known = false, hi_known = false;
 	int64_t lo = 0, hi = ONE62, dx = ONE62, dxold = ONE62;
 	int it;
@@ -387,10 +436,10 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		} else if (form == FORM_CASTELJAU) {
 			bezier_frame(c, u, &f, &df);
 		} else {
-			f = poly_eval(s->fc, u);
-			df = poly_deriv(s->fc, u);
+			f = poly_frame(s->fc, c0, u, &df);
 		}
-		f -= d;
+		if (form != FORM_SPLINE)
+			f -= d;
 		if (f == 0)
 			break;
 		if (f < 0) {
@@ -436,7 +485,11 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		u = un;
 	}
 	*iters = it > NEWTON_MAX_IT ? NEWTON_MAX_IT : it;
-	return u;
+	/* u is in [0, 1] already: the test tells the compiler so, and the
+	 * value's Horner (inlined after this) multiplies u's int64, one product
+	 * a step, where it multiplied u sign-extended at the loop's exits to
+	 * 128 bits (three products and their sum) */
+	return u < 0 ? 0 : u;
 }
 
 /* The Newton start of piece s at the frame offset x = f - f0, by its rule. */
