@@ -197,9 +197,8 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 	*out = r;
 }
 
-/* mot_quat_to_rot_q62() where an entry may not fit: saturating. */
-static __attribute__((noinline)) void rot_q62_sat(int64_t r[3][3], const struct mot_quat *q,
-						  uint32_t *sat)
+/* the saturating path of mot_quat_to_rot_q62() (quat.h) */
+void mot_quat_to_rot_q62_sat(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
 {
 	mot_acc e[3][3];
 	int i;
@@ -209,54 +208,12 @@ static __attribute__((noinline)) void rot_q62_sat(int64_t r[3][3], const struct 
 			r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
 }
 
-/* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62,
- * known to fit */
-static inline __attribute__((always_inline)) void rot_pair(int64_t *plus, int64_t *minus,
-							   mot_q32 a, mot_q32 b, mot_q32 c,
-							   mot_q32 d)
-{
-	mot_acc p = mot_acc_mul(a, b), q = mot_acc_mul(c, d);
-
-	*plus = round_fits(mot_acc_add(p, q), 1);
-	*minus = round_fits(mot_acc_sub(p, q), 1);
-}
-
-/*
- * Each entry from its two products as soon as they are made, so that few
- * 128-bit values live at once: e = 2 (p + q) rounded from Q64.64 to Q2.62
- * is round((p + q) / 2), and 1 - 2 (p + q) is round((2^63 - p - q) / 2),
- * the same bits as rot_exact()'s sums rounded by 4. With |q|^2 < 3/2
- * (every rotation) each entry fits: |xy + wz| <= |q|^2 / 2 < 3/4 and
- * 1 - 2 (x^2 + y^2) > -2, so no entry is tested; otherwise
- * rot_q62_sat(), whose bits are the same where an entry fits.
- */
+#if !MOT_HAVE_INT128
 int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
 {
-	const mot_q32 lim = (mot_q32)1 << 62;
-	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
-	const mot_acc h = mot_acc_from(1, 63);
-	mot_acc a, b, c, n;
-
-	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
-	    z >= lim || z <= -lim)
-		return MOT_E_RANGE;
-	a = mot_acc_mul(x, x);
-	b = mot_acc_mul(y, y);
-	c = mot_acc_mul(z, z);
-	n = mot_acc_mac(mot_acc_add(mot_acc_add(a, b), c), w, w); /* below 2^126 */
-	if (!mot_acc_is_neg(mot_acc_sub(n, mot_acc_from(3, 63)))) {
-		rot_q62_sat(r, q, sat);
-		return MOT_OK;
-	}
-	rot_pair(&r[0][1], &r[1][0], x, y, w, z);
-	rot_pair(&r[2][0], &r[0][2], x, z, w, y);
-	rot_pair(&r[1][2], &r[2][1], y, z, w, x);
-	r[2][2] = round_fits(mot_acc_sub(mot_acc_sub(h, a), b), 1);
-	c = mot_acc_sub(h, c);
-	r[1][1] = round_fits(mot_acc_sub(c, a), 1);
-	r[0][0] = round_fits(mot_acc_sub(c, b), 1);
-	return MOT_OK;
+	return mot_quat_rot_q62_in(r, q, sat);
 }
+#endif
 
 /* Hamilton product terms: component k of a * b is sum a[i] * sign * b[j]. */
 void mot_quat_mul(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
