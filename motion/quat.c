@@ -451,7 +451,9 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 /*
  * One slerp for components below 2 in magnitude (every unit quaternion):
  * the arc of mot_slerp_prepare(), the same d and u bit for bit, but no unit
- * c. The in-between is
+ * c, and the angle from its cosine d and sine |u| without a division
+ * (mot_atan2_unit_q62(), in Q62 turns where prepare rounds mot_atan2() to
+ * Q32.32; mot_atan2() for keys far from unit). The in-between is
  *     a cos(t theta) + u k,  k = sin(t theta) / |u|,
  * which is a cos + c sin with c = u / |u|, with 1/|u| from the iteration
  * that finds |u| (mot_isqrt_acc_inv()) where normalising u took a
@@ -471,12 +473,12 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 				  const struct mot_quat *b, mot_q32 t, uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
-	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, theta, sn, cs;
-	uint64_t big = 0;
+	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, sn, cs;
+	uint64_t big = 0, ov = 0; /* ov: t theta fits, never set */
 	uint32_t local = 0;
 	struct mot_sc sc;
 	mot_acc n;
-	int64_t k62, inv;
+	int64_t k62, inv, theta; /* theta: Q62 turns */
 	unsigned sh;
 	int i;
 
@@ -524,8 +526,9 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 		quat_lerp(out, a, &bb, t, sat);
 		return true;
 	}
-	theta = mot_atan2(len, d);
-	sc = sincos_fine_in(mot_acc_mul(t, theta));
+	/* the arc in Q62 turns, and t times it in Q64.64 (below 1/4 turn) */
+	theta = mot_atan2_unit_q62(len, d);
+	sc = sincos_fine_in(mot_acc_from(mot_acc_floor_ov(mot_acc_mul(t, theta), 30, &ov), 0));
 	sn = sc.s;
 	cs = sc.c;
 	/* sh - 62 in [22, 42]: |u| >= 2^-10 and below 2^10 */

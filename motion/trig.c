@@ -65,6 +65,14 @@
 
 #include "trig_table.h"
 
+/* The square root's core inline in its two callers where 128-bit integers
+ * are native (no out-parameters in memory), one copy elsewhere (code size). */
+#if MOT_HAVE_INT128
+#define HOT __attribute__((always_inline))
+#else
+#define HOT
+#endif
+
 /* floor(a * b / 2^shift), 1 <= shift <= 127; the caller knows it fits. */
 static inline int64_t mulsh(int64_t a, int64_t b, unsigned shift)
 {
@@ -216,6 +224,44 @@ mot_q32 mot_atan2(mot_q32 y, mot_q32 x)
 	return a;
 }
 
+/*
+ * mot_atan2_unit_q62(). With m the smaller of x, y, asin m ~ m + m^3/6 +
+ * 3 m^5 / 40 (short by at most 0.0061 rad at m = 1/sqrt 2) picks the
+ * table point j (1/1024 turn, half a step is 0.0031 rad), so the angle
+ * delta of (x, y) from it is below 0.0093 rad: its sine y' = y cos a -
+ * x sin a (exact products, one rounding to Q62), divided by the length
+ * |(x, y)| = sqrt(1 + e) as y' (1 - e/2) (error 3 e^2 / 8 y', below
+ * 2^-40 rad with |e| < 2^-16), then
+ *     delta = y' + y'^3/6    (next term 3 y'^5/40 < 5.3e-12 rad, 0.004 LSB)
+ * Every product is kept in Q62: their floors cost some 2^-61 rad.
+ */
+int64_t mot_atan2_unit_q62(mot_q32 y, mot_q32 x)
+{
+	const int64_t sixth_q64 = 3074457345618258603LL; /* 1/6 */
+	const int64_t lim = (int64_t)1 << 48;           /* 2^-16, Q64 */
+	mot_acc d2 = mot_acc_sub(mot_acc_mac(mot_acc_mul(x, x), y, y), mot_acc_make(1, 0));
+	int64_t e = (int64_t)mot_acc_lo(d2), yr, y2, delta;
+	uint64_t m, m2, a, ov = 0; /* ov: y' fits, never set */
+	unsigned j;
+
+	if (x < 0 || y < 0 || mot_acc_hi(d2) != (uint64_t)(e >> 63) || e <= -lim || e >= lim)
+		return (int64_t)((uint64_t)(int64_t)mot_atan2(y, x) << 30);
+	/* here x, y < 2^32 + 2^16: the smaller is below 2^32 */
+	m = (uint64_t)(y < x ? y : x);
+	m2 = (m * m) >> 32; /* Q32, below 2^31 */
+	a = m + ((m * (((m2 * 715827883u) >> 32) + ((((m2 * m2) >> 32) * 322122547u) >> 32))) >> 32);
+	j = (unsigned)((a * 163 + ((uint64_t)1 << 31)) >> 32); /* 1024 / (2 pi) = 162.97 */
+	if (y > x)
+		j = 256 - j; /* 1/4 turn - asin x */
+	yr = mot_acc_floor_ov(mot_acc_mac(mot_acc_mul(y, mot_trig_sin_q62[256 - j]), x,
+					  -mot_trig_sin_q62[j]),
+			      32, &ov);       /* y', Q62 */
+	yr -= mulsh(yr, e, 65);           /* y' (1 - e/2) */
+	y2 = mulsh(yr, yr, 62);           /* Q62 */
+	delta = yr + mulsh(yr, mulsh(y2, sixth_q64, 64), 62); /* rad, Q62 */
+	return ((int64_t)j << 52) + mulsh(delta, MOT_TRIG_TURN_PER_RAD_Q62, 62);
+}
+
 /* ---- square roots ------------------------------------------------------------------ */
 
 /*
@@ -271,7 +317,7 @@ static inline mot_acc usquare(uint64_t s)
  * 64 bits). Bounded time: at most one Newton step and one correction step.
  * The iteration's 1/(2 sqrt) on the way: 1/sqrt(n) ~ *hp 2^-(*qp + 92).
  */
-static uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp)
+static inline HOT uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp)
 {
 	uint64_t hi = mot_acc_hi(n), lo = mot_acc_lo(n), m, s;
 	int64_t g, h;

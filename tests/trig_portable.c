@@ -7,6 +7,7 @@
 #define mot_sin trigp_sin_
 #define mot_cos trigp_cos_
 #define mot_atan2 trigp_atan2
+#define mot_atan2_unit_q62 trigp_atan2_unit_q62
 #define mot_acos trigp_acos
 #define mot_sqrt trigp_sqrt
 #define mot_rsqrt trigp_rsqrt

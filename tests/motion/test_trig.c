@@ -171,6 +171,55 @@ static void test_atan2_accuracy(void **state)
 	tu_bound("trig.atan2", &w, 0.55, "LSB");
 }
 
+/* mot_atan2_unit_q62: vectors of the first quadrant whose squared length
+ * is 1 within 2^-16 (the length within 0, 8 LSB, 2^-18, 2^-17 - 2 LSB of
+ * 1), and others (mot_atan2's bits); errors against long double in LSB of
+ * Q32.32 turns */
+static void test_atan2_unit(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst w = { 0, 0 };
+	long bad = 0;
+	int i;
+
+	tu_seed(&rng, 22);
+	for (i = 0; i < 4 * N; i++) {
+		long double ang = (long double)(tu_u64(&rng) >> 11) / 9007199254740992.0L * M_PI / 2;
+		long double len = 1.0L;
+		mot_q32 y, x;
+		int64_t a;
+
+		if (i % 4 == 1)
+			len += (long double)((int64_t)(tu_u64(&rng) % 17) - 8) / TU_Q32;
+		else if (i % 4 == 2)
+			len += (tu_u64(&rng) & 1 ? 1.0L : -1.0L) / 262144.0L;
+		else if (i % 4 == 3)
+			len += (tu_u64(&rng) & 1 ? 1.0L : -1.0L) * (1.0L / 131072.0L - 2.0L / TU_Q32);
+		y = (mot_q32)llroundl(sinl(ang) * len * TU_Q32);
+		x = (mot_q32)llroundl(cosl(ang) * len * TU_Q32);
+		a = mot_atan2_unit_q62(y, x);
+		tu_worst_add(&w,
+			     (double)(((long double)a / 4611686018427387904.0L -
+				       atan2l((long double)y, (long double)x) / (2.0L * M_PI)) *
+				      TU_Q32),
+			     (double)ang);
+		bad += a != trigp_atan2_unit_q62(y, x);
+	}
+	/* a vector too long or short, or outside the quadrant: mot_atan2() */
+	for (i = 0; i < N; i++) {
+		mot_q32 y = tu_i64(&rng) >> (tu_u64(&rng) % 40), x = tu_i64(&rng) >> (tu_u64(&rng) % 40);
+		int64_t a = mot_atan2_unit_q62(y, x);
+
+		if (!(y >= 0 && x >= 0 && a >> 30 != mot_atan2(y, x)))
+			bad += a != (int64_t)((uint64_t)mot_atan2(y, x) << 30);
+		bad += a != trigp_atan2_unit_q62(y, x);
+	}
+	assert_int_equal(mot_atan2_unit_q62(0, MOT_Q32_ONE), 0);
+	assert_int_equal(mot_atan2_unit_q62(MOT_Q32_ONE, 0), (int64_t)1 << 60);
+	assert_int_equal(bad, 0);
+	tu_bound("trig.atan2_unit_q62 (|x^2 + y^2 - 1| < 2^-16)", &w, 0.05, "LSB");
+}
+
 static void test_atan2_exact(void **state)
 {
 	static const int64_t mags[] = { 1, 2, 3, 12345, MOT_Q32_ONE, (int64_t)1 << 53,
@@ -528,6 +577,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_sincos_accuracy), cmocka_unit_test(test_sincos_exact),
 		cmocka_unit_test(test_atan2_accuracy),  cmocka_unit_test(test_atan2_exact),
+		cmocka_unit_test(test_atan2_unit),
 		cmocka_unit_test(test_acos),            cmocka_unit_test(test_sqrt),
 		cmocka_unit_test(test_isqrt_acc),       cmocka_unit_test(test_rsqrt),
 		cmocka_unit_test(test_norm3),           cmocka_unit_test(test_portable_same_bits),
