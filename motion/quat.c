@@ -393,6 +393,11 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 	s->nlerp = len < SLERP_NLERP_SIN;
 	if (s->nlerp || mot_quat_normalize(&s->c, &u, sat) != MOT_OK)
 		s->c = (struct mot_quat){ 0, 0, 0, 0 };
+	/* |a_i cos + c_i sin| <= sqrt(a_i^2 + c_i^2) <= sqrt 2, nlerp's
+	 * results are unit, the ends are a and b */
+	s->small = (mag(a->w) | mag(a->x) | mag(a->y) | mag(a->z) | mag(bb.w) | mag(bb.x) |
+		    mag(bb.y) | mag(bb.z) | mag(s->c.w) | mag(s->c.x) | mag(s->c.y) |
+		    mag(s->c.z)) <= (uint64_t)ONE;
 }
 
 /* mot_slerp_eval()'s sums where one does not fit: saturating */
@@ -470,7 +475,7 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
  * and every rounded value fits.
  */
 static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a,
-				  const struct mot_quat *b, mot_q32 t, uint32_t *sat)
+				  const struct mot_quat *b, mot_q32 t, bool small, uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
 	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, sn, cs;
@@ -482,11 +487,13 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 	unsigned sh;
 	int i;
 
-	UNROLL4
-	for (i = 0; i < 4; i++)
-		big |= mag(av[i]) | mag(bv[i]);
-	if (big >= (uint64_t)1 << 33)
-		return false;
+	if (!small) { /* known below 2 (mot_squad_eval) or tested */
+		UNROLL4
+		for (i = 0; i < 4; i++)
+			big |= mag(av[i]) | mag(bv[i]);
+		if (big >= (uint64_t)1 << 33)
+			return false;
+	}
 	n = mot_acc_zero();
 	UNROLL4
 	for (i = 0; i < 4; i++)
@@ -557,7 +564,7 @@ static __attribute__((noinline)) void slerp_long(struct mot_quat *out, const str
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
 		    mot_q32 t, uint32_t *sat)
 {
-	if (!slerp_once(out, a, b, t, sat))
+	if (!slerp_once(out, a, b, t, false, sat))
 		slerp_long(out, a, b, t, sat);
 }
 
@@ -570,7 +577,8 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 	slerp_eval_in(&qa, arc, t, sat);
 	slerp_eval_in(&qb, inner, t, sat);
 	h = 2 * mot_mul(t, ONE - t, sat); /* 2 t (1 - t) */
-	if (!slerp_once(out, &qa, &qb, h, sat))
+	/* in-betweens of arcs within +-1 are below sqrt 2: no test */
+	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, sat))
 		slerp_long(out, &qa, &qb, h, sat);
 }
 

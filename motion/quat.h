@@ -141,6 +141,7 @@ struct mot_slerp {
 	struct mot_quat c;    /* unit, orthogonal to a, in the plane of a and b */
 	mot_q32 theta;        /* arc angle between a and b, turns, [0, 1/4] */
 	bool nlerp;           /* theta too small: normalised linear interpolation */
+	bool small;           /* a, b, c within +-1: every in-between below sqrt 2 */
 };
 
 void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const struct mot_quat *b,
