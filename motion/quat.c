@@ -53,26 +53,17 @@ static inline uint64_t mag(mot_q32 v)
 
 /*
  * sin and cos of an angle held with 64 fractional bits of a turn (a Q64.64
- * mot_acc): mot_sincos() of the Q32.32 part, then the remaining fraction d of
- * an LSB (below 1.5e-9 rad) to first order, sin(a + d) = sin a + d cos a,
- * whose error d^2/2 is nine orders below an LSB. Half angles and t * theta
- * then cost no rounding of the angle (the turn LSB is 1.46e-9 rad, several
- * quaternion LSB).
+ * mot_acc): mot_sincos64() of its phase, one rounding of each. Half angles
+ * and t * theta then cost no rounding of the angle (the turn LSB is
+ * 1.46e-9 rad, several quaternion LSB).
  */
 static inline HOT struct mot_sc sincos_fine_in(mot_acc turns)
 {
-	mot_q32 a = (mot_q32)((mot_acc_hi(turns) << 32) | (mot_acc_lo(turns) >> 32));
-	int64_t d = (int64_t)(mot_acc_lo(turns) & 0xffffffffu); /* 2^-64 turn */
-	struct mot_sc p;
-
 #if MOT_HAVE_INT128
-	p = mot_sincos_in(a);
+	return mot_sincos64_in(mot_acc_lo(turns));
 #else
-	p = mot_sincos_pair(a);
+	return mot_sincos64(mot_acc_lo(turns));
 #endif
-	d = round_fits(mot_acc_mul(d, MOT_TWO_PI_Q32), MOT_Q32_FRAC); /* 2^-64 rad */
-	return (struct mot_sc){ p.s + round_fits(mot_acc_mul(p.c, d), 64),
-				p.c - round_fits(mot_acc_mul(p.s, d), 64) };
 }
 
 static void sincos_fine(mot_acc turns, mot_q32 *s, mot_q32 *c)

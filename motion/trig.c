@@ -98,27 +98,49 @@ const struct mot_trig_turn mot_trig_turn = {
 };
 #endif
 
-static inline void sincos_q32(mot_q32 turns, mot_q32 *s, mot_q32 *c)
+#if !MOT_HAVE_INT128
+/* sin and cos of table point j (0..1023 of a turn), Q62, from the quarter wave */
+static inline void table_point(uint32_t j, int64_t *sa, int64_t *ca)
 {
-	struct mot_sc r;
-#if MOT_HAVE_INT128
-	r = mot_sincos_in(turns);
-#else
-	int64_t d;
-	uint32_t j = mot_sincos_point(turns, &d);
 	unsigned quad = j / SIN_N, i = j % SIN_N;
 	int64_t lo = mot_trig_sin_q62[i], hi = mot_trig_sin_q62[SIN_N - i];
 	/* Quadrant by masks, not branches: random angles would mispredict. In
 	 * odd quadrants sin and cos swap; neg_* are 0 or -1. */
 	int64_t swap = (lo ^ hi) & -(int64_t)(quad & 1);
 	int64_t neg_s = -(int64_t)((quad >> 1) & 1), neg_c = -(int64_t)(((quad + 1) >> 1) & 1);
-	int64_t sa = ((lo ^ swap) ^ neg_s) - neg_s; /* sin a, Q62 */
-	int64_t ca = ((hi ^ swap) ^ neg_c) - neg_c; /* cos a, Q62 */
 
+	*sa = ((lo ^ swap) ^ neg_s) - neg_s;
+	*ca = ((hi ^ swap) ^ neg_c) - neg_c;
+}
+#endif
+
+static inline void sincos_q32(mot_q32 turns, mot_q32 *s, mot_q32 *c)
+{
+	struct mot_sc r;
+#if MOT_HAVE_INT128
+	r = mot_sincos_in(turns);
+#else
+	int64_t d, sa, ca;
+	uint32_t j = mot_sincos_point(turns, &d);
+
+	table_point(j, &sa, &ca);
 	r = mot_sincos_add(sa, ca, d, MOT_TRIG_RAD_PER_PHASE_Q70, MOT_TRIG_RAD6_PER_PHASE_Q70);
 #endif
 	*s = r.s;
 	*c = r.c;
+}
+
+struct mot_sc mot_sincos64(uint64_t phase)
+{
+#if MOT_HAVE_INT128
+	return mot_sincos64_in(phase);
+#else
+	int64_t dr, dr6, sa, ca;
+	uint32_t j = mot_sincos_point64(phase, &dr, &dr6);
+
+	table_point(j, &sa, &ca);
+	return mot_sincos_add_rad(sa, ca, dr, dr6);
+#endif
 }
 
 void mot_sincos(mot_q32 turns, mot_q32 *s, mot_q32 *c)

@@ -4,6 +4,7 @@
 #define MOT_NO_INT128 1
 #define mot_sincos trigp_sincos
 #define mot_sincos_pair trigp_sincos_pair_
+#define mot_sincos64 trigp_sincos64_
 #define mot_sin trigp_sin_
 #define mot_cos trigp_cos_
 #define mot_atan2 trigp_atan2
@@ -20,4 +21,12 @@
 uint64_t trigp_isqrt(uint64_t hi, uint64_t lo, uint32_t *sat)
 {
 	return trigp_isqrt_acc_(mot_acc_make(hi, lo), sat);
+}
+
+void trigp_sincos64(uint64_t phase, int64_t *s, int64_t *c)
+{
+	struct mot_sc r = trigp_sincos64_(phase);
+
+	*s = r.s;
+	*c = r.c;
 }

@@ -78,6 +78,44 @@ static void test_sincos_accuracy(void **state)
 	tu_bound("trig.cos", &wc, 0.55, "LSB");
 }
 
+/* mot_sincos64: a phase of 64 bits against long double, the same bits as
+ * mot_sincos() where the low 32 are zero, and as the portable path */
+static void test_sincos64(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst ws = { 0, 0 }, wc = { 0, 0 };
+	long bad = 0;
+	int i;
+
+	tu_seed(&rng, 13);
+	for (i = 0; i < 4 * N; i++) {
+		uint64_t ph = tu_u64(&rng);
+		long double rad;
+		struct mot_sc r;
+		int64_t s2, c2;
+		mot_q32 s1, c1;
+
+		if (i % 4 == 1) /* next to a table point */
+			ph = (ph & ~(((uint64_t)1 << 54) - 1)) + (ph >> 62) - 2 +
+			     ((ph >> 60 & 1) << 53);
+		r = mot_sincos64(ph);
+		rad = (long double)ph / 18446744073709551616.0L * 2.0L * M_PI;
+		tu_worst_add(&ws, (double)(((long double)r.s / TU_Q32 - sinl(rad)) * TU_Q32),
+			     (double)(ph >> 32) * LSB);
+		tu_worst_add(&wc, (double)(((long double)r.c / TU_Q32 - cosl(rad)) * TU_Q32),
+			     (double)(ph >> 32) * LSB);
+		mot_sincos((mot_q32)(ph >> 32), &s1, &c1);
+		r = mot_sincos64(ph & ~(uint64_t)0xffffffff);
+		bad += r.s != s1 || r.c != c1;
+		trigp_sincos64(ph, &s2, &c2);
+		r = mot_sincos64(ph);
+		bad += r.s != s2 || r.c != c2;
+	}
+	assert_int_equal(bad, 0);
+	tu_bound("trig.sin of a 64-bit phase", &ws, 0.55, "LSB");
+	tu_bound("trig.cos of a 64-bit phase", &wc, 0.55, "LSB");
+}
+
 static void test_sincos_exact(void **state)
 {
 	static const mot_q32 sin_q[4] = { 0, MOT_Q32_ONE, 0, -MOT_Q32_ONE };
@@ -576,6 +614,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_sincos_accuracy), cmocka_unit_test(test_sincos_exact),
+		cmocka_unit_test(test_sincos64),
 		cmocka_unit_test(test_atan2_accuracy),  cmocka_unit_test(test_atan2_exact),
 		cmocka_unit_test(test_atan2_unit),
 		cmocka_unit_test(test_acos),            cmocka_unit_test(test_sqrt),
