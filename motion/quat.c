@@ -452,7 +452,7 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
  * Q32.32; mot_atan2() for keys far from unit). The in-between is
  *     a cos(t theta) + u k,  k = sin(t theta) / |u|,
  * which is a cos + c sin with c = u / |u|, with 1/|u| from the iteration
- * that finds |u| (mot_isqrt_acc_inv()) where normalising u took a
+ * that finds |u| (mot_isqrt_acc_inv_near()) where normalising u took a
  * reciprocal square root, its Newton step and twelve products. k is kept
  * in Q2.62: its relative error (1/|u|'s, below 2^-58, and its rounding)
  * times |u k| <= 1 is far below an LSB, and the sine's absolute error is
@@ -517,7 +517,7 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 		u[i] += round_fits(mot_acc_mul(av[i], -k), MOT_Q32_FRAC);
 		n = mot_acc_mac(n, u[i], u[i]);
 	}
-	len = (mot_q32)mot_isqrt_acc_inv(n, &inv, &sh);
+	len = (mot_q32)mot_isqrt_acc_inv_near(n, &inv, &sh); /* |u|, within 0.51 LSB */
 	if (len < SLERP_NLERP_SIN) {
 		const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
 

@@ -339,7 +339,7 @@ static inline mot_acc usquare(uint64_t s)
  * 64 bits). Bounded time: at most one Newton step and one correction step.
  * The iteration's 1/(2 sqrt) on the way: 1/sqrt(n) ~ *hp 2^-(*qp + 92).
  */
-static inline HOT uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp)
+static inline HOT uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp, bool exact)
 {
 	uint64_t hi = mot_acc_hi(n), lo = mot_acc_lo(n), m, s;
 	int64_t g, h;
@@ -369,6 +369,8 @@ static inline HOT uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp)
 		d64 = mot_acc_round(d, (unsigned)(2 * q - 40), NULL);
 		s += (uint64_t)mot_acc_round(mot_acc_mul(d64, h), (unsigned)(133 - q), NULL);
 	}
+	if (!exact)
+		return s;
 	/* Round to nearest: s is right iff -s < n - s^2 <= s. */
 	d = mot_acc_sub(n, usquare(s));
 	t = mot_acc_make(0, s);
@@ -387,7 +389,7 @@ static uint64_t isqrt_round(mot_acc n)
 	int64_t h;
 	int q;
 
-	return isqrt_core(n, &h, &q);
+	return isqrt_core(n, &h, &q, true);
 }
 
 uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat)
@@ -400,7 +402,7 @@ uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat)
 	return isqrt_round(x);
 }
 
-uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh)
+static inline HOT uint64_t isqrt_inv(mot_acc x, int64_t *inv, unsigned *sh, bool exact)
 {
 	int64_t h;
 	uint64_t r;
@@ -411,10 +413,20 @@ uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh)
 		*sh = 62;
 		return 0;
 	}
-	r = isqrt_core(x, &h, &q);
+	r = isqrt_core(x, &h, &q, exact);
 	*inv = h;
 	*sh = (unsigned)(q + 92);
 	return r;
+}
+
+uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh)
+{
+	return isqrt_inv(x, inv, sh, true);
+}
+
+uint64_t mot_isqrt_acc_inv_near(mot_acc x, int64_t *inv, unsigned *sh)
+{
+	return isqrt_inv(x, inv, sh, false);
 }
 
 mot_q32 mot_sqrt(mot_q32 x, uint32_t *sat)

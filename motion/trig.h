@@ -182,6 +182,11 @@ uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat);
  * [62, 125], relative error below 2^-58 (tests/test_trig.c). The Newton
  * iteration of the root makes it on the way. x <= 0 gives 0, *inv = 0. */
 uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh);
+/* The same without the root's last correction (the remainder's square and
+ * two tests): for x below 2^102 within 1/2 + 2^-8 of sqrt(x), the nearest
+ * integer but next to a half (tests/test_trig.c), a few units for larger
+ * x; the same inv and sh. */
+uint64_t mot_isqrt_acc_inv_near(mot_acc x, int64_t *inv, unsigned *sh);
 
 /* |v| for a 3-vector: the root of the exact 128-bit sum of squares, rounded
  * once to nearest (0.5 LSB). A norm above MOT_Q32_MAX (possible only with

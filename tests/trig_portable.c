@@ -14,6 +14,7 @@
 #define mot_rsqrt trigp_rsqrt
 #define mot_isqrt_acc trigp_isqrt_acc_
 #define mot_isqrt_acc_inv trigp_isqrt_acc_inv_
+#define mot_isqrt_acc_inv_near trigp_isqrt_acc_inv_near_
 #define mot_norm3 trigp_norm3
 #include "motion/trig.c"
 #include "trig_portable.h"

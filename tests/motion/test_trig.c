@@ -425,7 +425,7 @@ static void test_sqrt(void **state)
 static void test_isqrt_acc(void **state)
 {
 	struct tu_rng rng;
-	struct tu_worst w = { 0, 0 }, wi = { 0, 0 };
+	struct tu_worst w = { 0, 0 }, wi = { 0, 0 }, wn = { 0, 0 };
 	uint32_t sat = 0;
 	int i;
 
@@ -454,6 +454,21 @@ static void test_isqrt_acc(void **state)
 			assert_true(mot_isqrt_acc_inv(mot_acc_make((uint64_t)(n >> 64), (uint64_t)n),
 						      &inv, &sh) == r);
 			assert_true(sh >= 62 && sh <= 125);
+			{ /* without the last correction: the same inv, the root
+			   * within 1/2 + 2^-8 below 2^102 (long double: 64 bits) */
+				int64_t inv2;
+				unsigned sh2;
+				uint64_t r2 = mot_isqrt_acc_inv_near(
+					mot_acc_make((uint64_t)(n >> 64), (uint64_t)n), &inv2, &sh2);
+
+				assert_true(inv2 == inv && sh2 == sh);
+				if (!(n >> 102))
+					tu_worst_add(&wn,
+						     fabsl((long double)r2 - sqrtl((long double)n)),
+						     (double)n);
+				else
+					assert_true(r2 + 4 >= r && r2 <= r + 4);
+			}
 			tu_worst_add(&wi,
 				     fabsl(ldexpl((long double)inv, -(int)sh) * sqrtl((long double)n) - 1),
 				     (double)n);
@@ -467,6 +482,7 @@ static void test_isqrt_acc(void **state)
 	assert_int_equal(sat, 0);
 	tu_bound("trig.isqrt_acc", &w, 0, "units (exact)");
 	tu_bound("trig.isqrt_acc_inv 1/sqrt relative", &wi, 0x1p-58, "(1)");
+	tu_bound("trig.isqrt_acc_inv_near root (below 2^102)", &wn, 0.5 + 0x1p-8, "units");
 
 	assert_int_equal(mot_isqrt_acc(mot_acc_zero(), &sat), 0);
 	assert_int_equal(mot_isqrt_acc(mot_acc_from(2, 0), &sat), 1);
