@@ -391,7 +391,7 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 		    mag(s->c.z)) <= (uint64_t)ONE;
 }
 
-/* mot_slerp_eval()'s sums where one does not fit: saturating */
+/* mot_slerp_eval()'s sums for arcs not within +-1: saturating */
 static __attribute__((noinline)) void slerp_sum_sat(struct mot_quat *out,
 						    const struct mot_slerp *s, mot_q32 cs,
 						    mot_q32 sn, uint32_t *sat)
@@ -401,6 +401,12 @@ static __attribute__((noinline)) void slerp_sum_sat(struct mot_quat *out,
 
 	*out = (struct mot_quat){ mot_sum_prod(l, r, 2, sat), mot_sum_prod(l + 2, r, 2, sat),
 				  mot_sum_prod(l + 4, r, 2, sat), mot_sum_prod(l + 6, r, 2, sat) };
+}
+
+/* round(a cs + c sn), Q32.32, known to fit */
+static inline int64_t slerp_sum2(mot_q32 a, mot_q32 cs, mot_q32 c, mot_q32 sn)
+{
+	return round_fits(mot_acc_mac(mot_acc_mul(a, cs), c, sn), MOT_Q32_FRAC);
 }
 
 static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
@@ -422,21 +428,15 @@ static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_sler
 	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
 	sn = sc.s;
 	cs = sc.c;
-	{
-		/* mot_sum_prod()'s kernel for two products, inline: the same bits,
-		 * and its saturating path only when a sum does not fit */
-		uint64_t ov = 0;
-		struct mot_quat q = {
-			mot_sum2_ov(s->a.w, cs, s->c.w, sn, 0, MOT_Q32_FRAC, &ov),
-			mot_sum2_ov(s->a.x, cs, s->c.x, sn, 0, MOT_Q32_FRAC, &ov),
-			mot_sum2_ov(s->a.y, cs, s->c.y, sn, 0, MOT_Q32_FRAC, &ov),
-			mot_sum2_ov(s->a.z, cs, s->c.z, sn, 0, MOT_Q32_FRAC, &ov),
-		};
-
-		if (ov)
-			slerp_sum_sat(&q, s, cs, sn, sat);
-		*out = q;
+	if (!s->small) { /* keys far from unit: saturating sums */
+		slerp_sum_sat(out, s, cs, sn, sat);
+		return;
 	}
+	/* a, c within +-1: every sum below 2, mot_sum_prod()'s bits untested */
+	*out = (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
+				  slerp_sum2(s->a.x, cs, s->c.x, sn),
+				  slerp_sum2(s->a.y, cs, s->c.y, sn),
+				  slerp_sum2(s->a.z, cs, s->c.z, sn) };
 }
 
 void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
