@@ -53,26 +53,17 @@ static inline uint64_t mag(mot_q32 v)
 
 /*
  * sin and cos of an angle held with 64 fractional bits of a turn (a Q64.64
- * mot_acc): mot_sincos() of the Q32.32 part, then the remaining fraction d of
- * an LSB (below 1.5e-9 rad) to first order, sin(a + d) = sin a + d cos a,
- * whose error d^2/2 is nine orders below an LSB. Half angles and t * theta
- * then cost no rounding of the angle (the turn LSB is 1.46e-9 rad, several
- * quaternion LSB).
+ * mot_acc): mot_sincos64() of its phase, one rounding of each. Half angles
+ * and t * theta then cost no rounding of the angle (the turn LSB is
+ * 1.46e-9 rad, several quaternion LSB).
  */
 static inline HOT struct mot_sc sincos_fine_in(mot_acc turns)
 {
-	mot_q32 a = (mot_q32)((mot_acc_hi(turns) << 32) | (mot_acc_lo(turns) >> 32));
-	int64_t d = (int64_t)(mot_acc_lo(turns) & 0xffffffffu); /* 2^-64 turn */
-	struct mot_sc p;
-
 #if MOT_HAVE_INT128
-	p = mot_sincos_in(a);
+	return mot_sincos64_in(mot_acc_lo(turns));
 #else
-	p = mot_sincos_pair(a);
+	return mot_sincos64(mot_acc_lo(turns));
 #endif
-	d = round_fits(mot_acc_mul(d, MOT_TWO_PI_Q32), MOT_Q32_FRAC); /* 2^-64 rad */
-	return (struct mot_sc){ p.s + round_fits(mot_acc_mul(p.c, d), 64),
-				p.c - round_fits(mot_acc_mul(p.s, d), 64) };
 }
 
 static void sincos_fine(mot_acc turns, mot_q32 *s, mot_q32 *c)
@@ -197,9 +188,8 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 	*out = r;
 }
 
-/* mot_quat_to_rot_q62() where an entry may not fit: saturating. */
-static __attribute__((noinline)) void rot_q62_sat(int64_t r[3][3], const struct mot_quat *q,
-						  uint32_t *sat)
+/* the saturating path of mot_quat_to_rot_q62() (quat.h) */
+void mot_quat_to_rot_q62_sat(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
 {
 	mot_acc e[3][3];
 	int i;
@@ -209,54 +199,12 @@ static __attribute__((noinline)) void rot_q62_sat(int64_t r[3][3], const struct 
 			r[i / 3][i % 3] = mot_acc_round(e[i / 3][i % 3], 2, sat);
 }
 
-/* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62,
- * known to fit */
-static inline __attribute__((always_inline)) void rot_pair(int64_t *plus, int64_t *minus,
-							   mot_q32 a, mot_q32 b, mot_q32 c,
-							   mot_q32 d)
-{
-	mot_acc p = mot_acc_mul(a, b), q = mot_acc_mul(c, d);
-
-	*plus = round_fits(mot_acc_add(p, q), 1);
-	*minus = round_fits(mot_acc_sub(p, q), 1);
-}
-
-/*
- * Each entry from its two products as soon as they are made, so that few
- * 128-bit values live at once: e = 2 (p + q) rounded from Q64.64 to Q2.62
- * is round((p + q) / 2), and 1 - 2 (p + q) is round((2^63 - p - q) / 2),
- * the same bits as rot_exact()'s sums rounded by 4. With |q|^2 < 3/2
- * (every rotation) each entry fits: |xy + wz| <= |q|^2 / 2 < 3/4 and
- * 1 - 2 (x^2 + y^2) > -2, so no entry is tested; otherwise
- * rot_q62_sat(), whose bits are the same where an entry fits.
- */
+#if !MOT_HAVE_INT128
 int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
 {
-	const mot_q32 lim = (mot_q32)1 << 62;
-	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
-	const mot_acc h = mot_acc_from(1, 63);
-	mot_acc a, b, c, n;
-
-	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
-	    z >= lim || z <= -lim)
-		return MOT_E_RANGE;
-	a = mot_acc_mul(x, x);
-	b = mot_acc_mul(y, y);
-	c = mot_acc_mul(z, z);
-	n = mot_acc_mac(mot_acc_add(mot_acc_add(a, b), c), w, w); /* below 2^126 */
-	if (!mot_acc_is_neg(mot_acc_sub(n, mot_acc_from(3, 63)))) {
-		rot_q62_sat(r, q, sat);
-		return MOT_OK;
-	}
-	rot_pair(&r[0][1], &r[1][0], x, y, w, z);
-	rot_pair(&r[2][0], &r[0][2], x, z, w, y);
-	rot_pair(&r[1][2], &r[2][1], y, z, w, x);
-	r[2][2] = round_fits(mot_acc_sub(mot_acc_sub(h, a), b), 1);
-	c = mot_acc_sub(h, c);
-	r[1][1] = round_fits(mot_acc_sub(c, a), 1);
-	r[0][0] = round_fits(mot_acc_sub(c, b), 1);
-	return MOT_OK;
+	return mot_quat_rot_q62_in(r, q, sat);
 }
+#endif
 
 /* Hamilton product terms: component k of a * b is sum a[i] * sign * b[j]. */
 void mot_quat_mul(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
@@ -436,9 +384,14 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 	s->nlerp = len < SLERP_NLERP_SIN;
 	if (s->nlerp || mot_quat_normalize(&s->c, &u, sat) != MOT_OK)
 		s->c = (struct mot_quat){ 0, 0, 0, 0 };
+	/* |a_i cos + c_i sin| <= sqrt(a_i^2 + c_i^2) <= sqrt 2, nlerp's
+	 * results are unit, the ends are a and b */
+	s->small = (mag(a->w) | mag(a->x) | mag(a->y) | mag(a->z) | mag(bb.w) | mag(bb.x) |
+		    mag(bb.y) | mag(bb.z) | mag(s->c.w) | mag(s->c.x) | mag(s->c.y) |
+		    mag(s->c.z)) <= (uint64_t)ONE;
 }
 
-/* mot_slerp_eval()'s sums where one does not fit: saturating */
+/* mot_slerp_eval()'s sums for arcs not within +-1: saturating */
 static __attribute__((noinline)) void slerp_sum_sat(struct mot_quat *out,
 						    const struct mot_slerp *s, mot_q32 cs,
 						    mot_q32 sn, uint32_t *sat)
@@ -448,6 +401,12 @@ static __attribute__((noinline)) void slerp_sum_sat(struct mot_quat *out,
 
 	*out = (struct mot_quat){ mot_sum_prod(l, r, 2, sat), mot_sum_prod(l + 2, r, 2, sat),
 				  mot_sum_prod(l + 4, r, 2, sat), mot_sum_prod(l + 6, r, 2, sat) };
+}
+
+/* round(a cs + c sn), Q32.32, known to fit */
+static inline int64_t slerp_sum2(mot_q32 a, mot_q32 cs, mot_q32 c, mot_q32 sn)
+{
+	return round_fits(mot_acc_mac(mot_acc_mul(a, cs), c, sn), MOT_Q32_FRAC);
 }
 
 static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
@@ -469,21 +428,15 @@ static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_sler
 	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
 	sn = sc.s;
 	cs = sc.c;
-	{
-		/* mot_sum_prod()'s kernel for two products, inline: the same bits,
-		 * and its saturating path only when a sum does not fit */
-		uint64_t ov = 0;
-		struct mot_quat q = {
-			mot_sum2_ov(s->a.w, cs, s->c.w, sn, 0, MOT_Q32_FRAC, &ov),
-			mot_sum2_ov(s->a.x, cs, s->c.x, sn, 0, MOT_Q32_FRAC, &ov),
-			mot_sum2_ov(s->a.y, cs, s->c.y, sn, 0, MOT_Q32_FRAC, &ov),
-			mot_sum2_ov(s->a.z, cs, s->c.z, sn, 0, MOT_Q32_FRAC, &ov),
-		};
-
-		if (ov)
-			slerp_sum_sat(&q, s, cs, sn, sat);
-		*out = q;
+	if (!s->small) { /* keys far from unit: saturating sums */
+		slerp_sum_sat(out, s, cs, sn, sat);
+		return;
 	}
+	/* a, c within +-1: every sum below 2, mot_sum_prod()'s bits untested */
+	*out = (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
+				  slerp_sum2(s->a.x, cs, s->c.x, sn),
+				  slerp_sum2(s->a.y, cs, s->c.y, sn),
+				  slerp_sum2(s->a.z, cs, s->c.z, sn) };
 }
 
 void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
@@ -494,10 +447,12 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
 /*
  * One slerp for components below 2 in magnitude (every unit quaternion):
  * the arc of mot_slerp_prepare(), the same d and u bit for bit, but no unit
- * c. The in-between is
+ * c, and the angle from its cosine d and sine |u| without a division
+ * (mot_atan2_unit_q62(), in Q62 turns where prepare rounds mot_atan2() to
+ * Q32.32; mot_atan2() for keys far from unit). The in-between is
  *     a cos(t theta) + u k,  k = sin(t theta) / |u|,
  * which is a cos + c sin with c = u / |u|, with 1/|u| from the iteration
- * that finds |u| (mot_isqrt_acc_inv()) where normalising u took a
+ * that finds |u| (mot_isqrt_acc_inv_near()) where normalising u took a
  * reciprocal square root, its Newton step and twelve products. k is kept
  * in Q2.62: its relative error (1/|u|'s, below 2^-58, and its rounding)
  * times |u k| <= 1 is far below an LSB, and the sine's absolute error is
@@ -511,23 +466,25 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
  * and every rounded value fits.
  */
 static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a,
-				  const struct mot_quat *b, mot_q32 t, uint32_t *sat)
+				  const struct mot_quat *b, mot_q32 t, bool small, uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
-	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, theta, sn, cs;
-	uint64_t big = 0;
+	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, sn, cs;
+	uint64_t big = 0, ov = 0; /* ov: t theta fits, never set */
 	uint32_t local = 0;
 	struct mot_sc sc;
 	mot_acc n;
-	int64_t k62, inv;
+	int64_t k62, inv, theta; /* theta: Q62 turns */
 	unsigned sh;
 	int i;
 
-	UNROLL4
-	for (i = 0; i < 4; i++)
-		big |= mag(av[i]) | mag(bv[i]);
-	if (big >= (uint64_t)1 << 33)
-		return false;
+	if (!small) { /* known below 2 (mot_squad_eval) or tested */
+		UNROLL4
+		for (i = 0; i < 4; i++)
+			big |= mag(av[i]) | mag(bv[i]);
+		if (big >= (uint64_t)1 << 33)
+			return false;
+	}
 	n = mot_acc_zero();
 	UNROLL4
 	for (i = 0; i < 4; i++)
@@ -560,15 +517,16 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 		u[i] += round_fits(mot_acc_mul(av[i], -k), MOT_Q32_FRAC);
 		n = mot_acc_mac(n, u[i], u[i]);
 	}
-	len = (mot_q32)mot_isqrt_acc_inv(n, &inv, &sh);
+	len = (mot_q32)mot_isqrt_acc_inv_near(n, &inv, &sh); /* |u|, within 0.51 LSB */
 	if (len < SLERP_NLERP_SIN) {
 		const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
 
 		quat_lerp(out, a, &bb, t, sat);
 		return true;
 	}
-	theta = mot_atan2(len, d);
-	sc = sincos_fine_in(mot_acc_mul(t, theta));
+	/* the arc in Q62 turns, and t times it in Q64.64 (below 1/4 turn) */
+	theta = mot_atan2_unit_q62(len, d);
+	sc = sincos_fine_in(mot_acc_from(mot_acc_floor_ov(mot_acc_mul(t, theta), 30, &ov), 0));
 	sn = sc.s;
 	cs = sc.c;
 	/* sh - 62 in [22, 42]: |u| >= 2^-10 and below 2^10 */
@@ -597,7 +555,7 @@ static __attribute__((noinline)) void slerp_long(struct mot_quat *out, const str
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
 		    mot_q32 t, uint32_t *sat)
 {
-	if (!slerp_once(out, a, b, t, sat))
+	if (!slerp_once(out, a, b, t, false, sat))
 		slerp_long(out, a, b, t, sat);
 }
 
@@ -610,7 +568,8 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 	slerp_eval_in(&qa, arc, t, sat);
 	slerp_eval_in(&qb, inner, t, sat);
 	h = 2 * mot_mul(t, ONE - t, sat); /* 2 t (1 - t) */
-	if (!slerp_once(out, &qa, &qb, h, sat))
+	/* in-betweens of arcs within +-1 are below sqrt 2: no test */
+	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, sat))
 		slerp_long(out, &qa, &qb, h, sat);
 }
 

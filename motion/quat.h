@@ -32,11 +32,83 @@ void mot_quat_from_euler(struct mot_quat *out, const mot_q32 e[3], uint32_t *sat
  * matrix is built from q as given (no renormalisation). */
 void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sat);
 
+/* mot_quat_to_rot_q62() where an entry may not fit: saturating (quat.c). */
+void mot_quat_to_rot_q62_sat(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat);
+
+/* round(x / 2), for a value known to fit int64 */
+static inline int64_t mot_quat_half_fits(mot_acc x)
+{
+#if MOT_HAVE_INT128
+	return (int64_t)(uint64_t)(((mot_uacc)x + 1) >> 1);
+#else
+	return mot_acc_round(x, 1, NULL);
+#endif
+}
+
+/* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62,
+ * known to fit */
+static inline __attribute__((always_inline)) void mot_quat_rot_pair(int64_t *plus,
+								    int64_t *minus, mot_q32 a,
+								    mot_q32 b, mot_q32 c, mot_q32 d)
+{
+	mot_acc p = mot_acc_mul(a, b), q = mot_acc_mul(c, d);
+
+	*plus = mot_quat_half_fits(mot_acc_add(p, q));
+	*minus = mot_quat_half_fits(mot_acc_sub(p, q));
+}
+
+/*
+ * Each entry from its two products as soon as they are made, so that few
+ * 128-bit values live at once: e = 2 (p + q) rounded from Q64.64 to Q2.62
+ * is round((p + q) / 2), and 1 - 2 (p + q) is round((2^63 - p - q) / 2),
+ * the same bits as quat.c's exact sums rounded by 4. With |q|^2 < 3/2
+ * (every rotation) each entry fits: |xy + wz| <= |q|^2 / 2 < 3/4 and
+ * 1 - 2 (x^2 + y^2) > -2, so no entry is tested; otherwise
+ * mot_quat_to_rot_q62_sat(), whose bits are the same where an entry fits.
+ */
+static inline __attribute__((always_inline)) int mot_quat_rot_q62_in(int64_t r[3][3],
+								      const struct mot_quat *q,
+								      uint32_t *sat)
+{
+	const mot_q32 lim = (mot_q32)1 << 62;
+	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
+	const mot_acc h = mot_acc_from(1, 63);
+	mot_acc a, b, c, n;
+
+	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
+	    z >= lim || z <= -lim)
+		return MOT_E_RANGE;
+	a = mot_acc_mul(x, x);
+	b = mot_acc_mul(y, y);
+	c = mot_acc_mul(z, z);
+	n = mot_acc_mac(mot_acc_add(mot_acc_add(a, b), c), w, w); /* below 2^126 */
+	if (!mot_acc_is_neg(mot_acc_sub(n, mot_acc_from(3, 63)))) {
+		mot_quat_to_rot_q62_sat(r, q, sat);
+		return MOT_OK;
+	}
+	mot_quat_rot_pair(&r[0][1], &r[1][0], x, y, w, z);
+	mot_quat_rot_pair(&r[2][0], &r[0][2], x, z, w, y);
+	mot_quat_rot_pair(&r[1][2], &r[2][1], y, z, w, x);
+	r[2][2] = mot_quat_half_fits(mot_acc_sub(mot_acc_sub(h, a), b));
+	c = mot_acc_sub(h, c);
+	r[1][1] = mot_quat_half_fits(mot_acc_sub(c, a));
+	r[0][0] = mot_quat_half_fits(mot_acc_sub(c, b));
+	return MOT_OK;
+}
+
 /* The linear part of R(q) in Q2.62 (entries value * 2^62, range +-2), so
  * that a product with it rounds once at Q32.32 (mot_mat_compose). For a
  * unit q; components of 2^30 or more give MOT_E_RANGE (r untouched), entries
- * beyond +-2 saturate. */
+ * beyond +-2 saturate. Inline where 128-bit integers are native (a free
+ * node's rotation makes one every tick), a call elsewhere (code size). */
+#if MOT_HAVE_INT128
+static inline int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat)
+{
+	return mot_quat_rot_q62_in(r, q, sat);
+}
+#else
 int mot_quat_to_rot_q62(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat);
+#endif
 
 /* Such a matrix kept (a rotation track's held end keys, strand.h). */
 struct mot_rot_q62 {
@@ -69,6 +141,7 @@ struct mot_slerp {
 	struct mot_quat c;    /* unit, orthogonal to a, in the plane of a and b */
 	mot_q32 theta;        /* arc angle between a and b, turns, [0, 1/4] */
 	bool nlerp;           /* theta too small: normalised linear interpolation */
+	bool small;           /* a, b, c within +-1: every in-between below sqrt 2 */
 };
 
 void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const struct mot_quat *b,

@@ -65,6 +65,14 @@
 
 #include "trig_table.h"
 
+/* The square root's core inline in its two callers where 128-bit integers
+ * are native (no out-parameters in memory), one copy elsewhere (code size). */
+#if MOT_HAVE_INT128
+#define HOT __attribute__((always_inline))
+#else
+#define HOT
+#endif
+
 /* floor(a * b / 2^shift), 1 <= shift <= 127; the caller knows it fits. */
 static inline int64_t mulsh(int64_t a, int64_t b, unsigned shift)
 {
@@ -90,27 +98,49 @@ const struct mot_trig_turn mot_trig_turn = {
 };
 #endif
 
-static inline void sincos_q32(mot_q32 turns, mot_q32 *s, mot_q32 *c)
+#if !MOT_HAVE_INT128
+/* sin and cos of table point j (0..1023 of a turn), Q62, from the quarter wave */
+static inline void table_point(uint32_t j, int64_t *sa, int64_t *ca)
 {
-	struct mot_sc r;
-#if MOT_HAVE_INT128
-	r = mot_sincos_in(turns);
-#else
-	int64_t d;
-	uint32_t j = mot_sincos_point(turns, &d);
 	unsigned quad = j / SIN_N, i = j % SIN_N;
 	int64_t lo = mot_trig_sin_q62[i], hi = mot_trig_sin_q62[SIN_N - i];
 	/* Quadrant by masks, not branches: random angles would mispredict. In
 	 * odd quadrants sin and cos swap; neg_* are 0 or -1. */
 	int64_t swap = (lo ^ hi) & -(int64_t)(quad & 1);
 	int64_t neg_s = -(int64_t)((quad >> 1) & 1), neg_c = -(int64_t)(((quad + 1) >> 1) & 1);
-	int64_t sa = ((lo ^ swap) ^ neg_s) - neg_s; /* sin a, Q62 */
-	int64_t ca = ((hi ^ swap) ^ neg_c) - neg_c; /* cos a, Q62 */
 
+	*sa = ((lo ^ swap) ^ neg_s) - neg_s;
+	*ca = ((hi ^ swap) ^ neg_c) - neg_c;
+}
+#endif
+
+static inline void sincos_q32(mot_q32 turns, mot_q32 *s, mot_q32 *c)
+{
+	struct mot_sc r;
+#if MOT_HAVE_INT128
+	r = mot_sincos_in(turns);
+#else
+	int64_t d, sa, ca;
+	uint32_t j = mot_sincos_point(turns, &d);
+
+	table_point(j, &sa, &ca);
 	r = mot_sincos_add(sa, ca, d, MOT_TRIG_RAD_PER_PHASE_Q70, MOT_TRIG_RAD6_PER_PHASE_Q70);
 #endif
 	*s = r.s;
 	*c = r.c;
+}
+
+struct mot_sc mot_sincos64(uint64_t phase)
+{
+#if MOT_HAVE_INT128
+	return mot_sincos64_in(phase);
+#else
+	int64_t dr, dr6, sa, ca;
+	uint32_t j = mot_sincos_point64(phase, &dr, &dr6);
+
+	table_point(j, &sa, &ca);
+	return mot_sincos_add_rad(sa, ca, dr, dr6);
+#endif
 }
 
 void mot_sincos(mot_q32 turns, mot_q32 *s, mot_q32 *c)
@@ -216,6 +246,44 @@ mot_q32 mot_atan2(mot_q32 y, mot_q32 x)
 	return a;
 }
 
+/*
+ * mot_atan2_unit_q62(). With m the smaller of x, y, asin m ~ m + m^3/6 +
+ * 3 m^5 / 40 (short by at most 0.0061 rad at m = 1/sqrt 2) picks the
+ * table point j (1/1024 turn, half a step is 0.0031 rad), so the angle
+ * delta of (x, y) from it is below 0.0093 rad: its sine y' = y cos a -
+ * x sin a (exact products, one rounding to Q62), divided by the length
+ * |(x, y)| = sqrt(1 + e) as y' (1 - e/2) (error 3 e^2 / 8 y', below
+ * 2^-40 rad with |e| < 2^-16), then
+ *     delta = y' + y'^3/6    (next term 3 y'^5/40 < 5.3e-12 rad, 0.004 LSB)
+ * Every product is kept in Q62: their floors cost some 2^-61 rad.
+ */
+int64_t mot_atan2_unit_q62(mot_q32 y, mot_q32 x)
+{
+	const int64_t sixth_q64 = 3074457345618258603LL; /* 1/6 */
+	const int64_t lim = (int64_t)1 << 48;           /* 2^-16, Q64 */
+	mot_acc d2 = mot_acc_sub(mot_acc_mac(mot_acc_mul(x, x), y, y), mot_acc_make(1, 0));
+	int64_t e = (int64_t)mot_acc_lo(d2), yr, y2, delta;
+	uint64_t m, m2, a, ov = 0; /* ov: y' fits, never set */
+	unsigned j;
+
+	if (x < 0 || y < 0 || mot_acc_hi(d2) != (uint64_t)(e >> 63) || e <= -lim || e >= lim)
+		return (int64_t)((uint64_t)(int64_t)mot_atan2(y, x) << 30);
+	/* here x, y < 2^32 + 2^16: the smaller is below 2^32 */
+	m = (uint64_t)(y < x ? y : x);
+	m2 = (m * m) >> 32; /* Q32, below 2^31 */
+	a = m + ((m * (((m2 * 715827883u) >> 32) + ((((m2 * m2) >> 32) * 322122547u) >> 32))) >> 32);
+	j = (unsigned)((a * 163 + ((uint64_t)1 << 31)) >> 32); /* 1024 / (2 pi) = 162.97 */
+	if (y > x)
+		j = 256 - j; /* 1/4 turn - asin x */
+	yr = mot_acc_floor_ov(mot_acc_mac(mot_acc_mul(y, mot_trig_sin_q62[256 - j]), x,
+					  -mot_trig_sin_q62[j]),
+			      32, &ov);       /* y', Q62 */
+	yr -= mulsh(yr, e, 65);           /* y' (1 - e/2) */
+	y2 = mulsh(yr, yr, 62);           /* Q62 */
+	delta = yr + mulsh(yr, mulsh(y2, sixth_q64, 64), 62); /* rad, Q62 */
+	return ((int64_t)j << 52) + mulsh(delta, MOT_TRIG_TURN_PER_RAD_Q62, 62);
+}
+
 /* ---- square roots ------------------------------------------------------------------ */
 
 /*
@@ -271,7 +339,7 @@ static inline mot_acc usquare(uint64_t s)
  * 64 bits). Bounded time: at most one Newton step and one correction step.
  * The iteration's 1/(2 sqrt) on the way: 1/sqrt(n) ~ *hp 2^-(*qp + 92).
  */
-static uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp)
+static inline HOT uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp, bool exact)
 {
 	uint64_t hi = mot_acc_hi(n), lo = mot_acc_lo(n), m, s;
 	int64_t g, h;
@@ -301,6 +369,8 @@ static uint64_t isqrt_core(mot_acc n, int64_t *hp, int *qp)
 		d64 = mot_acc_round(d, (unsigned)(2 * q - 40), NULL);
 		s += (uint64_t)mot_acc_round(mot_acc_mul(d64, h), (unsigned)(133 - q), NULL);
 	}
+	if (!exact)
+		return s;
 	/* Round to nearest: s is right iff -s < n - s^2 <= s. */
 	d = mot_acc_sub(n, usquare(s));
 	t = mot_acc_make(0, s);
@@ -319,7 +389,7 @@ static uint64_t isqrt_round(mot_acc n)
 	int64_t h;
 	int q;
 
-	return isqrt_core(n, &h, &q);
+	return isqrt_core(n, &h, &q, true);
 }
 
 uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat)
@@ -332,7 +402,7 @@ uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat)
 	return isqrt_round(x);
 }
 
-uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh)
+static inline HOT uint64_t isqrt_inv(mot_acc x, int64_t *inv, unsigned *sh, bool exact)
 {
 	int64_t h;
 	uint64_t r;
@@ -343,10 +413,20 @@ uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh)
 		*sh = 62;
 		return 0;
 	}
-	r = isqrt_core(x, &h, &q);
+	r = isqrt_core(x, &h, &q, exact);
 	*inv = h;
 	*sh = (unsigned)(q + 92);
 	return r;
+}
+
+uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh)
+{
+	return isqrt_inv(x, inv, sh, true);
+}
+
+uint64_t mot_isqrt_acc_inv_near(mot_acc x, int64_t *inv, unsigned *sh)
+{
+	return isqrt_inv(x, inv, sh, false);
 }
 
 mot_q32 mot_sqrt(mot_q32 x, uint32_t *sat)

@@ -50,21 +50,59 @@ static inline uint32_t mot_sincos_point(mot_q32 turns, int64_t *d)
 	return ((uint32_t)(phase + (1u << 21)) >> 22) & 1023;
 }
 
-/* k and k6: 2 pi / 2^32 and that over 6 (rad per phase), Q70 */
-static inline struct mot_sc mot_sincos_add(int64_t sa, int64_t ca, int64_t d, int64_t k,
-					   int64_t k6)
+/* round(x / 2^92) of a sum known to fit (|sin|, |cos| <= 1): mot_acc_round()'s
+ * bits without its saturation, whose result the compiler would have to
+ * carry as a possible 2^63 - 1 into every product made with it */
+static inline int64_t mot_sincos_round92(mot_acc x)
 {
-	int64_t dr = d * k;   /* delta, rad Q70, < 2^62 */
-	int64_t dr6 = d * k6; /* delta/6, rad Q70 */
+	return (int64_t)mot_acc_hi(mot_acc_add(x, mot_acc_make((uint64_t)1 << 27, 0))) >> 28;
+}
+
+/* dr and dr6: the offset delta and delta/6 in rad, Q70 (|dr| < 2^62) */
+static inline struct mot_sc mot_sincos_add_rad(int64_t sa, int64_t ca, int64_t dr, int64_t dr6)
+{
 	int64_t half_sq = (int64_t)mot_acc_hi(mot_acc_mul(dr, dr)) >> 15; /* delta^2/2, Q62 */
 	int64_t cd = ((int64_t)1 << 62) - half_sq;                        /* cos delta, Q62 */
 	int64_t sd = (dr >> 8) - ((int64_t)mot_acc_hi(mot_acc_mul(half_sq, dr6)) >> 5);
 	struct mot_sc r; /* Q124 sums, one rounding each */
 
-	r.s = mot_acc_round(mot_acc_mac(mot_acc_mul(sa, cd), ca, sd), 92, NULL);
-	r.c = mot_acc_round(mot_acc_mac(mot_acc_mul(ca, cd), -sa, sd), 92, NULL);
+	r.s = mot_sincos_round92(mot_acc_mac(mot_acc_mul(sa, cd), ca, sd));
+	r.c = mot_sincos_round92(mot_acc_mac(mot_acc_mul(ca, cd), -sa, sd));
 	return r;
 }
+
+/* k and k6: 2 pi / 2^32 and that over 6 (rad per phase), Q70 */
+static inline struct mot_sc mot_sincos_add(int64_t sa, int64_t ca, int64_t d, int64_t k,
+					   int64_t k6)
+{
+	return mot_sincos_add_rad(sa, ca, d * k, d * k6);
+}
+
+/*
+ * The same for a phase of 64 bits (2^-64 turn: the low word of a Q64.64
+ * angle, t theta without its rounding): the table point j and the offset
+ * d in [-2^53, 2^53), whose radians are a 128-bit product with
+ * mot_sincos_add()'s k and k6 times 2^22, then 2^-54: Q70 as there, the
+ * same dr where the low 32 bits are zero (so mot_sincos()'s bits), floored
+ * elsewhere (k's own rounding costs below 2^-50 rad). One rounding of each
+ * result, where a Q32.32 angle and a first-order term for the rest rounded
+ * twice.
+ */
+#define MOT_TRIG_2PI_Q60 ((int64_t)1727108826179LL << 22)
+#define MOT_TRIG_2PI6_Q60 ((int64_t)287851471030LL << 22)
+static inline uint32_t mot_sincos_point64(uint64_t phase, int64_t *dr, int64_t *dr6)
+{
+	uint64_t p = phase + ((uint64_t)1 << 53);
+	int64_t d = (int64_t)(p & (((uint64_t)1 << 54) - 1)) - ((int64_t)1 << 53);
+	uint64_t ov = 0; /* |d 2 pi 2^60| < 2^116: fits */
+
+	*dr = mot_acc_floor_ov(mot_acc_mul(d, MOT_TRIG_2PI_Q60), 54, &ov);
+	*dr6 = mot_acc_floor_ov(mot_acc_mul(d, MOT_TRIG_2PI6_Q60), 54, &ov);
+	return (uint32_t)(p >> 54) & 1023;
+}
+
+/* sin and cos of phase 2^-64 turn, worst error 0.52 LSB (tests/test_trig.c) */
+struct mot_sc mot_sincos64(uint64_t phase);
 
 #if MOT_HAVE_INT128
 /* What mot_sincos_in() reads: trig.c's table of sin(j/1024 turn), j =
@@ -86,6 +124,15 @@ static inline __attribute__((always_inline)) struct mot_sc mot_sincos_in(mot_q32
 	return mot_sincos_add(mot_trig_turn.sin[j], mot_trig_turn.sin[j + 256], d,
 			      mot_trig_turn.k, mot_trig_turn.k6);
 }
+
+/* mot_sincos64() inline, the same way */
+static inline __attribute__((always_inline)) struct mot_sc mot_sincos64_in(uint64_t phase)
+{
+	int64_t dr, dr6;
+	uint32_t j = mot_sincos_point64(phase, &dr, &dr6);
+
+	return mot_sincos_add_rad(mot_trig_turn.sin[j], mot_trig_turn.sin[j + 256], dr, dr6);
+}
 #endif
 mot_q32 mot_sin(mot_q32 turns);
 mot_q32 mot_cos(mot_q32 turns);
@@ -97,6 +144,19 @@ mot_q32 mot_cos(mot_q32 turns);
  * -1/2 is returned as +1/2. Worst error 0.50 LSB (1.2e-10 turn).
  * About 11 ns / 25 ns. */
 mot_q32 mot_atan2(mot_q32 y, mot_q32 x);
+
+/*
+ * The angle of (x, y), x, y >= 0, with x^2 + y^2 within 2^-16 of 1 (the
+ * cosine and sine of an arc between unit quaternions), in turns Q62
+ * (value * 2^62), without a division: the nearest of 256 points of the
+ * quarter turn from asin of the smaller coordinate's series, then the
+ * angle left after rotating back by it (below 0.01 rad) as asin of its
+ * sine, divided by the vector's length to first order. Within 0.05 LSB of
+ * Q32.32 turns (tests/test_trig.c). Other vectors take mot_atan2(), its
+ * result times 2^30. About as many instructions as mot_atan2() (103
+ * against 112 on x86_64), but no rounding of the angle to Q32.32.
+ */
+int64_t mot_atan2_unit_q62(mot_q32 y, mot_q32 x);
 
 /* acos in turns, in [0, 1/2]. |x| > 1 (rounding of a dot product of unit
  * vectors) is taken as +-1 and flagged MOT_SAT_DOMAIN. Exact at -1, 0, 1;
@@ -123,6 +183,11 @@ uint64_t mot_isqrt_acc(mot_acc x, uint32_t *sat);
  * [62, 125], relative error below 2^-58 (tests/test_trig.c). The Newton
  * iteration of the root makes it on the way. x <= 0 gives 0, *inv = 0. */
 uint64_t mot_isqrt_acc_inv(mot_acc x, int64_t *inv, unsigned *sh);
+/* The same without the root's last correction (the remainder's square and
+ * two tests): for x below 2^102 within 1/2 + 2^-8 of sqrt(x), the nearest
+ * integer but next to a half (tests/test_trig.c), a few units for larger
+ * x; the same inv and sh. */
+uint64_t mot_isqrt_acc_inv_near(mot_acc x, int64_t *inv, unsigned *sh);
 
 /* |v| for a 3-vector: the root of the exact 128-bit sum of squares, rounded
  * once to nearest (0.5 LSB). A norm above MOT_Q32_MAX (possible only with

@@ -7,7 +7,9 @@
 #include <stdint.h>
 
 void trigp_sincos(int64_t turns, int64_t *s, int64_t *c);
+void trigp_sincos64(uint64_t phase, int64_t *s, int64_t *c);
 int64_t trigp_atan2(int64_t y, int64_t x);
+int64_t trigp_atan2_unit_q62(int64_t y, int64_t x);
 int64_t trigp_acos(int64_t x, uint32_t *sat);
 int64_t trigp_sqrt(int64_t x, uint32_t *sat);
 int64_t trigp_rsqrt(int64_t x, uint32_t *sat);

@@ -78,6 +78,44 @@ static void test_sincos_accuracy(void **state)
 	tu_bound("trig.cos", &wc, 0.55, "LSB");
 }
 
+/* mot_sincos64: a phase of 64 bits against long double, the same bits as
+ * mot_sincos() where the low 32 are zero, and as the portable path */
+static void test_sincos64(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst ws = { 0, 0 }, wc = { 0, 0 };
+	long bad = 0;
+	int i;
+
+	tu_seed(&rng, 13);
+	for (i = 0; i < 4 * N; i++) {
+		uint64_t ph = tu_u64(&rng);
+		long double rad;
+		struct mot_sc r;
+		int64_t s2, c2;
+		mot_q32 s1, c1;
+
+		if (i % 4 == 1) /* next to a table point */
+			ph = (ph & ~(((uint64_t)1 << 54) - 1)) + (ph >> 62) - 2 +
+			     ((ph >> 60 & 1) << 53);
+		r = mot_sincos64(ph);
+		rad = (long double)ph / 18446744073709551616.0L * 2.0L * M_PI;
+		tu_worst_add(&ws, (double)(((long double)r.s / TU_Q32 - sinl(rad)) * TU_Q32),
+			     (double)(ph >> 32) * LSB);
+		tu_worst_add(&wc, (double)(((long double)r.c / TU_Q32 - cosl(rad)) * TU_Q32),
+			     (double)(ph >> 32) * LSB);
+		mot_sincos((mot_q32)(ph >> 32), &s1, &c1);
+		r = mot_sincos64(ph & ~(uint64_t)0xffffffff);
+		bad += r.s != s1 || r.c != c1;
+		trigp_sincos64(ph, &s2, &c2);
+		r = mot_sincos64(ph);
+		bad += r.s != s2 || r.c != c2;
+	}
+	assert_int_equal(bad, 0);
+	tu_bound("trig.sin of a 64-bit phase", &ws, 0.55, "LSB");
+	tu_bound("trig.cos of a 64-bit phase", &wc, 0.55, "LSB");
+}
+
 static void test_sincos_exact(void **state)
 {
 	static const mot_q32 sin_q[4] = { 0, MOT_Q32_ONE, 0, -MOT_Q32_ONE };
@@ -169,6 +207,55 @@ static void test_atan2_accuracy(void **state)
 	}
 	assert_int_equal(bad, 0);
 	tu_bound("trig.atan2", &w, 0.55, "LSB");
+}
+
+/* mot_atan2_unit_q62: vectors of the first quadrant whose squared length
+ * is 1 within 2^-16 (the length within 0, 8 LSB, 2^-18, 2^-17 - 2 LSB of
+ * 1), and others (mot_atan2's bits); errors against long double in LSB of
+ * Q32.32 turns */
+static void test_atan2_unit(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst w = { 0, 0 };
+	long bad = 0;
+	int i;
+
+	tu_seed(&rng, 22);
+	for (i = 0; i < 4 * N; i++) {
+		long double ang = (long double)(tu_u64(&rng) >> 11) / 9007199254740992.0L * M_PI / 2;
+		long double len = 1.0L;
+		mot_q32 y, x;
+		int64_t a;
+
+		if (i % 4 == 1)
+			len += (long double)((int64_t)(tu_u64(&rng) % 17) - 8) / TU_Q32;
+		else if (i % 4 == 2)
+			len += (tu_u64(&rng) & 1 ? 1.0L : -1.0L) / 262144.0L;
+		else if (i % 4 == 3)
+			len += (tu_u64(&rng) & 1 ? 1.0L : -1.0L) * (1.0L / 131072.0L - 2.0L / TU_Q32);
+		y = (mot_q32)llroundl(sinl(ang) * len * TU_Q32);
+		x = (mot_q32)llroundl(cosl(ang) * len * TU_Q32);
+		a = mot_atan2_unit_q62(y, x);
+		tu_worst_add(&w,
+			     (double)(((long double)a / 4611686018427387904.0L -
+				       atan2l((long double)y, (long double)x) / (2.0L * M_PI)) *
+				      TU_Q32),
+			     (double)ang);
+		bad += a != trigp_atan2_unit_q62(y, x);
+	}
+	/* a vector too long or short, or outside the quadrant: mot_atan2() */
+	for (i = 0; i < N; i++) {
+		mot_q32 y = tu_i64(&rng) >> (tu_u64(&rng) % 40), x = tu_i64(&rng) >> (tu_u64(&rng) % 40);
+		int64_t a = mot_atan2_unit_q62(y, x);
+
+		if (!(y >= 0 && x >= 0 && a >> 30 != mot_atan2(y, x)))
+			bad += a != (int64_t)((uint64_t)mot_atan2(y, x) << 30);
+		bad += a != trigp_atan2_unit_q62(y, x);
+	}
+	assert_int_equal(mot_atan2_unit_q62(0, MOT_Q32_ONE), 0);
+	assert_int_equal(mot_atan2_unit_q62(MOT_Q32_ONE, 0), (int64_t)1 << 60);
+	assert_int_equal(bad, 0);
+	tu_bound("trig.atan2_unit_q62 (|x^2 + y^2 - 1| < 2^-16)", &w, 0.05, "LSB");
 }
 
 static void test_atan2_exact(void **state)
@@ -338,7 +425,7 @@ static void test_sqrt(void **state)
 static void test_isqrt_acc(void **state)
 {
 	struct tu_rng rng;
-	struct tu_worst w = { 0, 0 }, wi = { 0, 0 };
+	struct tu_worst w = { 0, 0 }, wi = { 0, 0 }, wn = { 0, 0 };
 	uint32_t sat = 0;
 	int i;
 
@@ -367,6 +454,21 @@ static void test_isqrt_acc(void **state)
 			assert_true(mot_isqrt_acc_inv(mot_acc_make((uint64_t)(n >> 64), (uint64_t)n),
 						      &inv, &sh) == r);
 			assert_true(sh >= 62 && sh <= 125);
+			{ /* without the last correction: the same inv, the root
+			   * within 1/2 + 2^-8 below 2^102 (long double: 64 bits) */
+				int64_t inv2;
+				unsigned sh2;
+				uint64_t r2 = mot_isqrt_acc_inv_near(
+					mot_acc_make((uint64_t)(n >> 64), (uint64_t)n), &inv2, &sh2);
+
+				assert_true(inv2 == inv && sh2 == sh);
+				if (!(n >> 102))
+					tu_worst_add(&wn,
+						     fabsl((long double)r2 - sqrtl((long double)n)),
+						     (double)n);
+				else
+					assert_true(r2 + 4 >= r && r2 <= r + 4);
+			}
 			tu_worst_add(&wi,
 				     fabsl(ldexpl((long double)inv, -(int)sh) * sqrtl((long double)n) - 1),
 				     (double)n);
@@ -380,6 +482,7 @@ static void test_isqrt_acc(void **state)
 	assert_int_equal(sat, 0);
 	tu_bound("trig.isqrt_acc", &w, 0, "units (exact)");
 	tu_bound("trig.isqrt_acc_inv 1/sqrt relative", &wi, 0x1p-58, "(1)");
+	tu_bound("trig.isqrt_acc_inv_near root (below 2^102)", &wn, 0.5 + 0x1p-8, "units");
 
 	assert_int_equal(mot_isqrt_acc(mot_acc_zero(), &sat), 0);
 	assert_int_equal(mot_isqrt_acc(mot_acc_from(2, 0), &sat), 1);
@@ -527,7 +630,9 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_sincos_accuracy), cmocka_unit_test(test_sincos_exact),
+		cmocka_unit_test(test_sincos64),
 		cmocka_unit_test(test_atan2_accuracy),  cmocka_unit_test(test_atan2_exact),
+		cmocka_unit_test(test_atan2_unit),
 		cmocka_unit_test(test_acos),            cmocka_unit_test(test_sqrt),
 		cmocka_unit_test(test_isqrt_acc),       cmocka_unit_test(test_rsqrt),
 		cmocka_unit_test(test_norm3),           cmocka_unit_test(test_portable_same_bits),
