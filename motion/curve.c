@@ -31,7 +31,7 @@ static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
 		u = eased_u(s, f - s->f0);
 	else
-		u = frac62(f - s->f0, &s->inv_w);
+		u = piece_u(f - s->f0, &s->inv_w);
 	if (c->kind == MOT_INTERP_LINEAR)
 		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
@@ -89,7 +89,7 @@ eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iter
 			if (!mot_ease_is_identity(&s->ease)) {
 				int64_t h = k[i + 1].frame - k[i].frame;
 
-				u = frac62(frame - k[i].frame, &s->inv_h);
+				u = piece_u(frame - k[i].frame, &s->inv_h);
 				u = mot_ease_apply62(&s->ease, u);
 				frame = k[i].frame + mot_acc_round(mot_acc_mul(u, h), 62, NULL);
 				if (frame <= c->span_f0)
@@ -171,7 +171,7 @@ static __attribute__((noinline)) mot_q32 eval_plain(const struct mot_curve *c,
 		return value_of(s->vref, poly_eval(s->c, (frame - s->f0) << s->ush), s->vsh, sat);
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
 		return piece_value(c, s, frame, sat);
-	u = frac62(frame - s->f0, &s->inv_w);
+	u = piece_u(frame - s->f0, &s->inv_w);
 	if (c->kind == MOT_INTERP_LINEAR)
 		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);

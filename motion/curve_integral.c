@@ -84,7 +84,7 @@ int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_curso
 	}
 	i = locate_seg(c, cur, frame);
 	a = seg_integral(c, i, frame - c->seg[i].f0,
-			 frac62(frame - c->seg[i].f0, &c->seg[i].inv_w));
+			 piece_u(frame - c->seg[i].f0, &c->seg[i].inv_w));
 	*out = mot_acc_add(c->seg[i].area, a);
 	return MOT_OK;
 }

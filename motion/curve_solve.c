@@ -492,11 +492,15 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	return u < 0 ? 0 : u;
 }
 
-/* The Newton start of piece s at the frame offset x = f - f0, by its rule. */
+/* The Newton start of piece s at the frame offset x = f - f0, by its rule:
+ * f is inside the piece, f0 <= f < f1 (the cursor's test or the lookup; a
+ * spline's last piece and the Bezier curve end at span_f1, past every f
+ * here; a spline's first piece starts at span_f0, mot_cv_prep_spline()),
+ * so the chord fraction is piece_u()'s, frac62()'s bits without its ends. */
 static inline __attribute__((always_inline)) int64_t
 start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 {
-	int64_t u = frac62(x, &s->inv_w);
+	int64_t u = piece_u(x, &s->inv_w);
 
 	if (s->start == START_INV)
 		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
@@ -522,9 +526,10 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		iters = &unused;
 	if (c->kind != MOT_INTERP_BEZIER) {
 		/* the cursor's piece, tested here: mot_cv_locate()'s first test
-		 * without the call */
+		 * without the call, and without its test of the last piece,
+		 * whose f1 is span_f1, past f */
 		j = cur ? cur->seg : c->nseg;
-		if (j >= c->nseg || f < c->seg[j].f0 || (j + 1 < c->nseg && f >= c->seg[j].f1))
+		if (j >= c->nseg || f < c->seg[j].f0 || f >= c->seg[j].f1)
 			j = locate_seg(c, cur, f);
 		s = &c->seg[j];
 		d = round_shift(f - s->fref, -s->fsh, NULL);
