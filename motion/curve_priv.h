@@ -272,13 +272,18 @@ static inline mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 uint32_t mot_cv_locate(const struct mot_curve *c, bool keys, uint32_t n, uint32_t hint,
 		       mot_q32 f) __attribute__((pure));
 
-/* The piece of frame f (span_f0 <= f), through the cursor when there is one. */
+/* The piece of frame f (span_f0 <= f), through the cursor when there is one:
+ * the cursor's piece tested here, mot_cv_locate()'s first test without the
+ * call (a piece's f1 is the next one's f0, the last's span_f1). */
 static inline uint32_t locate_seg(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
 {
-	uint32_t j = mot_cv_locate(c, false, c->nseg, cur ? cur->seg : 0, f);
+	uint32_t j = cur ? cur->seg : c->nseg;
 
-	if (cur)
-		cur->seg = j;
+	if (j >= c->nseg || f < c->seg[j].f0 || f >= c->seg[j].f1) {
+		j = mot_cv_locate(c, false, c->nseg, cur ? cur->seg : 0, f);
+		if (cur)
+			cur->seg = j;
+	}
 	return j;
 }
 

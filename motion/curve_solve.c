@@ -516,31 +516,28 @@ start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f,
 			   int *iters, uint32_t *sat)
 {
-	int unused;
 	const struct mot_curve_seg *s;
 	int64_t u, d, r, pw[MOT_BEZIER_MAX_KEYS - 1];
 	const int64_t *fw;
 	uint32_t m, j;
+	int it; /* the solve's iterations, a register: *iters written only
+		 * where asked for (mot_curve_eval() does not) */
 
-	if (!iters)
-		iters = &unused;
 	if (c->kind != MOT_INTERP_BEZIER) {
-		/* the cursor's piece, tested here: mot_cv_locate()'s first test
-		 * without the call, and without its test of the last piece,
-		 * whose f1 is span_f1, past f */
-		j = cur ? cur->seg : c->nseg;
-		if (j >= c->nseg || f < c->seg[j].f0 || f >= c->seg[j].f1)
-			j = locate_seg(c, cur, f);
-		s = &c->seg[j];
+		s = &c->seg[locate_seg(c, cur, f)];
 		d = round_shift(f - s->fref, -s->fsh, NULL);
-		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), iters);
+		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), &it);
+		if (iters)
+			*iters = it;
 		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 	}
 	s = &c->seg[0];
 	d = round_shift(f - s->fref, -s->fsh, NULL);
 	u = start_u(c, s, f - s->f0);
 	if (!c->power) {
-		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, iters);
+		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, &it);
+		if (iters)
+			*iters = it;
 		return bezier_value(c, u, sat);
 	}
 	/* the frame's coefficients are power_slot(c, 0 .. m - 1): entry 0's for
@@ -553,7 +550,9 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 			pw[j] = *power_slot(c, j);
 		fw = pw;
 	}
-	u = solve_u(FORM_POWER, c, s, fw, d, u, iters);
+	u = solve_u(FORM_POWER, c, s, fw, d, u, &it);
+	if (iters)
+		*iters = it;
 	if (m <= 8) {
 		r = m > 1 ? power_horner8(&c->seg[1], m, u, NULL) : mul62(s->c[1], u);
 		return value_of(s->vref, r, s->vsh, sat);
