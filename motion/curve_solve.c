@@ -492,6 +492,22 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	return u < 0 ? 0 : u;
 }
 
+/* The frame f at piece s's scale, (f - fref) 2^fsh: round_shift()'s bits,
+ * its common case (0 <= fsh < 64, a shift that fits) first with one test
+ * of the scale where it took three. */
+static inline __attribute__((always_inline)) int64_t frame_offset(const struct mot_curve_seg *s,
+								  mot_q32 f)
+{
+	int64_t x = f - s->fref, y;
+
+	if ((unsigned)s->fsh < 64) {
+		y = (int64_t)((uint64_t)x << s->fsh);
+		if (y >> s->fsh == x)
+			return y;
+	}
+	return round_shift(x, -s->fsh, NULL);
+}
+
 /* The Newton start of piece s at the frame offset x = f - f0, by its rule:
  * f is inside the piece, f0 <= f < f1 (the cursor's test or the lookup; a
  * spline's last piece and the Bezier curve end at span_f1, past every f
@@ -525,14 +541,14 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 
 	if (c->kind != MOT_INTERP_BEZIER) {
 		s = &c->seg[locate_seg(c, cur, f)];
-		d = round_shift(f - s->fref, -s->fsh, NULL);
+		d = frame_offset(s, f);
 		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), &it);
 		if (iters)
 			*iters = it;
 		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 	}
 	s = &c->seg[0];
-	d = round_shift(f - s->fref, -s->fsh, NULL);
+	d = frame_offset(s, f);
 	u = start_u(c, s, f - s->f0);
 	if (!c->power) {
 		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, &it);
