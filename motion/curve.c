@@ -16,11 +16,9 @@
 
 /* ---- evaluation -------------------------------------------------------------- */
 
-/* The value of an interpolating curve's piece s at a frame inside it: one
- * copy, called from every path but mot_curve_eval()'s plainest. */
-static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,
-						     const struct mot_curve_seg *s, mot_q32 f,
-						     uint32_t *sat)
+/* The value of an interpolating curve's piece s at a frame inside it. */
+static inline __attribute__((always_inline)) mot_q32
+piece_at(const struct mot_curve *c, const struct mot_curve_seg *s, mot_q32 f, uint32_t *sat)
 {
 	int64_t u;
 
@@ -31,10 +29,19 @@ static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,
 	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
 		u = eased_u(s, f - s->f0);
 	else
-		u = frac62(f - s->f0, &s->inv_w);
+		u = piece_u(f - s->f0, &s->inv_w);
 	if (c->kind == MOT_INTERP_LINEAR)
 		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
 	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+}
+
+/* The same, one copy, called from every path but mot_curve_eval()'s
+ * plainest (eval_plain(), which has it inline). */
+static __attribute__((noinline)) mot_q32 piece_value(const struct mot_curve *c,
+						     const struct mot_curve_seg *s, mot_q32 f,
+						     uint32_t *sat)
+{
+	return piece_at(c, s, f, sat);
 }
 
 /* A compact curve (keys only) strictly inside its span: step holds key i,
@@ -89,7 +96,7 @@ eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame, int *iter
 			if (!mot_ease_is_identity(&s->ease)) {
 				int64_t h = k[i + 1].frame - k[i].frame;
 
-				u = frac62(frame - k[i].frame, &s->inv_h);
+				u = piece_u(frame - k[i].frame, &s->inv_h);
 				u = mot_ease_apply62(&s->ease, u);
 				frame = k[i].frame + mot_acc_round(mot_acc_mul(u, h), 62, NULL);
 				if (frame <= c->span_f0)
@@ -158,23 +165,13 @@ static __attribute__((noinline)) mot_q32 eval_plain(const struct mot_curve *c,
 						    uint32_t *sat)
 {
 	const struct mot_curve_seg *s;
-	int64_t u;
 
 	if (c->span_ease)
 		return eval_warped(c, cur, frame, sat);
 	s = held_piece(c, cur, frame);
 	if (!s)
 		return eval_any(c, cur, frame, sat);
-	if (c->kind == MOT_INTERP_STEP)
-		return s->vref;
-	if (s->ush >= 0)
-		return value_of(s->vref, poly_eval(s->c, (frame - s->f0) << s->ush), s->vsh, sat);
-	if (c->seg_ease && !mot_ease_is_identity(&s->ease))
-		return piece_value(c, s, frame, sat);
-	u = frac62(frame - s->f0, &s->inv_w);
-	if (c->kind == MOT_INTERP_LINEAR)
-		return value_of(s->vref, mul62(s->c[1], u), s->vsh, sat);
-	return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+	return piece_at(c, s, frame, sat);
 }
 
 /*

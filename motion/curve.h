@@ -148,6 +148,8 @@ struct mot_curve_seg {
 		int64_t ic[4];   /* c[p] / (p + 1): the mean value (hermite integral) */
 		struct mot_ease_fused ef; /* linear, hermite with ease (no integral):
 					   * the plateau of ease in frames (ease.h) */
+		struct mot_udiv_inv inv_hd; /* linear with integral: f1 - f0, for
+					     * exact quotients (curve_integral.c) */
 	};
 	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
 	struct mot_ease ease;    /* slow-in/out of key interval j */

@@ -275,6 +275,12 @@ int mot_cv_prep_spline(struct mot_curve *c)
 	basis(c, nb, &den);
 	for (j = 0; j < c->nseg && !err; j++)
 		err = prep_piece(c, j, nb, den);
+	/* the first piece starts at the first key: its F(0) is the tripled
+	 * key's frame, a weighted mean of three equal numbers, exact. Held so,
+	 * every frame the solve sees is at or past some piece's f0
+	 * (curve_solve.c's start_u() relies on it) */
+	if (!err && c->seg[0].f0 > k[0].frame)
+		c->seg[0].f0 = k[0].frame;
 	for (j = 0; j < c->nseg && !err; j++) {
 		struct mot_curve_seg *s = &c->seg[j];
 

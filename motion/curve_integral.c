@@ -34,13 +34,17 @@ static mot_acc seg_integral(const struct mot_curve *c, uint32_t i, int64_t e, in
 	if (c->kind == MOT_INTERP_LINEAR) {
 		/* |dv| < 2^63 and 0 <= e <= h < 2^63 (curve.h limits), so every
 		 * quotient below fits 63 bits */
-		int64_t h = s->f1 - s->f0, dv = c->keys[i + 1].value - s->vref;
+		int64_t dv = c->keys[i + 1].value - s->vref;
 		int64_t adv = dv < 0 ? -dv : dv;
 		uint64_t r, r2, q, q2;
-		mot_acc t;
+		mot_acc t, ee = mot_acc_mul(e, e), ar;
 
-		q = mot_acc_udiv(mot_acc_mul(e, e), (uint64_t)h, &r, NULL);
-		q2 = mot_acc_udiv(mot_acc_mul(adv, (int64_t)r), (uint64_t)h, &r2, NULL);
+		/* by h = f1 - f0's prepared reciprocal (mot_cv_prep_area()):
+		 * e^2 < h 2^63 and adv r < h 2^63, high words below h, the
+		 * quotients exact (mot_acc_udiv()'s) */
+		q = mot_udiv_by_inv(mot_acc_hi(ee), mot_acc_lo(ee), &s->inv_hd, &r);
+		ar = mot_acc_mul(adv, (int64_t)r);
+		q2 = mot_udiv_by_inv(mot_acc_hi(ar), mot_acc_lo(ar), &s->inv_hd, &r2);
 		t = mot_acc_add(mot_acc_mul(adv, (int64_t)q), mot_acc_from((int64_t)q2, 0));
 		/* half of t + r2/h, rounded to nearest, ties toward +infinity */
 		if (dv >= 0)
@@ -84,7 +88,7 @@ int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_curso
 	}
 	i = locate_seg(c, cur, frame);
 	a = seg_integral(c, i, frame - c->seg[i].f0,
-			 frac62(frame - c->seg[i].f0, &c->seg[i].inv_w));
+			 piece_u(frame - c->seg[i].f0, &c->seg[i].inv_w));
 	*out = mot_acc_add(c->seg[i].area, a);
 	return MOT_OK;
 }
@@ -99,6 +103,12 @@ int mot_cv_prep_area(struct mot_curve *c)
 	mot_acc a = mot_acc_zero(), zero;
 
 	c->area_first = a;
+	for (j = 0; j + 1 < n && c->kind == MOT_INTERP_LINEAR; j++) {
+		int err = mot_udiv_inv_init(&c->seg[j].inv_hd, (uint64_t)(k[j + 1].frame - k[j].frame));
+
+		if (err)
+			return err;
+	}
 	for (j = 0; j + 1 < n; j++) {
 		c->seg[j].area = a;
 		a = mot_acc_add(a, seg_integral(c, j, k[j + 1].frame - k[j].frame, ONE62));

@@ -218,6 +218,24 @@ static inline int64_t frac62(int64_t x, const struct mot_recip *r)
 	return s > ONE62 ? ONE62 : s;
 }
 
+/*
+ * frac62()'s u for an offset x in [0, d) of a piece of width d, as the
+ * caller knows it to be (scene.c's memo span, curve.c's held piece, the
+ * solve's piece): x < d < 2^(shift - 30) (mot_recip_init()), so neither of
+ * frac62()'s ends past 0 is taken and x = 0 gives 0 by the product itself
+ * (also for d = 1, shift 30). The same bits without the branches, whose
+ * constants would make the callers' products full 128-bit ones (a merge of
+ * 128-bit values where a 64-bit u was).
+ */
+static inline __attribute__((always_inline)) int64_t piece_u(int64_t x, const struct mot_recip *r)
+{
+	uint64_t ov = 0; /* below 2^126: never set */
+	int64_t s = mot_acc_round_ov(
+		mot_acc_mul((int64_t)((uint64_t)x << (93 - r->shift)), r->m), 63, &ov);
+
+	return s > ONE62 ? ONE62 : s;
+}
+
 /* The eased parameter, Q2.62, of an eased linear or hermite piece at an
  * offset x in [0, f1 - f0): on the profile's plateau fused with the
  * fraction of the width (struct mot_ease_fused), else frac62 and the
@@ -235,7 +253,7 @@ static inline __attribute__((always_inline)) int64_t eased_u(const struct mot_cu
 				   62);
 		return u < 0 ? 0 : u > ONE62 ? ONE62 : u;
 	}
-	return mot_ease_apply62(&s->ease, frac62(x, &s->inv_w));
+	return mot_ease_apply62(&s->ease, piece_u(x, &s->inv_w));
 }
 
 /* The strand-wide time warp: a frame strictly inside the span to its eased
@@ -254,13 +272,18 @@ static inline mot_q32 span_warp(const struct mot_curve *c, mot_q32 f)
 uint32_t mot_cv_locate(const struct mot_curve *c, bool keys, uint32_t n, uint32_t hint,
 		       mot_q32 f) __attribute__((pure));
 
-/* The piece of frame f (span_f0 <= f), through the cursor when there is one. */
+/* The piece of frame f (span_f0 <= f), through the cursor when there is one:
+ * the cursor's piece tested here, mot_cv_locate()'s first test without the
+ * call (a piece's f1 is the next one's f0, the last's span_f1). */
 static inline uint32_t locate_seg(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f)
 {
-	uint32_t j = mot_cv_locate(c, false, c->nseg, cur ? cur->seg : 0, f);
+	uint32_t j = cur ? cur->seg : c->nseg;
 
-	if (cur)
-		cur->seg = j;
+	if (j >= c->nseg || f < c->seg[j].f0 || f >= c->seg[j].f1) {
+		j = mot_cv_locate(c, false, c->nseg, cur ? cur->seg : 0, f);
+		if (cur)
+			cur->seg = j;
+	}
 	return j;
 }
 

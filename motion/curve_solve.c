@@ -492,11 +492,31 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	return u < 0 ? 0 : u;
 }
 
-/* The Newton start of piece s at the frame offset x = f - f0, by its rule. */
+/* The frame f at piece s's scale, (f - fref) 2^fsh: round_shift()'s bits,
+ * its common case (0 <= fsh < 64, a shift that fits) first with one test
+ * of the scale where it took three. */
+static inline __attribute__((always_inline)) int64_t frame_offset(const struct mot_curve_seg *s,
+								  mot_q32 f)
+{
+	int64_t x = f - s->fref, y;
+
+	if ((unsigned)s->fsh < 64) {
+		y = (int64_t)((uint64_t)x << s->fsh);
+		if (y >> s->fsh == x)
+			return y;
+	}
+	return round_shift(x, -s->fsh, NULL);
+}
+
+/* The Newton start of piece s at the frame offset x = f - f0, by its rule:
+ * f is inside the piece, f0 <= f < f1 (the cursor's test or the lookup; a
+ * spline's last piece and the Bezier curve end at span_f1, past every f
+ * here; a spline's first piece starts at span_f0, mot_cv_prep_spline()),
+ * so the chord fraction is piece_u()'s, frac62()'s bits without its ends. */
 static inline __attribute__((always_inline)) int64_t
 start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 {
-	int64_t u = frac62(x, &s->inv_w);
+	int64_t u = piece_u(x, &s->inv_w);
 
 	if (s->start == START_INV)
 		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
@@ -512,30 +532,28 @@ start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 f,
 			   int *iters, uint32_t *sat)
 {
-	int unused;
 	const struct mot_curve_seg *s;
 	int64_t u, d, r, pw[MOT_BEZIER_MAX_KEYS - 1];
 	const int64_t *fw;
 	uint32_t m, j;
+	int it; /* the solve's iterations, a register: *iters written only
+		 * where asked for (mot_curve_eval() does not) */
 
-	if (!iters)
-		iters = &unused;
 	if (c->kind != MOT_INTERP_BEZIER) {
-		/* the cursor's piece, tested here: mot_cv_locate()'s first test
-		 * without the call */
-		j = cur ? cur->seg : c->nseg;
-		if (j >= c->nseg || f < c->seg[j].f0 || (j + 1 < c->nseg && f >= c->seg[j].f1))
-			j = locate_seg(c, cur, f);
-		s = &c->seg[j];
-		d = round_shift(f - s->fref, -s->fsh, NULL);
-		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), iters);
+		s = &c->seg[locate_seg(c, cur, f)];
+		d = frame_offset(s, f);
+		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), &it);
+		if (iters)
+			*iters = it;
 		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
 	}
 	s = &c->seg[0];
-	d = round_shift(f - s->fref, -s->fsh, NULL);
+	d = frame_offset(s, f);
 	u = start_u(c, s, f - s->f0);
 	if (!c->power) {
-		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, iters);
+		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, &it);
+		if (iters)
+			*iters = it;
 		return bezier_value(c, u, sat);
 	}
 	/* the frame's coefficients are power_slot(c, 0 .. m - 1): entry 0's for
@@ -548,7 +566,9 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 			pw[j] = *power_slot(c, j);
 		fw = pw;
 	}
-	u = solve_u(FORM_POWER, c, s, fw, d, u, iters);
+	u = solve_u(FORM_POWER, c, s, fw, d, u, &it);
+	if (iters)
+		*iters = it;
 	if (m <= 8) {
 		r = m > 1 ? power_horner8(&c->seg[1], m, u, NULL) : mul62(s->c[1], u);
 		return value_of(s->vref, r, s->vsh, sat);

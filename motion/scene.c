@@ -429,23 +429,6 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->how = c->kind == MOT_INTERP_LINEAR ? PIECE_LINEAR : PIECE_CUBIC;
 }
 
-/*
- * frac62()'s u for an offset x in [0, d) of a piece of width d, as the
- * memo's span guarantees: x < d < 2^(shift - 30) (mot_recip_init()), so
- * neither of frac62()'s ends past 0 is taken and x = 0 gives 0 by the
- * product itself (also for d = 1, shift 30). The same bits without the
- * branches, whose constants would make the callers' products full 128-bit
- * ones (a merge of 128-bit values where a 64-bit u was).
- */
-static inline __attribute__((always_inline)) int64_t piece_u(int64_t x, const struct mot_recip *r)
-{
-	uint64_t ov = 0; /* below 2^126: never set */
-	int64_t s = mot_acc_round_ov(
-		mot_acc_mul((int64_t)((uint64_t)x << (93 - r->shift)), r->m), 63, &ov);
-
-	return s > ONE62 ? ONE62 : s;
-}
-
 /* The first pass's own case (op): the memo's piece or held value at a frame
  * of its span, under a strand-wide ease at the warped frame; false where
  * the warped frame leaves the piece, or where the value leaves int64 as

@@ -242,13 +242,16 @@ mot_q32 mot_spin_turns(const struct mot_curve *rpm, struct mot_cursor *cur,
 	/*
 	 * turns = integral(rpm dt) / 60 with dt = df * den / num seconds, so
 	 * turns = I * den / (60 num) for the curve's integral I in rpm x frames
-	 * (Q64.64). I * den needs up to 160 bits: it is formed in three 64-bit
-	 * words and divided by 60 num by schoolbook long division, one word at a
-	 * time (each word's quotient exact, from the timing's reciprocal of 60
-	 * num), then rounded once to Q32.32. Nothing is summed from tick to tick.
+	 * (Q64.64), rounded once to Q32.32: with N = |I| den (up to 151 bits,
+	 * three 64-bit words) and D = 60 num (below 2^31),
+	 * round(floor(N / D) / 2^32) = floor((N + D 2^31) / (D 2^32))
+	 * = floor(floor((N + D 2^31) / 2^32) / D), one exact division of 128
+	 * bits by D through the timing's reciprocal of it (where the schoolbook
+	 * long division took three, a word each). Nothing is summed from tick to
+	 * tick.
 	 */
-	mot_acc integ, p;
-	uint64_t w2, w1, w0, q2, q1, q0, r, res;
+	mot_acc integ;
+	uint64_t w2, w1, w0, pl, r, hi, lo, q, dd, half;
 	bool neg;
 
 	if (mot_curve_integral(&integ, rpm, cur, frame, sat) != MOT_OK) {
@@ -259,34 +262,26 @@ mot_q32 mot_spin_turns(const struct mot_curve *rpm, struct mot_cursor *cur,
 	neg = mot_acc_is_neg(integ);
 	if (neg)
 		integ = mot_acc_neg(integ);
-	/* (H * 2^64 + L) * den = H*den * 2^64 + L*den */
-	p = mot_acc_mul((int64_t)(mot_acc_lo(integ) >> 1), (int64_t)t->den);
-	p = mot_acc_add(p, p); /* L*den without signed overflow: (L>>1)*den*2 ... */
-	if (mot_acc_lo(integ) & 1)
-		p = mot_acc_add(p, mot_acc_from((int64_t)t->den, 0));
-	w0 = mot_acc_lo(p);
-	w1 = mot_acc_hi(p);
-	p = mot_acc_mul((int64_t)mot_acc_hi(integ), (int64_t)t->den); /* H < 2^63 */
-	w1 += mot_acc_lo(p);
-	w2 = mot_acc_hi(p) + (w1 < mot_acc_lo(p));
-
-	/* by 60 num through its prepared reciprocal: three quotient words,
-	 * each exact, without a division */
-	q2 = mot_udiv_by_inv(0, w2, &t->per_turn, &r);
-	q1 = mot_udiv_by_inv(r, w1, &t->per_turn, &r);
-	q0 = mot_udiv_by_inv(r, w0, &t->per_turn, &r);
-	/* round(q / 2^32) = (q + 2^31) >> 32 on the 192-bit quotient q */
-	q0 += (uint64_t)1 << 31;
-	if (q0 < ((uint64_t)1 << 31)) {
-		q1++;
-		if (q1 == 0)
-			q2++;
+	/* N = (H 2^64 + L) den, H < 2^63 */
+	w1 = mot_umul_hi(mot_acc_lo(integ), t->den, &w0);
+	w2 = mot_umul_hi(mot_acc_hi(integ), t->den, &pl);
+	w1 += pl;
+	w2 += w1 < pl;
+	/* + D 2^31 (below 2^62: num <= MOT_RATE_MAX) */
+	dd = t->per_turn.dn >> t->per_turn.s;
+	half = dd << 31;
+	w0 += half;
+	w1 += w0 < half;
+	w2 += w1 == 0 && w0 < half;
+	/* / 2^32: the quotient by D fits 64 bits only for hi < D */
+	hi = (w2 << 32) | (w1 >> 32);
+	lo = (w1 << 32) | (w0 >> 32);
+	if ((w2 >> 32) == 0 && hi < dd) {
+		q = mot_udiv_by_inv(hi, lo, &t->per_turn, &r);
+		if ((q >> 63) == 0)
+			return neg ? -(mot_q32)q : (mot_q32)q;
 	}
-	if (q2 != 0 || (q1 >> 31) != 0) {
-		if (sat)
-			*sat |= MOT_SAT_OVERFLOW;
-		return neg ? MOT_Q32_MIN : MOT_Q32_MAX;
-	}
-	res = (q1 << 32) | (q0 >> 32);
-	return neg ? -(mot_q32)res : (mot_q32)res;
+	if (sat)
+		*sat |= MOT_SAT_OVERFLOW;
+	return neg ? MOT_Q32_MIN : MOT_Q32_MAX;
 }
