@@ -218,11 +218,6 @@ static uint64_t add_sat(uint64_t a, uint64_t b)
 	return a + b < a ? UINT64_MAX : a + b;
 }
 
-static uint64_t mag(int64_t x)
-{
-	return x < 0 ? 0 - (uint64_t)x : (uint64_t)x;
-}
-
 /* |ref + round(P(u) / 2^sh)| for u in [0, 1] and P with coefficients c[0..n)
  * evaluated with `rounds` roundings (Horner's rule, curve_priv.h: the
  * partial sums stay within sum |c| + rounds). */
@@ -232,12 +227,12 @@ static uint64_t poly_bound(mot_q32 ref, const int64_t *c, uint32_t n, uint32_t r
 	uint32_t p;
 
 	for (p = 0; p < n; p++)
-		s = add_sat(s, mag(c[p]));
+		s = add_sat(s, mot_mag(c[p]));
 	if (sh > 0)
 		s = sh >= 64 ? 1 : (s >> sh) + 1;
 	else if (sh < 0)
 		s = -sh >= 64 || s > UINT64_MAX >> -sh ? UINT64_MAX : s << -sh;
-	return add_sat(add_sat(mag(ref), s), 1);
+	return add_sat(add_sat(mot_mag(ref), s), 1);
 }
 
 uint64_t mot_curve_bound(const struct mot_curve *c)
@@ -248,7 +243,7 @@ uint64_t mot_curve_bound(const struct mot_curve *c)
 	if (!c || c->nkeys == 0)
 		return 0;
 	for (i = 0; i < c->nkeys; i++) {
-		uint64_t v = mag(c->keys[i].value), d = mag(c->keys[i].value - c->keys[0].value);
+		uint64_t v = mot_mag(c->keys[i].value), d = mot_mag(c->keys[i].value - c->keys[0].value);
 
 		b = v > b ? v : b;
 		off = d > off ? d : off;

@@ -149,11 +149,6 @@ int mot_mat_decompose(struct mot_decomp *out, struct mot_mat *rot_mat, const str
 }
 
 /* |v| as an unsigned number (exact for every v) */
-static inline uint64_t mag(mot_q32 v)
-{
-	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
-}
-
 void mot_mat_compose(struct mot_mat *out, const struct mot_decomp *d, uint32_t *sat)
 {
 	mot_mat_compose_r(out, d, NULL, sat);
@@ -180,8 +175,8 @@ void mot_mat_compose_r(struct mot_mat *out, const struct mot_decomp *d,
 	int i, j;
 
 	/* every |sh| below 2^62: the OR of their magnitudes is */
-	big = mag(sh[0][0]) | mag(sh[1][0]) | mag(sh[1][1]) | mag(sh[2][0]) | mag(sh[2][1]) |
-	      mag(sh[2][2]);
+	big = mot_mag(sh[0][0]) | mot_mag(sh[1][0]) | mot_mag(sh[1][1]) | mot_mag(sh[2][0]) | mot_mag(sh[2][1]) |
+	      mot_mag(sh[2][2]);
 	if (big >= (uint64_t)lim || (!rp && mot_quat_to_rot_q62(own.r, &d->rot, sat) != MOT_OK)) {
 		struct mot_mat a = { { { sh[0][0], 0, 0 }, { sh[1][0], sh[1][1], 0 },
 				       { sh[2][0], sh[2][1], sh[2][2] }, { 0, 0, 0 } } };

@@ -488,6 +488,12 @@ int64_t mot_muldiv(int64_t a, int64_t m, int64_t d, uint32_t *sat);
 /* floor(n / d) for d > 0, and the remainder in [0, d). Exact for all n. */
 int64_t mot_floordiv(int64_t n, int64_t d, int64_t *rem);
 
+/* |v| as an unsigned number, exact for every v (INT64_MIN included) */
+static inline uint64_t mot_mag(int64_t v)
+{
+	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+}
+
 /* The unsigned 128-bit product a * b: the high word, the low one in *lo. */
 static inline uint64_t mot_umul_hi(uint64_t a, uint64_t b, uint64_t *lo)
 {

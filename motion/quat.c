@@ -46,11 +46,6 @@ static inline int64_t round_fits(mot_acc x, unsigned shift)
 #endif
 }
 
-static inline uint64_t mag(mot_q32 v)
-{
-	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
-}
-
 /*
  * sin and cos of an angle held with 64 fractional bits of a turn (a Q64.64
  * mot_acc): mot_sincos64() of its phase, one rounding of each. Half angles
@@ -386,9 +381,9 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 		s->c = (struct mot_quat){ 0, 0, 0, 0 };
 	/* |a_i cos + c_i sin| <= sqrt(a_i^2 + c_i^2) <= sqrt 2, nlerp's
 	 * results are unit, the ends are a and b */
-	s->small = (mag(a->w) | mag(a->x) | mag(a->y) | mag(a->z) | mag(bb.w) | mag(bb.x) |
-		    mag(bb.y) | mag(bb.z) | mag(s->c.w) | mag(s->c.x) | mag(s->c.y) |
-		    mag(s->c.z)) <= (uint64_t)ONE;
+	s->small = (mot_mag(a->w) | mot_mag(a->x) | mot_mag(a->y) | mot_mag(a->z) | mot_mag(bb.w) | mot_mag(bb.x) |
+		    mot_mag(bb.y) | mot_mag(bb.z) | mot_mag(s->c.w) | mot_mag(s->c.x) | mot_mag(s->c.y) |
+		    mot_mag(s->c.z)) <= (uint64_t)ONE;
 }
 
 /* mot_slerp_eval()'s sums for arcs not within +-1: saturating */
@@ -481,7 +476,7 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 	if (!small) { /* known below 2 (mot_squad_eval) or tested */
 		UNROLL4
 		for (i = 0; i < 4; i++)
-			big |= mag(av[i]) | mag(bv[i]);
+			big |= mot_mag(av[i]) | mot_mag(bv[i]);
 		if (big >= (uint64_t)1 << 33)
 			return false;
 	}

@@ -600,12 +600,6 @@ static const struct mot_rot_q62 *free_quat(struct mot_quat *q, const struct mot_
 				  g, &ev->sat);
 }
 
-/* |v| as an unsigned number (exact for every v) */
-static inline uint64_t mag(mot_q32 v)
-{
-	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
-}
-
 /*
  * The linear part S . H . R and the translation of a free node (channels
  * without keys at their rest values). Returns false when the node has no
@@ -675,8 +669,8 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 	 * integers are not the compiler's compose_r() does it all (one copy
 	 * of the sums: less code, as the kernels above) */
 	fits = !shs || (small_kernels &&
-			(mag(v[MOT_FREE_SX]) | mag(v[MOT_FREE_SY]) | mag(v[MOT_FREE_SZ]) |
-			 mag(v[MOT_FREE_HXY]) | mag(v[MOT_FREE_HXZ]) | mag(v[MOT_FREE_HYZ])) <
+			(mot_mag(v[MOT_FREE_SX]) | mot_mag(v[MOT_FREE_SY]) | mot_mag(v[MOT_FREE_SZ]) |
+			 mot_mag(v[MOT_FREE_HXY]) | mot_mag(v[MOT_FREE_HXZ]) | mot_mag(v[MOT_FREE_HYZ])) <
 				(uint64_t)1 << 40);
 	if (fits && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
 		const int64_t(*rr)[3] = (held ? held : &r)->r;

@@ -221,14 +221,9 @@ static mot_q32 atan_octant(uint64_t y, uint64_t x)
 	return (mot_trig_atan_q58[i] + mulsh(u, w, 64) + ((int64_t)1 << 25)) >> 26;
 }
 
-static inline uint64_t mag64(int64_t v)
-{
-	return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
-}
-
 mot_q32 mot_atan2(mot_q32 y, mot_q32 x)
 {
-	uint64_t ax = mag64(x), ay = mag64(y);
+	uint64_t ax = mot_mag(x), ay = mot_mag(y);
 	mot_q32 a;
 
 	if (ay > ax)
