@@ -151,8 +151,20 @@ struct mot_curve_seg {
 		struct mot_udiv_inv inv_hd; /* linear with integral: f1 - f0, for
 					     * exact quotients (curve_integral.c) */
 	};
-	struct mot_recip inv_h;  /* 1 / width of key interval j (approximating kinds) */
-	struct mot_ease ease;    /* slow-in/out of key interval j */
+	union {
+		struct {
+			struct mot_recip inv_h; /* 1 / width of key interval j
+						 * (approximating kinds) */
+			struct mot_ease ease;   /* slow-in/out of key interval j */
+		};
+		/* START_TAB (bspline, beta, on a curve without any key
+		 * interval's ease, whose inv_h and ease it never reads: every
+		 * ease is the identity): the Newton start, u on each half of the
+		 * chord fraction t as a degree-7 polynomial in x = 4 t - 1 or
+		 * 4 t - 3, its coefficients in Q1.30, x^0 first
+		 * (curve_approx.c, tab_start()) */
+		int32_t ut[16];
+	};
 	union {
 		mot_acc area;    /* integral from frame 0 to key j, value x frames, Q64.64 */
 		/* START_INV (bspline, beta, bezier: no integral): the Newton

@@ -60,6 +60,7 @@ enum {
 	START_CUBE0, /* frame(u) = frame(0) + w u^3: u0 ~ cbrt of the chord fraction */
 	START_CUBE1, /* frame(u) = frame(1) - w (1 - u)^3: mirrored */
 	START_INV,   /* u0 = the inverse's Hermite cubics in the chord fraction (seg->us[]) */
+	START_TAB,   /* u0 = the inverse's degree-7 polynomials on the halves (seg->ut[]) */
 };
 
 /* ---- 128-bit and scaling helpers (curve_poly.c) ------------------------------ */

@@ -145,6 +145,38 @@ static int64_t inv62(const uint16_t us[8], int64_t t)
 		      (int64_t)us[4 + k] << 44, s);
 }
 
+/*
+ * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
+ * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
+ * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
+ * by Horner's rule in Q1.62 with the partial sum's top 33 bits, a 64-bit
+ * product a step (no 128-bit one): off by 2^-31 a step, below 2^-27 in all
+ * with the coefficients' roundings, where a piece's tolerance is 2^-16 ..
+ * 2^-31 and most solves' 2^-22 .. 2^-24. The coefficients' magnitudes sum
+ * below 2: every partial sum is below 2 in Q1.62, its top bits below 2^32,
+ * the products below 2^63. Clamped to [0, 1].
+ */
+static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
+{
+	int64_t x = t >> 31, r;
+	const int32_t *a = ut;
+
+	if (x >= (int64_t)1 << 30) {
+		a += 8;
+		x -= (int64_t)1 << 30;
+	}
+	x = 4 * x - ((int64_t)1 << 31);
+	r = (int64_t)a[7] * ((int64_t)1 << 32);
+	r = (r >> 31) * x + (int64_t)a[6] * ((int64_t)1 << 32);
+	r = (r >> 31) * x + (int64_t)a[5] * ((int64_t)1 << 32);
+	r = (r >> 31) * x + (int64_t)a[4] * ((int64_t)1 << 32);
+	r = (r >> 31) * x + (int64_t)a[3] * ((int64_t)1 << 32);
+	r = (r >> 31) * x + (int64_t)a[2] * ((int64_t)1 << 32);
+	r = (r >> 31) * x + (int64_t)a[1] * ((int64_t)1 << 32);
+	r = (r >> 31) * x + (int64_t)a[0] * ((int64_t)1 << 32);
+	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
+}
+
 /* ---- frame(u) and value(u) of a Bezier curve ------------------------------------ */
 
 /* Horner's rule on the power form (curve_bezier.c), a[k - 1] multiplying
@@ -410,7 +442,7 @@ enum form { FORM_SPLINE, FORM_POWER, FORM_CASTELJAU };
  *
  * Inlined once per form with the form a constant, so that an iteration
  * tests nothing of the curve's kind (the solve is a third of a random
- * scene's instructions, mostly two iterations each).
+ * scene's instructions, one or two iterations each).
  */
 static inline __attribute__((always_inline)) int64_t
 solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_seg *s,
@@ -518,6 +550,8 @@ start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 {
 	int64_t u = piece_u(x, &s->inv_w);
 
+	if (s->start == START_TAB)
+		return tab62(s->ut, u);
 	if (s->start == START_INV)
 		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
 	if (s->start == START_CUBE0)
