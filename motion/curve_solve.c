@@ -149,16 +149,19 @@ static int64_t inv62(const uint16_t us[8], int64_t t)
  * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
  * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
  * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
- * by Horner's rule in Q1.62 with the partial sum's top 33 bits, a 64-bit
- * product a step (no 128-bit one): off by 2^-31 a step, below 2^-27 in all
- * with the coefficients' roundings, where a piece's tolerance is 2^-16 ..
- * 2^-31 and most solves' 2^-22 .. 2^-24. The coefficients' magnitudes sum
- * below 2: every partial sum is below 2 in Q1.62, its top bits below 2^32,
- * the products below 2^63. Clamped to [0, 1].
+ * as E(x^2) + x O(x^2), the even and the odd coefficients each by Horner's
+ * rule in x^2: two chains of three products side by side, where one chain
+ * in x took seven (the start's latency is the solve's). In Q1.62 with a
+ * partial sum's top 33 bits, a 64-bit product a step (no 128-bit one): off
+ * by 2^-31 a step, below 2^-27 in all with x^2's and the coefficients'
+ * roundings, where a piece's tolerance is 2^-16 .. 2^-31 and most solves'
+ * 2^-22 .. 2^-24. The coefficients' magnitudes sum below 2: every partial
+ * sum, and E + x O, is below 2 in Q1.62, its top bits below 2^32, the
+ * products below 2^63. Clamped to [0, 1].
  */
 static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
 {
-	int64_t x = t >> 31, r;
+	int64_t x = t >> 31, y, e, o, r;
 	const int32_t *a = ut;
 
 	if (x >= (int64_t)1 << 30) {
@@ -166,14 +169,16 @@ static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16],
 		x -= (int64_t)1 << 30;
 	}
 	x = 4 * x - ((int64_t)1 << 31);
-	r = (int64_t)a[7] * ((int64_t)1 << 32);
-	r = (r >> 31) * x + (int64_t)a[6] * ((int64_t)1 << 32);
-	r = (r >> 31) * x + (int64_t)a[5] * ((int64_t)1 << 32);
-	r = (r >> 31) * x + (int64_t)a[4] * ((int64_t)1 << 32);
-	r = (r >> 31) * x + (int64_t)a[3] * ((int64_t)1 << 32);
-	r = (r >> 31) * x + (int64_t)a[2] * ((int64_t)1 << 32);
-	r = (r >> 31) * x + (int64_t)a[1] * ((int64_t)1 << 32);
-	r = (r >> 31) * x + (int64_t)a[0] * ((int64_t)1 << 32);
+	y = (x * x) >> 31;
+	e = (int64_t)a[6] * ((int64_t)1 << 32);
+	o = (int64_t)a[7] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[4] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[5] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[2] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[3] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[0] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[1] * ((int64_t)1 << 32);
+	r = (o >> 31) * x + e;
 	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
 }
 
