@@ -68,18 +68,21 @@ static inline int64_t mul62f(int64_t a, int64_t u)
 
 /*
  * A spline piece's frame F(u) = c0 + u (c1 + u (c2 + u c3)), poly_eval()'s
- * products and so its bits, and its derivative from the same steps in one
- * product more: with a = c3 u, t1 = c2 + a and t2 = c1 + u t1,
- * F'(u) = c1 + 2 c2 u + 3 c3 u^2 = t2 + u (t1 + a), where poly_deriv() took
- * two (|t1 + a| <= |c2| + 2 |c3| <= 2^62, |F'| < 2^63). c0 in place of c[0]:
- * the solve's F(u) - d with c0 = c[0] - d, the same sum.
+ * products and so its bits (inv_start()'s bisection placed the start's
+ * table on this F), and its derivative in one product more: with a = c3 u
+ * and t1 = c2 + a, F'(u) = c1 + u (2 c2 + 3 c3 u) = c1 + u (2 t1 + a). The
+ * derivative is the iteration's critical path (ratio62()'s division waits
+ * for it; F is needed only after), so it leaves F's chain at t1: one
+ * product after a, where t2 + u (t1 + a) with t2 = c1 + u t1 waited for
+ * two (|2 t1 + a| <= 2 |c2| + 3 |c3| + 2 <= 3 2^61, |F'| < 2^63). c0 in
+ * place of c[0]: the solve's F(u) - d with c0 = c[0] - d, the same sum.
  */
 static inline int64_t poly_frame(const int64_t c[4], int64_t c0, int64_t u, int64_t *df)
 {
-	int64_t a = mul62(c[3], u), t1 = a + c[2], t2 = mul62(t1, u) + c[1];
+	int64_t a = mul62(c[3], u), t1 = a + c[2];
 
-	*df = t2 + mul62f(t1 + a, u);
-	return mul62(t2, u) + c0;
+	*df = c[1] + mul62f(2 * t1 + a, u);
+	return mul62(mul62(t1, u) + c[1], u) + c0;
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
