@@ -18,8 +18,8 @@
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-29.4, with |q| <
- * 2^62; false when it would not fit. The top 32 bits a of |r| times a
+ * |q| for q = r * 2^62 / d in Q2.62, d > 0, to a relative 2^-29.4, with
+ * |q| < 2^62; false when it would not fit. The top 32 bits a of |r| times a
  * reciprocal x = 2^63 / b of d's top 32 bits b: one 64-bit division, exact,
  * so the same on every target (the hardware's on x86_64 and aarch64, a
  * dozen cycles; libgcc's elsewhere), and a 32 x 32 product. Three
@@ -29,26 +29,30 @@
  * solve's own convergence makes up the rest. The product a x is in [2^62,
  * 2^64), so q is it shifted right, never left: fewer tests than a quotient
  * of |r| moved up to 62 bits, which q had to be shifted either way from.
+ * The sign is the caller's (r's), applied without a branch (solve_u()).
  */
-static inline bool ratio62(int64_t r, int64_t d, int64_t *q)
+static inline bool ratio62(int64_t r, int64_t d, int64_t *aq)
 {
-	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, p;
-	int cr, cd, sh;
+	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, p, b;
+	int cr, ld, sh;
 
 	if (ar == 0) {
-		*q = 0;
+		*aq = 0;
 		return true;
 	}
 	cr = __builtin_clzll(ar);
-	cd = __builtin_clzll((uint64_t)d);
-	/* |r| ~ a 2^(32 - cr), d ~ b 2^(32 - cd), a and b in [2^31, 2^32), x in
-	 * (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(cd - cr - 1) */
-	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / (((uint64_t)d << cd) >> 32));
-	sh = cr - cd + 1;
+	ld = __builtin_clzll((uint64_t)d) ^ 63; /* d's top bit, bsr on x86_64 */
+	/* b = d's top 32 bits, (d << clz(d)) >> 32, in one shift where d has
+	 * them (the division waits for b: a shift less on the iteration's
+	 * path) */
+	b = __builtin_expect(ld >= 31, 1) ? (uint64_t)d >> (ld - 31) : (uint64_t)d << (31 - ld);
+	/* |r| ~ a 2^(32 - cr), d ~ b 2^(ld - 31), a and b in [2^31, 2^32), x
+	 * in (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(62 - ld - cr) */
+	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / b);
+	sh = cr + ld - 62;
 	if (sh <= 0 || (sh == 1 && p >> 63))
 		return false; /* |q| >= 2^62 */
-	p = sh >= 64 ? 0 : p >> sh;
-	*q = r < 0 ? -(int64_t)p : (int64_t)p;
+	*aq = (int64_t)(p >> sh); /* sh <= 63: cr <= 63, ld <= 62 (d > 0) */
 	return true;
 }
 
@@ -428,7 +432,7 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	int it;
 
 	for (it = 1; it <= NEWTON_MAX_IT; it++) {
-		int64_t f, df, du = 0, un = 0;
+		int64_t f, df, adu = 0, step = 0, un = 0;
 		bool newton;
 
 		if (form == FORM_POWER) {
@@ -454,25 +458,35 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		}
 		if (lo >= hi) /* the root lies beyond an end of the piece */
 			break;
-		newton = df > 0 && ratio62(f, df, &du);
+		newton = df > 0 && ratio62(f, df, &adu);
 		if (newton) {
+			/* un = u - du, du = adu with f's sign: a conditional
+			 * negation where a branch on that sign could not be
+			 * predicted (the start misses the root on either side,
+			 * the step after it on the side of the piece's curvature)
+			 * and, mispredicted, restarted the step's last link. The
+			 * step's size is adu, or, clamped, the distance to the end
+			 * (u is in [lo, hi]) */
+			const int64_t sg = f >> 63;
+
+			step = adu;
+			un = (u + sg) - (adu ^ sg); /* adu ^ sg = -adu - 1 for f < 0 */
 			/* rtsafe's progress test: |du| at most half the step before last */
-			if (du > dxold / 2 || du < -(dxold / 2))
+			if (adu > dxold / 2)
 				newton = false;
-			un = u - du;
 			if (un <= lo) {
 				newton = newton && !lo_known;
 				un = lo;
+				step = u - lo;
 			} else if (un >= hi) {
 				newton = newton && !hi_known;
 				un = hi;
+				step = hi - u;
 			}
 		}
 		dxold = dx;
 		if (newton) {
-			dx = u - un;
-			if (dx < 0)
-				dx = -dx;
+			dx = step;
 			if (dx <= tol) {
 				u = un;
 				break;
