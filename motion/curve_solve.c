@@ -60,8 +60,9 @@ static inline bool ratio62(int64_t r, int64_t d, int64_t *aq)
  * floor(a * u / 2^62) for |u| <= 2^62: mul62() without its rounding (two
  * instructions of five on x86_64), for the numbers that need no more than
  * a unit of error a product (the rounding's is half): a derivative, whose
- * top 32 bits are all that ratio62() reads. The frame's and the value's
- * Horner keep mul62(): the root and the answer are theirs.
+ * top 32 bits are all that ratio62() reads, and the value's u^2. The
+ * frame's Horner and the value's products by its coefficients keep mul62():
+ * the root and the answer are theirs.
  */
 static inline int64_t mul62f(int64_t a, int64_t u)
 {
@@ -87,6 +88,23 @@ static inline int64_t poly_frame(const int64_t c[4], int64_t c0, int64_t u, int6
 
 	*df = c[1] + mul62f(2 * t1 + a, u);
 	return mul62(mul62(t1, u) + c[1], u) + c0;
+}
+
+/*
+ * A spline piece's value V(u) = (c0 + c1 u) + u^2 (c2 + c3 u) at the
+ * solve's root (Estrin's scheme): u^2 and the two halves' products are
+ * independent, so the chain from u is two products where poly_eval()'s
+ * Horner is three; the value's is the last link of every solve. One product
+ * more (u^2, floored: a unit of 2^-62 in it moves the result by at most
+ * |c2 + c3 u| 2^-62 <= 1/2); error at most 2 units where Horner's is 3/2,
+ * far below the value's 2^-vsh. |c2 + c3 u|, |c0 + c1 u| and u^2 are within
+ * mul62()'s range, and so is their sum (sum |c| <= 2^61).
+ */
+static inline int64_t value_estrin(const int64_t c[4], int64_t u)
+{
+	int64_t u2 = mul62f(u, u), hi = mul62(c[3], u) + c[2], lo = mul62(c[1], u) + c[0];
+
+	return mul62(hi, u2) + lo;
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
@@ -502,11 +520,13 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		u = un;
 	}
 	*iters = it > NEWTON_MAX_IT ? NEWTON_MAX_IT : it;
-	/* u is in [0, 1] already: the test tells the compiler so, and the
-	 * value's Horner (inlined after this) multiplies u's int64, one product
-	 * a step, where it multiplied u sign-extended at the loop's exits to
-	 * 128 bits (three products and their sum) */
-	return u < 0 ? 0 : u;
+	/* u is in [0, 1] already: the mask tells the compiler so (one
+	 * instruction where a test and a conditional move took three, on the
+	 * way to the value), and the value's products (inlined after this)
+	 * multiply u's int64, one product each, where they multiplied u
+	 * sign-extended at the loop's exits to 128 bits (three products and
+	 * their sum) */
+	return u & INT64_MAX;
 }
 
 /* The frame f at piece s's scale, (f - fref) 2^fsh: round_shift()'s bits,
@@ -562,7 +582,7 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), &it);
 		if (iters)
 			*iters = it;
-		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+		return value_of(s->vref, value_estrin(s->c, u), s->vsh, sat);
 	}
 	s = &c->seg[0];
 	d = frame_offset(s, f);
