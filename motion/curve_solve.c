@@ -91,20 +91,32 @@ static inline int64_t poly_frame(const int64_t c[4], int64_t c0, int64_t u, int6
 }
 
 /*
- * A spline piece's value V(u) = (c0 + c1 u) + u^2 (c2 + c3 u) at the
- * solve's root (Estrin's scheme): u^2 and the two halves' products are
- * independent, so the chain from u is two products where poly_eval()'s
- * Horner is three; the value's is the last link of every solve. One product
- * more (u^2, floored: a unit of 2^-62 in it moves the result by at most
- * |c2 + c3 u| 2^-62 <= 1/2); error at most 2 units where Horner's is 3/2,
- * far below the value's 2^-vsh. |c2 + c3 u|, |c0 + c1 u| and u^2 are within
- * mul62()'s range, and so is their sum (sum |c| <= 2^61).
+ * A spline piece's value at the solve's root u: vref + round(V(u) / 2^vsh),
+ * value_of()'s bits, with V(u) = (c0 + c1 u) + u^2 (c2 + c3 u) (Estrin's
+ * scheme): u^2 and the two halves' products are independent, so the chain
+ * from u is two products where poly_eval()'s Horner is three; the value's
+ * is the last link of every solve. One product more (u^2, floored: a unit
+ * of 2^-62 in it moves the result by at most |c2 + c3 u| 2^-62 <= 1/2);
+ * error at most 2 units where Horner's is 3/2, far below the value's
+ * 2^-vsh. |c2 + c3 u|, |c0 + c1 u| and u^2 are within mul62()'s range, and
+ * so is their sum V (sum |c| <= 2^61). value_of()'s half unit joins
+ * c0 + c1 u, which is ready a product before the sum: a sum less on the
+ * chain, and no overflow (|V| + 2^61 < 2^63).
  */
-static inline int64_t value_estrin(const int64_t c[4], int64_t u)
+static inline mot_q32 spline_value(const struct mot_curve_seg *s, int64_t u, uint32_t *sat)
 {
+	const int64_t *c = s->c;
 	int64_t u2 = mul62f(u, u), hi = mul62(c[3], u) + c[2], lo = mul62(c[1], u) + c[0];
+	int sh = s->vsh;
+	mot_q32 r;
 
-	return mul62(hi, u2) + lo;
+	if (sh > 0 && sh < 63) {
+		int64_t q = mul62(hi, u2) + (lo + ((int64_t)1 << (sh - 1)));
+
+		if (!__builtin_add_overflow(s->vref, q >> sh, &r))
+			return r;
+	}
+	return value_of_wide(s->vref, mul62(hi, u2) + lo, sh, sat);
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
@@ -582,7 +594,7 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), &it);
 		if (iters)
 			*iters = it;
-		return value_of(s->vref, value_estrin(s->c, u), s->vsh, sat);
+		return spline_value(s, u, sat);
 	}
 	s = &c->seg[0];
 	d = frame_offset(s, f);
