@@ -18,8 +18,8 @@
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * q = r * 2^62 / d in Q2.62 for d > 0, to a relative 2^-29.4, with |q| <
- * 2^62; false when it would not fit. The top 32 bits a of |r| times a
+ * |q| for q = r * 2^62 / d in Q2.62, d > 0, to a relative 2^-29.4, with
+ * |q| < 2^62; false when it would not fit. The top 32 bits a of |r| times a
  * reciprocal x = 2^63 / b of d's top 32 bits b: one 64-bit division, exact,
  * so the same on every target (the hardware's on x86_64 and aarch64, a
  * dozen cycles; libgcc's elsewhere), and a 32 x 32 product. Three
@@ -29,26 +29,30 @@
  * solve's own convergence makes up the rest. The product a x is in [2^62,
  * 2^64), so q is it shifted right, never left: fewer tests than a quotient
  * of |r| moved up to 62 bits, which q had to be shifted either way from.
+ * The sign is the caller's (r's), applied without a branch (solve_u()).
  */
-static inline bool ratio62(int64_t r, int64_t d, int64_t *q)
+static inline bool ratio62(int64_t r, int64_t d, int64_t *aq)
 {
-	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, p;
-	int cr, cd, sh;
+	uint64_t ar = r < 0 ? 0 - (uint64_t)r : (uint64_t)r, p, b;
+	int cr, ld, sh;
 
 	if (ar == 0) {
-		*q = 0;
+		*aq = 0;
 		return true;
 	}
 	cr = __builtin_clzll(ar);
-	cd = __builtin_clzll((uint64_t)d);
-	/* |r| ~ a 2^(32 - cr), d ~ b 2^(32 - cd), a and b in [2^31, 2^32), x in
-	 * (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(cd - cr - 1) */
-	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / (((uint64_t)d << cd) >> 32));
-	sh = cr - cd + 1;
+	ld = __builtin_clzll((uint64_t)d) ^ 63; /* d's top bit, bsr on x86_64 */
+	/* b = d's top 32 bits, (d << clz(d)) >> 32, in one shift where d has
+	 * them (the division waits for b: a shift less on the iteration's
+	 * path) */
+	b = __builtin_expect(ld >= 31, 1) ? (uint64_t)d >> (ld - 31) : (uint64_t)d << (31 - ld);
+	/* |r| ~ a 2^(32 - cr), d ~ b 2^(ld - 31), a and b in [2^31, 2^32), x
+	 * in (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(62 - ld - cr) */
+	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / b);
+	sh = cr + ld - 62;
 	if (sh <= 0 || (sh == 1 && p >> 63))
 		return false; /* |q| >= 2^62 */
-	p = sh >= 64 ? 0 : p >> sh;
-	*q = r < 0 ? -(int64_t)p : (int64_t)p;
+	*aq = (int64_t)(p >> sh); /* sh <= 63: cr <= 63, ld <= 62 (d > 0) */
 	return true;
 }
 
@@ -56,8 +60,9 @@ static inline bool ratio62(int64_t r, int64_t d, int64_t *q)
  * floor(a * u / 2^62) for |u| <= 2^62: mul62() without its rounding (two
  * instructions of five on x86_64), for the numbers that need no more than
  * a unit of error a product (the rounding's is half): a derivative, whose
- * top 32 bits are all that ratio62() reads. The frame's and the value's
- * Horner keep mul62(): the root and the answer are theirs.
+ * top 32 bits are all that ratio62() reads, and the value's u^2. The
+ * frame's Horner and the value's products by its coefficients keep mul62():
+ * the root and the answer are theirs.
  */
 static inline int64_t mul62f(int64_t a, int64_t u)
 {
@@ -68,18 +73,50 @@ static inline int64_t mul62f(int64_t a, int64_t u)
 
 /*
  * A spline piece's frame F(u) = c0 + u (c1 + u (c2 + u c3)), poly_eval()'s
- * products and so its bits, and its derivative from the same steps in one
- * product more: with a = c3 u, t1 = c2 + a and t2 = c1 + u t1,
- * F'(u) = c1 + 2 c2 u + 3 c3 u^2 = t2 + u (t1 + a), where poly_deriv() took
- * two (|t1 + a| <= |c2| + 2 |c3| <= 2^62, |F'| < 2^63). c0 in place of c[0]:
- * the solve's F(u) - d with c0 = c[0] - d, the same sum.
+ * products and so its bits (inv_start()'s bisection placed the start's
+ * table on this F), and its derivative in one product more: with a = c3 u
+ * and t1 = c2 + a, F'(u) = c1 + u (2 c2 + 3 c3 u) = c1 + u (2 t1 + a). The
+ * derivative is the iteration's critical path (ratio62()'s division waits
+ * for it; F is needed only after), so it leaves F's chain at t1: one
+ * product after a, where t2 + u (t1 + a) with t2 = c1 + u t1 waited for
+ * two (|2 t1 + a| <= 2 |c2| + 3 |c3| + 2 <= 3 2^61, |F'| < 2^63). c0 in
+ * place of c[0]: the solve's F(u) - d with c0 = c[0] - d, the same sum.
  */
 static inline int64_t poly_frame(const int64_t c[4], int64_t c0, int64_t u, int64_t *df)
 {
-	int64_t a = mul62(c[3], u), t1 = a + c[2], t2 = mul62(t1, u) + c[1];
+	int64_t a = mul62(c[3], u), t1 = a + c[2];
 
-	*df = t2 + mul62f(t1 + a, u);
-	return mul62(t2, u) + c0;
+	*df = c[1] + mul62f(2 * t1 + a, u);
+	return mul62(mul62(t1, u) + c[1], u) + c0;
+}
+
+/*
+ * A spline piece's value at the solve's root u: vref + round(V(u) / 2^vsh),
+ * value_of()'s bits, with V(u) = (c0 + c1 u) + u^2 (c2 + c3 u) (Estrin's
+ * scheme): u^2 and the two halves' products are independent, so the chain
+ * from u is two products where poly_eval()'s Horner is three; the value's
+ * is the last link of every solve. One product more (u^2, floored: a unit
+ * of 2^-62 in it moves the result by at most |c2 + c3 u| 2^-62 <= 1/2);
+ * error at most 2 units where Horner's is 3/2, far below the value's
+ * 2^-vsh. |c2 + c3 u|, |c0 + c1 u| and u^2 are within mul62()'s range, and
+ * so is their sum V (sum |c| <= 2^61). value_of()'s half unit joins
+ * c0 + c1 u, which is ready a product before the sum: a sum less on the
+ * chain, and no overflow (|V| + 2^61 < 2^63).
+ */
+static inline mot_q32 spline_value(const struct mot_curve_seg *s, int64_t u, uint32_t *sat)
+{
+	const int64_t *c = s->c;
+	int64_t u2 = mul62f(u, u), hi = mul62(c[3], u) + c[2], lo = mul62(c[1], u) + c[0];
+	int sh = s->vsh;
+	mot_q32 r;
+
+	if (sh > 0 && sh < 63) {
+		int64_t q = mul62(hi, u2) + (lo + ((int64_t)1 << (sh - 1)));
+
+		if (!__builtin_add_overflow(s->vref, q >> sh, &r))
+			return r;
+	}
+	return value_of_wide(s->vref, mul62(hi, u2) + lo, sh, sat);
 }
 
 /* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
@@ -462,7 +499,7 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	int it;
 
 	for (it = 1; it <= NEWTON_MAX_IT; it++) {
-		int64_t f, df, du = 0, un = 0;
+		int64_t f, df, adu = 0, step = 0, un = 0;
 		bool newton;
 
 		if (form == FORM_POWER) {
@@ -488,25 +525,35 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		}
 		if (lo >= hi) /* the root lies beyond an end of the piece */
 			break;
-		newton = df > 0 && ratio62(f, df, &du);
+		newton = df > 0 && ratio62(f, df, &adu);
 		if (newton) {
+			/* un = u - du, du = adu with f's sign: a conditional
+			 * negation where a branch on that sign could not be
+			 * predicted (the start misses the root on either side,
+			 * the step after it on the side of the piece's curvature)
+			 * and, mispredicted, restarted the step's last link. The
+			 * step's size is adu, or, clamped, the distance to the end
+			 * (u is in [lo, hi]) */
+			const int64_t sg = f >> 63;
+
+			step = adu;
+			un = (u + sg) - (adu ^ sg); /* adu ^ sg = -adu - 1 for f < 0 */
 			/* rtsafe's progress test: |du| at most half the step before last */
-			if (du > dxold / 2 || du < -(dxold / 2))
+			if (adu > dxold / 2)
 				newton = false;
-			un = u - du;
 			if (un <= lo) {
 				newton = newton && !lo_known;
 				un = lo;
+				step = u - lo;
 			} else if (un >= hi) {
 				newton = newton && !hi_known;
 				un = hi;
+				step = hi - u;
 			}
 		}
 		dxold = dx;
 		if (newton) {
-			dx = u - un;
-			if (dx < 0)
-				dx = -dx;
+			dx = step;
 			if (dx <= tol) {
 				u = un;
 				break;
@@ -522,11 +569,13 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		u = un;
 	}
 	*iters = it > NEWTON_MAX_IT ? NEWTON_MAX_IT : it;
-	/* u is in [0, 1] already: the test tells the compiler so, and the
-	 * value's Horner (inlined after this) multiplies u's int64, one product
-	 * a step, where it multiplied u sign-extended at the loop's exits to
-	 * 128 bits (three products and their sum) */
-	return u < 0 ? 0 : u;
+	/* u is in [0, 1] already: the mask tells the compiler so (one
+	 * instruction where a test and a conditional move took three, on the
+	 * way to the value), and the value's products (inlined after this)
+	 * multiply u's int64, one product each, where they multiplied u
+	 * sign-extended at the loop's exits to 128 bits (three products and
+	 * their sum) */
+	return u & INT64_MAX;
 }
 
 /* The frame f at piece s's scale, (f - fref) 2^fsh: round_shift()'s bits,
@@ -584,7 +633,7 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		u = solve_u(FORM_SPLINE, c, s, NULL, d, start_u(c, s, f - s->f0), &it);
 		if (iters)
 			*iters = it;
-		return value_of(s->vref, poly_eval(s->c, u), s->vsh, sat);
+		return spline_value(s, u, sat);
 	}
 	s = &c->seg[0];
 	d = frame_offset(s, f);
