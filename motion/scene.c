@@ -285,6 +285,36 @@ static uint64_t offset_bound(const struct mot_scene *sc, const struct mot_node *
 }
 
 /*
+ * What a free strand's channels are, known from the scene (memo->free,
+ * free_linear()): a rotation (a track or quaternion curves), a scale or
+ * shear channel, and (bounds) whether every scale and shear value stays
+ * below 2^40 raw over the whole timeline (its curve's bound; 1 and 0
+ * without one), so that free_linear()'s sums need no test of the values.
+ */
+enum {
+	FREE_ROT = 1,  /* a rotation track or four quaternion curves */
+	FREE_SHS = 2,  /* a scale or shear channel */
+	FREE_FITS = 4, /* every scale and shear below 2^40 raw (small_kernels) */
+};
+
+static unsigned free_flags(const struct mot_scene *sc, const struct mot_free_strand *fs,
+			   bool bounds)
+{
+	unsigned f = fs->rot >= 0 || fs->quat[0] >= 0 ? FREE_ROT : 0, k;
+	bool fits = small_kernels && bounds;
+
+	for (k = MOT_FREE_SX; k < MOT_FREE_NCHANNELS; k++) {
+		int32_t c = fs->channel[k];
+
+		if (c < 0)
+			continue;
+		f |= FREE_SHS;
+		fits = fits && mot_curve_bound(&sc->curves[c]) < (uint64_t)1 << 40;
+	}
+	return f | (fits ? FREE_FITS : 0);
+}
+
+/*
  * What the memo knows of a node before any evaluation: whether it is of the
  * small case, and bounds on its linear part and translation for its
  * children. Under a parent whose world translation is below B and linear
@@ -309,6 +339,9 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 		if (n->pivot[k])
 			m->prow = n->pivot[(k + 1) % 3] || n->pivot[(k + 2) % 3] ? 3 : k;
 	m->lin = lin_bound(sc, n, lp);
+	m->free = n->kind == MOT_NODE_FREE && n->strand >= 0 ?
+			  free_flags(sc, &sc->free[n->strand], true) :
+			  0;
 	bt = up ? up->bound : 0;
 	/* (2 p1 + 3 t) max(lp, l) + 2 */
 	sum = add_sat(add_sat(p1, p1), add_sat(add_sat(t, t), t));
@@ -568,9 +601,12 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 	return curve_learn(c, cur, m, frame, &ev->sat);
 }
 
-/* A rotation kept as four component curves: their value normalised. */
-static void quat_of_curves(struct mot_quat *q, const struct mot_scene *sc, struct mot_eval *ev,
-			   const int32_t qc[4], mot_q32 frame)
+/* A rotation kept as four component curves: their value normalised (out
+ * of line: free_quat()'s call of a track then needs no frame of its own). */
+static __attribute__((noinline)) void quat_of_curves(struct mot_quat *q,
+						     const struct mot_scene *sc,
+						     struct mot_eval *ev, const int32_t qc[4],
+						     mot_q32 frame)
 {
 	mot_q32 v[4];
 	struct mot_quat raw;
@@ -588,9 +624,9 @@ static void quat_of_curves(struct mot_quat *q, const struct mot_scene *sc, struc
 /* A free node's rotation as a quaternion: its track's (the held end's
  * matrix made at init returned, as mot_rot_track_eval() returns it) or its
  * four curves'. */
-static const struct mot_rot_q62 *free_quat(struct mot_quat *q, const struct mot_scene *sc,
-					   struct mot_eval *ev, const struct mot_free_strand *fs,
-					   mot_q32 g)
+static inline const struct mot_rot_q62 *free_quat(struct mot_quat *q,
+						  const struct mot_scene *sc, struct mot_eval *ev,
+						  const struct mot_free_strand *fs, mot_q32 g)
 {
 	if (fs->rot < 0) {
 		quat_of_curves(q, sc, ev, fs->quat, g);
@@ -601,17 +637,20 @@ static const struct mot_rot_q62 *free_quat(struct mot_quat *q, const struct mot_
 }
 
 /*
- * The linear part S . H . R and the translation of a free node (channels
- * without keys at their rest values). Returns false when the node has no
+ * The linear part S . H . R and the translation (row 3) of a free node
+ * (channels without keys at their rest values) in m, what free_flags()
+ * says of its strand in `how`. Returns false when the node has no
  * rotation, scale or shear channel: its linear part is then the identity,
  * exactly, and only m's translation row is written.
  */
-static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene *sc,
-			struct mot_eval *ev, const struct mot_free_strand *fs, mot_q32 frame)
+static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mot_eval *ev,
+			const struct mot_free_strand *fs, unsigned how, mot_q32 frame)
 {
+	mot_q32 *const t = m->m[3];
 	struct mot_decomp d;
 	mot_q32 v[MOT_FREE_NCHANNELS], g = frame;
-	bool rot = fs->rot >= 0 || fs->quat[0] >= 0, shs = false, fits;
+	const bool rot = how & FREE_ROT, shs = how & FREE_SHS;
+	bool fits;
 	const struct mot_rot_q62 *held = NULL; /* R(d.rot), made at init */
 	const struct mot_curve *const curves = sc->curves;
 	struct mot_cursor *const cursors = ev->cursors;
@@ -629,17 +668,13 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
 		int32_t c = fs->channel[k];
 
-		if (c >= 0) {
+		if (c >= 0)
 			v[k] = mot_curve_eval(&curves[c], &cursors[c], g, &ev->sat);
-			shs = shs || k >= MOT_FREE_SX;
-		} else {
+		else
 			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
-		}
 	}
-	for (k = 0; k < 3; k++) {
+	for (k = 0; k < 3; k++)
 		t[k] = v[MOT_FREE_TX + k];
-		m->m[3][k] = t[k];
-	}
 	if (!rot && !shs)
 		return false;
 	/* What mot_mat_compose() would give, bit for bit, with the absent part
@@ -649,6 +684,7 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 	if (!rot) {
 		const mot_q32 *sv = v + MOT_FREE_SX, *hv = v + MOT_FREE_HXY;
 
+		/* row 3 again: the literal would clear it otherwise */
 		*m = (struct mot_mat){ { { sv[0], 0, 0 },
 					 { mot_mul(sv[1], hv[0], &ev->sat), sv[1], 0 },
 					 { mot_mul(sv[2], hv[1], &ev->sat),
@@ -665,13 +701,15 @@ static bool free_linear(struct mot_mat *m, mot_q32 t[3], const struct mot_scene 
 	/* scales and shears below 2^8 (every real one): S . H's products
 	 * below 2^48 raw, its rows' sums with R below 2^113 and every entry
 	 * below 2^51, so mot_mat_compose_r()'s tests are known to pass; the
-	 * rotation made first only where that would make it. Where 128-bit
-	 * integers are not the compiler's compose_r() does it all (one copy
-	 * of the sums: less code, as the kernels above) */
-	fits = !shs || (small_kernels &&
-			(mot_mag(v[MOT_FREE_SX]) | mot_mag(v[MOT_FREE_SY]) | mot_mag(v[MOT_FREE_SZ]) |
-			 mot_mag(v[MOT_FREE_HXY]) | mot_mag(v[MOT_FREE_HXZ]) | mot_mag(v[MOT_FREE_HYZ])) <
-				(uint64_t)1 << 40);
+	 * rotation made first only where that would make it. Known from the
+	 * curves' bounds for most strands (FREE_FITS), else tested here. Where
+	 * 128-bit integers are not the compiler's compose_r() does it all (one
+	 * copy of the sums: less code, as the kernels above) */
+	fits = !shs || (how & FREE_FITS) ||
+	       (small_kernels &&
+		(mot_mag(v[MOT_FREE_SX]) | mot_mag(v[MOT_FREE_SY]) | mot_mag(v[MOT_FREE_SZ]) |
+		 mot_mag(v[MOT_FREE_HXY]) | mot_mag(v[MOT_FREE_HXZ]) | mot_mag(v[MOT_FREE_HYZ])) <
+			(uint64_t)1 << 40);
 	if (fits && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
 		const int64_t(*rr)[3] = (held ? held : &r)->r;
 
@@ -759,15 +797,17 @@ static inline __attribute__((always_inline)) void tilted_rot(struct mot_mat *r,
 static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
 		       const struct mot_node *n, mot_q32 frame)
 {
-	mot_q32 t[3];
+	const struct mot_free_strand *fs;
 
 	if (n->strand < 0) {
 		mot_mat_identity(out);
 		return;
 	}
-	if (!free_linear(out, t, sc, ev, &sc->free[n->strand], frame)) {
+	fs = &sc->free[n->strand];
+	/* the values tested, not the curves' bounds made (mot_eval_reset()'s) */
+	if (!free_linear(out, sc, ev, fs, free_flags(sc, fs, false), frame)) {
 		/* T(-p) . T(p) . T(t) = T(t), exactly */
-		mot_mat_translate(out, t);
+		mot_mat_translate(out, out->m[3]);
 		return;
 	}
 	mot_mat_about_pivot(out, out, n->pivot, &ev->sat);
@@ -1283,10 +1323,11 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		default:
 			if (n->strand < 0)
 				translate_world(w, *pos, par, n->pivot, zero, small, &ev->sat);
-			else if (free_linear(&local, t, sc, ev, &sc->free[n->strand], frame))
-				node_world(w, *pos, par, &local, n->pivot, t, small, &ev->sat);
+			else if (free_linear(&local, sc, ev, &sc->free[n->strand], m->free, frame))
+				node_world(w, *pos, par, &local, n->pivot, local.m[3], small,
+					   &ev->sat);
 			else
-				translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
+				translate_world(w, *pos, par, n->pivot, local.m[3], small, &ev->sat);
 			break;
 		}
 	}

@@ -115,6 +115,7 @@ struct mot_node_memo {
 	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
 	uint8_t small;  /* every sum of the node's matrix is known to fit */
 	uint8_t prow;   /* the pivot's one nonzero component (any if none), 3: more */
+	uint8_t free;   /* a free node's strand: what its channels are (scene.c) */
 	/* A joint's curve between the frames lo (included) and hi (excluded):
 	 * the held value `held` (piece NULL) or the piece `piece` of an
 	 * interpolating curve, evaluated as `how` says, inline where `op`
@@ -123,7 +124,7 @@ struct mot_node_memo {
 	 * where that is between glo and ghi. What the curve is at a frame,
 	 * whatever came before: an empty span (lo > hi) until an evaluation
 	 * finds it, and always where op says out of line. */
-	uint16_t op, how;
+	uint8_t op, how;
 	mot_q32 lo, hi;
 	mot_q32 held;
 	const struct mot_curve_seg *piece;
