@@ -297,12 +297,20 @@ _Static_assert(sizeof(((struct mot_curve_seg *)0)->ut) <=
 		       sizeof(struct mot_recip) + sizeof(struct mot_ease),
 	       "START_TAB's table within inv_h and ease: the stride unchanged");
 
-static void tab_start(struct mot_curve_seg *s)
+static const int64_t tab_node[4] = { /* cos((2i + 1) pi / 16), Q2.62 */
+	4523073764714963030, 3834476785802888710, 2562115475870945497, 899695310372275547,
+};
+
+int64_t mot_cv_tab_node(unsigned h, unsigned i)
 {
-	static const int64_t node[4] = { /* cos((2i + 1) pi / 16), Q2.62 */
-		4523073764714963030, 3834476785802888710, 2562115475870945497,
-		899695310372275547,
-	};
+	/* t = (2 h + 1 + x) / 4, x the node: x(7 - i) = -x(i) */
+	int64_t x = i < 4 ? tab_node[i] : -tab_node[7 - i];
+
+	return ((int64_t)(2 * h + 1) << 60) + x / 4;
+}
+
+bool mot_cv_tab_fit(const int64_t y[16], int32_t ut[16])
+{
 	static const int64_t vinv[8][4] = { /* V^-1, Q5.58, columns 0 .. 3 */
 		{ -7166573308883288, 24073672518002241, -53920905240486667, 181128994107223585 },
 		{ -7306974780389132, 28953159756898729, -97055065292859510, 928436594062567137 },
@@ -319,38 +327,42 @@ static void tab_start(struct mot_curve_seg *s)
 		{ 899695310372275547, -2562115475870945497, 3834476785802888710,
 		  -4523073764714963030 },
 	};
-	const int64_t *fc = s->fc;
-	int64_t w = fc[1] + fc[2] + fc[3], a[16], y[8];
+	int64_t a[16];
 	unsigned h, i, k;
 	uint64_t sum;
 
 	for (h = 0; h < 2; h++) {
-		for (i = 0; i < 8; i++) {
-			/* t = (2 h + 1 + x) / 4, x the node: x(7 - i) = -x(i) */
-			int64_t x = i < 4 ? node[i] : -node[7 - i];
-			int64_t t = ((int64_t)(2 * h + 1) << 60) + x / 4;
+		const int64_t *yh = y + 8 * h;
 
-			y[i] = (inv_frame(fc, fc[0] + mul62(w, t)) + 2) >> 2; /* Q2.60 */
-		}
 		for (k = 0; k < 8; k++) {
 			mot_acc r = mot_acc_zero();
 
 			for (i = 0; i < 4; i++)
 				r = mot_acc_mac(r, vinv[k][i],
-						k % 2 ? y[i] - y[7 - i] : y[i] + y[7 - i]);
+						k % 2 ? yh[i] - yh[7 - i] : yh[i] + yh[7 - i]);
 			/* Q.118 to Q1.30, within int64 */
 			a[8 * h + k] = (int64_t)mot_acc_lo(mot_cv_acc_round_shift(r, 88));
 		}
-	}
-	for (h = 0; h < 2; h++) {
 		for (sum = 0, k = 0; k < 8; k++)
 			sum += (uint64_t)(a[8 * h + k] < 0 ? -a[8 * h + k] : a[8 * h + k]);
 		if (sum > ((uint64_t)1 << 31) - 256)
-			return;
+			return false;
 	}
 	for (k = 0; k < 16; k++)
-		s->ut[k] = (int32_t)a[k];
-	s->start = START_TAB;
+		ut[k] = (int32_t)a[k];
+	return true;
+}
+
+static void tab_start(struct mot_curve_seg *s)
+{
+	const int64_t *fc = s->fc;
+	int64_t w = fc[1] + fc[2] + fc[3], y[16];
+	unsigned k;
+
+	for (k = 0; k < 16; k++) /* Q2.60 */
+		y[k] = (inv_frame(fc, fc[0] + mul62(w, mot_cv_tab_node(k / 8, k % 8))) + 2) >> 2;
+	if (mot_cv_tab_fit(y, s->ut))
+		s->start = START_TAB;
 }
 
 int mot_cv_prep_spline(struct mot_curve *c)

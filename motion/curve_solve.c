@@ -358,6 +358,25 @@ static void bez_frame_at(const struct mot_curve *c, const int64_t *pw, int64_t u
 		bezier_frame(c, u, f, df);
 }
 
+/* The u in [lo, 1] where the frame reaches target, by `steps` bisections:
+ * the last u evaluated below it (F increasing). */
+static int64_t bez_bisect(const struct mot_curve *c, const int64_t *pw, int64_t lo,
+			  int64_t target, unsigned steps)
+{
+	int64_t hi = ONE62, f, df;
+
+	while (steps--) {
+		int64_t mid = lo + (hi - lo) / 2;
+
+		bez_frame_at(c, pw, mid, &f, &df);
+		if (f < target)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
 static uint16_t *bez_u(struct mot_curve *c, uint32_t i) /* knot i in 1 .. nt - 1 */
 {
 	return &c->seg[(i - 1) / 4].us[(i - 1) % 4];
@@ -366,6 +385,53 @@ static uint16_t *bez_u(struct mot_curve *c, uint32_t i) /* knot i in 1 .. nt - 1
 static uint16_t *bez_m(struct mot_curve *c, uint32_t i, uint32_t nt) /* knot i in 0 .. nt */
 {
 	return i == nt ? &c->seg[(nt - 1) / 4].us[3] : &c->seg[i / 4].us[4 + i % 4];
+}
+
+/*
+ * The Bezier curve's START_TAB (on a curve in power form without eases,
+ * after START_INV succeeded): spline pieces' tab_start() (curve_approx.c)
+ * on each of the m = nkeys - 1 equal parts of the chord fraction t, part j
+ * in entry j's ut[] (the inv_h and ease that only an eased key interval
+ * reads: sizeof(struct mot_curve_seg) unchanged), each a degree-7
+ * polynomial of the inverse on either half of its part, from u at the
+ * Chebyshev nodes (bisection to 2^-48, F(u) < t W). Kept only where every
+ * part's fit is (mot_cv_tab_fit()). Init only: m 16 bisections of 48
+ * steps of Horner's rule of degree m (de Casteljau curves, up to 32 keys
+ * and m^2 / 2 products an evaluation, keep the Hermite quarters).
+ */
+static void bez_tab_start(struct mot_curve *c, const int64_t *pw, int64_t w)
+{
+	const struct mot_key *kk = c->keys;
+	uint32_t m = c->nkeys - 1, j, k;
+	int64_t y[16];
+
+	for (j = 0; j < m; j++) {
+		for (k = 0; k < 16; k++) {
+			/* the node's t in the whole curve, (j + t') / m, times W:
+			 * below 2^62 2^5 W, exact in 128 bits */
+			mot_acc a = mot_acc_add(mot_acc_mul(w, mot_cv_tab_node(k / 8, k % 8)),
+						acc_shl(mot_acc_mul(w, (int64_t)j), 62));
+			int64_t target = 0;
+
+			if (!mot_cv_acc_div_round(&target, a, -62, m))
+				break;
+			y[k] = (bez_bisect(c, pw, 0, target, 48) + 2) >> 2; /* Q2.60 */
+		}
+		if (k < 16 || !mot_cv_tab_fit(y, c->seg[j].ut))
+			break;
+	}
+	if (j == m) {
+		c->seg[0].start = START_TAB;
+		return;
+	}
+	/* a part that does not fit (not seen on the random scenes): the
+	 * entries before it get back their inv_h and ease as curve.c's init
+	 * made them (every ease the identity; a table on the stack instead
+	 * would be 2 KB), and the curve keeps START_INV */
+	while (j--) {
+		mot_ease_init(&c->seg[j].ease, kk[j].ease_out, kk[j + 1].ease_in, NULL);
+		mot_recip_init(&c->seg[j].inv_h, kk[j + 1].frame - kk[j].frame);
+	}
 }
 
 void mot_cv_bezier_start(struct mot_curve *c)
@@ -389,18 +455,7 @@ void mot_cv_bezier_start(struct mot_curve *c)
 	uk[0] = 0;
 	uk[nt] = ONE62;
 	for (i = 1; i < nt; i++) {
-		int64_t lo = prev, hi = ONE62, target = step * (int64_t)i;
-
-		for (j = 0; j < 40; j++) {
-			int64_t mid = lo + (hi - lo) / 2;
-
-			bez_frame_at(c, pp, mid, &f, &df);
-			if (f < target)
-				lo = mid;
-			else
-				hi = mid;
-		}
-		uk[i] = prev = lo;
+		uk[i] = prev = bez_bisect(c, pp, prev, step * (int64_t)i, 40);
 	}
 	for (i = 0; i <= nt; i++) {
 		uint32_t sat = 0;
@@ -420,6 +475,8 @@ void mot_cv_bezier_start(struct mot_curve *c)
 	for (i = 0; i <= nt; i++)
 		*bez_m(c, i, nt) = (uint16_t)((q[i] + ((uint64_t)1 << 47)) >> 48);
 	c->seg[0].start = START_INV;
+	if (pp && !c->seg_ease)
+		bez_tab_start(c, pp, w);
 }
 
 /* The start at the chord fraction t in [0, 1] from that table: part
@@ -457,6 +514,24 @@ static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 	return herm62(u0, u1, (int64_t)e[4 + r] << 44, m1, s);
 }
 
+/* The START_TAB start of a Bezier curve at the chord fraction t in [0, 1]:
+ * part j = floor(m t) (t to 32 bits), entry j's polynomials at the part's
+ * own fraction m t - j. */
+static inline __attribute__((always_inline)) int64_t bez_tab62(const struct mot_curve *c,
+							       int64_t t)
+{
+	uint32_t m = c->nkeys - 1;
+	uint64_t x = (uint64_t)(t >> 30) * m;
+	uint32_t j = (uint32_t)(x >> 32);
+	int64_t s = (int64_t)((x & 0xffffffffu) << 30);
+
+	if (j >= m) {
+		j = m - 1;
+		s = ONE62;
+	}
+	return tab62(c->seg[j].ut, s);
+}
+
 /* ---- the solve ------------------------------------------------------------------ */
 
 /* How a solve evaluates the frame: a spline piece's cubic, a Bezier curve
@@ -476,8 +551,8 @@ enum form { FORM_SPLINE, FORM_POWER, FORM_CASTELJAU };
  * Determinism: the start is a function of f alone (the chord fraction, or its
  * cube root), the iteration is pure integer arithmetic and the stopping rule
  * is fixed: stop after a Newton step below 2^-ntol, the piece's (the error
- * is then about the square of it: curve_approx.c bounds it for what the
- * frame needs; 2^-31 where it cannot, and on a Bezier curve), or once the
+ * is then about the square of it: curve_approx.c and curve_bezier.c bound
+ * it for what the frame needs; 2^-31 where they cannot), or once the
  * bracket is narrower than 2^-50, or after NEWTON_MAX_IT iterations. Random
  * and sequential access therefore give the same u, bit for bit, on every
  * target.
@@ -605,7 +680,7 @@ start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 	int64_t u = piece_u(x, &s->inv_w);
 
 	if (s->start == START_TAB)
-		return tab62(s->ut, u);
+		return c->kind == MOT_INTERP_BEZIER ? bez_tab62(c, u) : tab62(s->ut, u);
 	if (s->start == START_INV)
 		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
 	if (s->start == START_CUBE0)
