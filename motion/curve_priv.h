@@ -51,7 +51,8 @@
 #define ONE62 MOT_Q62_ONE
 
 /* The Newton solve's last step is below 2^-NEWTON_TOL_BITS, or below what
- * a spline piece needs (seg->ntol, curve_approx.c), whichever is larger. */
+ * a spline piece or a Bezier curve needs (seg->ntol, curve_approx.c,
+ * curve_bezier.c), whichever is larger. */
 #define NEWTON_TOL_BITS 31
 
 /* Newton start rules (seg->start; curve_solve.c). */

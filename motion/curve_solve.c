@@ -119,22 +119,70 @@ static inline mot_q32 spline_value(const struct mot_curve_seg *s, int64_t u, uin
 	return value_of_wide(s->vref, mul62(hi, u2) + lo, sh, sat);
 }
 
-/* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
- * on a piece whose frame grows as u^3 (the tripled end keys). cbrt(1 + m)
- * for m in [0, 1) is its quartic through the five Chebyshev nodes (within
- * 2^-16.2; a linear start, within 1%, cost those pieces three or four
- * Newton iterations where they now take two). */
+/*
+ * a[0] + a[1] x + .. + a[7] x^7 for x in [-1, 1] in Q1.31, the coefficients
+ * in Q1.30, as E(x^2) + x O(x^2), the even and the odd coefficients each by
+ * Horner's rule in x^2: two chains of three products side by side, where
+ * one chain in x took seven (a start's latency is the solve's). In Q1.62
+ * with a partial sum's top 33 bits, a 64-bit product a step (no 128-bit
+ * one): off by 2^-31 a step, below 2^-27 in all with x^2's and the
+ * coefficients' roundings. The coefficients' magnitudes sum below 2: every
+ * partial sum, and E + x O, is below 2 in Q1.62, its top bits below 2^32,
+ * the products below 2^63.
+ */
+static inline __attribute__((always_inline)) int64_t poly7_62(const int32_t a[8], int64_t x)
+{
+	int64_t y = (x * x) >> 31, e, o;
+
+	e = (int64_t)a[6] * ((int64_t)1 << 32);
+	o = (int64_t)a[7] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[4] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[5] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[2] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[3] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[0] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[1] * ((int64_t)1 << 32);
+	return (o >> 31) * x + e;
+}
+
+/*
+ * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
+ * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
+ * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
+ * poly7_62()'s: below 2^-27 off, where a piece's tolerance is 2^-16 ..
+ * 2^-31 and most solves' 2^-20 .. 2^-21. Clamped to [0, 1].
+ */
+static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
+{
+	int64_t x = t >> 31, r;
+	const int32_t *a = ut;
+
+	if (x >= (int64_t)1 << 30) {
+		a += 8;
+		x -= (int64_t)1 << 30;
+	}
+	r = poly7_62(a, 4 * x - ((int64_t)1 << 31));
+	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
+}
+
+/* cbrt(x) for x in Q2.62 [0, 1], to about 2^-24.5 relative: the Newton
+ * start on a piece whose frame grows as u^3 (the tripled end keys).
+ * cbrt(1 + m) for m in [0, 1) is its degree-7 polynomial in x = 2 m - 1
+ * through the eight Chebyshev nodes (within 2^-24.7 with the coefficients
+ * in Q1.30, summing to 1.29), evaluated as tab62()'s (poly7_62()), within
+ * the 2^-22 or so that those pieces' tolerance asks of a first step
+ * (curve_approx.c, newton_bits()), so most of their solves take one
+ * iteration where the quartic's 2^-16.2 took two. */
 static int64_t cbrt62(int64_t x)
 {
 	static const int64_t k_third[3] = {
 		ONE62, 3660297618499336453, 2905180145061270980, /* 2^(-r/3) */
 	};
-	static const int64_t k_poly[5] = {
-		4611747008944851968, 1534134573646329856, -485750205713352448,
-		196781500799080704,  -46588231386637792,
+	static const int32_t k_poly[8] = {
+		1229127586, 136569721, -15175292, 2810327, -620137, 151412, -46253, 12582,
 	};
 	unsigned e, q, r;
-	int64_t m, g;
+	int64_t m;
 
 	if (x <= 0)
 		return 0;
@@ -142,11 +190,8 @@ static int64_t cbrt62(int64_t x)
 	q = e / 3;
 	r = e % 3;
 	m = (int64_t)((uint64_t)x << e) - ONE62;
-	g = mul62(k_poly[4], m) + k_poly[3];
-	g = mul62(g, m) + k_poly[2];
-	g = mul62(g, m) + k_poly[1];
-	g = mul62(g, m) + k_poly[0];
-	return mul62(g, k_third[r]) >> q;
+	/* x = 2 m - 1 in Q1.31 */
+	return mul62(poly7_62(k_poly, (m >> 30) - ((int64_t)1 << 31)), k_third[r]) >> q;
 }
 
 /* The cubic Hermite from u0, u1 (Q6.58) with slopes m0, m1 (Q6.58, in units
@@ -180,43 +225,6 @@ static int64_t inv62(const uint16_t us[8], int64_t t)
 	return herm62(k > 0 ? (int64_t)us[k - 1] << 43 : 0,
 		      k < 3 ? (int64_t)us[k] << 43 : (int64_t)1 << 58, (int64_t)us[3 + k] << 44,
 		      (int64_t)us[4 + k] << 44, s);
-}
-
-/*
- * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
- * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
- * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
- * as E(x^2) + x O(x^2), the even and the odd coefficients each by Horner's
- * rule in x^2: two chains of three products side by side, where one chain
- * in x took seven (the start's latency is the solve's). In Q1.62 with a
- * partial sum's top 33 bits, a 64-bit product a step (no 128-bit one): off
- * by 2^-31 a step, below 2^-27 in all with x^2's and the coefficients'
- * roundings, where a piece's tolerance is 2^-16 .. 2^-31 and most solves'
- * 2^-22 .. 2^-24. The coefficients' magnitudes sum below 2: every partial
- * sum, and E + x O, is below 2 in Q1.62, its top bits below 2^32, the
- * products below 2^63. Clamped to [0, 1].
- */
-static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
-{
-	int64_t x = t >> 31, y, e, o, r;
-	const int32_t *a = ut;
-
-	if (x >= (int64_t)1 << 30) {
-		a += 8;
-		x -= (int64_t)1 << 30;
-	}
-	x = 4 * x - ((int64_t)1 << 31);
-	y = (x * x) >> 31;
-	e = (int64_t)a[6] * ((int64_t)1 << 32);
-	o = (int64_t)a[7] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[4] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[5] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[2] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[3] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[0] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[1] * ((int64_t)1 << 32);
-	r = (o >> 31) * x + e;
-	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
 }
 
 /* ---- frame(u) and value(u) of a Bezier curve ------------------------------------ */
