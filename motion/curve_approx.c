@@ -90,47 +90,34 @@ static void basis(const struct mot_curve *c, int64_t nb[4][4], uint64_t *den)
 		nb[2][p] = (p == 0 ? (int64_t)*den : 0) - nb[0][p] - nb[1][p] - nb[3][p];
 }
 
-static uint64_t umag(mot_acc x)
-{
-	return mot_acc_is_neg(x) ? mot_acc_lo(mot_acc_neg(x)) : mot_acc_lo(x);
-}
-
 /*
- * The Newton tolerance of a chord-started piece (seg->ntol): frame(u) =
- * fref + F(u) / 2^fsh, and a last step du leaves u within
- * (max |F''| / (2 min F')) (2 du)^2 of the root (Taylor's remainder, the
- * error before the step at most twice the step), where the frame needs u
- * within 2^-4 of a raw unit over max F', and the step's own error (ratio62,
- * 2^-29 of it) no more. From bit lengths, each rounded the safe way; 16 at
- * least, NEWTON_TOL_BITS where F' may reach 0 or the piece needs more.
+ * The Newton tolerance of a piece (seg->ntol), from the frame's residual
+ * after the last step: what the frame needs is F within 2^-4 of a raw unit,
+ * 2^(fsh - 4), of the target d. A step h = u - u' from u, h = (1 + e)
+ * (F(u) - d) / (F'(u) + r) with e ratio62()'s error (curve_solve.c,
+ * |e| <= 2^-29.4) and r poly_frame()'s (|r| < 3 units: a's rounding three
+ * times, and the floor), leaves by Taylor's expansion of the cubic (exact)
+ *     F(u') - d = h (r - e F'(u)) / (1 + e) + (fc2 + fc3 (2 u + u')) h^2,
+ * with 2 u + u' in [0, 3] (u, u' in [0, 1]): |F(u') - d| <= (2^-29 Dmax +
+ * 4) |h| + M h^2, M = max(|fc2|, |fc2 + 3 fc3|), Dmax = |fc1| + 2 |fc2| +
+ * 3 |fc3| (and F(u)'s own rounding, a unit or two, which no tolerance
+ * removes). Each term at most 2^(fsh - 5) for |h| <= 2^-k:
+ *     2 k >= bitlen(M) - fsh + 5,   k >= max(bitlen(Dmax) - 29, 2) + 1 - fsh + 5.
+ * At least 16, at most NEWTON_TOL_BITS (|fc| summing to 2^61 at most: M and
+ * Dmax below 2^63). No bound of 1 / F' is needed (the bound on u's error,
+ * times max F', that this replaced asked 1 to 3 bits more of a typical
+ * piece, and NEWTON_TOL_BITS of the cube-root end pieces, whose F' is 0 at
+ * an end): the random scene's spline solves take 1.29 iterations where they
+ * took 1.38, the end pieces' 1.00 where they took 2.00 (with cbrt62()
+ * within 2^-24.5 of their root, where they need about 2^-22).
  */
 static uint8_t newton_bits(const int64_t fc[4], int fsh)
 {
-	/* F'(u) = fc1 + 2 fc2 u + 3 fc3 u^2 and F''(u) = 2 fc2 + 6 fc3 u on [0, 1],
-	 * |fc| summing to 2^61 at most: 128 bits hold every term */
-	mot_acc d0 = mot_acc_from(fc[1], 0), c2 = mot_acc_from(fc[2], 1);
-	mot_acc c3 = mot_acc_add(mot_acc_from(fc[3], 1), mot_acc_from(fc[3], 0));
-	mot_acc d1 = mot_acc_add(mot_acc_add(d0, c2), c3), m = mot_acc_is_neg(mot_acc_sub(d1, d0)) ? d1 : d0;
-	mot_acc e1 = mot_acc_add(c2, mot_acc_add(c3, c3));
-	uint64_t e0m = umag(c2), e1m = umag(e1), dmax, m2;
-	int lm, k, kr;
+	uint64_t a1 = (uint64_t)mot_abs(fc[1]), a2 = (uint64_t)mot_abs(fc[2]);
+	uint64_t a3 = (uint64_t)mot_abs(fc[3]), m2 = (uint64_t)mot_abs(fc[2] + 3 * fc[3]);
+	int lq = (int)bitlen64(a2 > m2 ? a2 : m2), ld = (int)bitlen64(a1 + 2 * a2 + 3 * a3) - 29;
+	int k = (lq - fsh + 5 + 1) / 2, kr = (ld > 2 ? ld : 2) + 1 - fsh + 5; /* 2^ld + 4 */
 
-	if (fc[3] > 0 && fc[2] < 0 && (uint64_t)-fc[2] < 3 * (uint64_t)fc[3]) {
-		/* the vertex u = -fc2 / (3 fc3) inside: min F' = fc1 - fc2^2 / (3 fc3),
-		 * the quotient rounded up */
-		uint64_t r, q = mot_acc_udiv(mot_acc_mul(fc[2], fc[2]), 3 * (uint64_t)fc[3], &r, NULL);
-
-		m = mot_acc_sub(d0, mot_acc_from((int64_t)(q + (r != 0)), 0));
-	}
-	if (mot_acc_is_neg(m) || mot_cv_acc_bitlen(m) == 0)
-		return NEWTON_TOL_BITS;
-	dmax = umag(d0) + e0m + umag(c3); /* |fc1| + 2 |fc2| + 3 |fc3| */
-	m2 = e0m > e1m ? e0m : e1m;
-	lm = (int)mot_cv_acc_bitlen(m) - 1;
-	/* 2^-2k (M2 / (2 m)) 4 <= 2^(fsh - 4) / Dmax */
-	k = (int)bitlen64(m2) - lm + 1 - fsh + 4 + (int)bitlen64(dmax);
-	k = k <= 0 ? 0 : (k + 1) / 2;
-	kr = (int)bitlen64(dmax) - fsh + 4 - 29 + 1; /* 2^-(k + 29) Dmax <= 2^(fsh - 4) */
 	k = k > kr ? k : kr;
 	k = k < 16 ? 16 : k;
 	return (uint8_t)(k < NEWTON_TOL_BITS ? k : NEWTON_TOL_BITS);
@@ -199,7 +186,7 @@ static int prep_piece(struct mot_curve *c, uint32_t j, int64_t nb[4][4], uint64_
 			 mot_cv_acc_bitlen(mot_acc_add(nf[2], n3)) == 0)
 			s->start = START_CUBE1;
 	}
-	s->ntol = s->start == START_CHORD ? newton_bits(s->fc, s->fsh) : NEWTON_TOL_BITS;
+	s->ntol = newton_bits(s->fc, s->fsh);
 	return MOT_OK;
 }
 
@@ -277,12 +264,13 @@ static void inv_start(struct mot_curve_seg *s)
  * (START_TAB): the same inverse u(t) on each half of [0, 1] in t, as the
  * degree-7 polynomial through u at the half's eight Chebyshev nodes
  * (bisection), in x = 4 t - 1 or 4 t - 3 in [-1, 1]: within the piece's
- * 2^-ntol (2^-22 .. 2^-24 mostly) of the root for most solves, whose first
+ * 2^-ntol (2^-20 .. 2^-21 mostly) of the root for most solves, whose first
  * Newton step is then their last. The random scene's 133,492 solves on such
- * pieces take 1.38 iterations, 62% of them one, where the Hermite quarters
- * (within 2^-16 at best in Q1.15) took 2.09 and 2% one; unquantised they
- * would take 2.04, on eight parts 1.77, on sixteen (twice this table's
- * numbers) 1.38. The 16 coefficients in Q1.30 (rounded: 2^-31 each) take
+ * pieces take 1.29 iterations, 71% of them one (1.38 and 62% with the
+ * tolerances of 2^-22 .. 2^-24 that newton_bits() gave before it bounded
+ * the residual), where the Hermite quarters (within 2^-16 at best in
+ * Q1.15) took 2.09 and 2% one; unquantised they would take 2.04, on eight
+ * parts 1.77, on sixteen (twice this table's numbers) 1.38. The 16 coefficients in Q1.30 (rounded: 2^-31 each) take
  * the 64 bytes of inv_h and ease, which only an eased key interval reads
  * (curve.c's eval(), under seg_ease): the pieces' stride is unchanged, and
  * an eased curve keeps START_INV. Kept where the coefficients' magnitudes
@@ -297,12 +285,20 @@ _Static_assert(sizeof(((struct mot_curve_seg *)0)->ut) <=
 		       sizeof(struct mot_recip) + sizeof(struct mot_ease),
 	       "START_TAB's table within inv_h and ease: the stride unchanged");
 
-static void tab_start(struct mot_curve_seg *s)
+static const int64_t tab_node[4] = { /* cos((2i + 1) pi / 16), Q2.62 */
+	4523073764714963030, 3834476785802888710, 2562115475870945497, 899695310372275547,
+};
+
+int64_t mot_cv_tab_node(unsigned h, unsigned i)
 {
-	static const int64_t node[4] = { /* cos((2i + 1) pi / 16), Q2.62 */
-		4523073764714963030, 3834476785802888710, 2562115475870945497,
-		899695310372275547,
-	};
+	/* t = (2 h + 1 + x) / 4, x the node: x(7 - i) = -x(i) */
+	int64_t x = i < 4 ? tab_node[i] : -tab_node[7 - i];
+
+	return ((int64_t)(2 * h + 1) << 60) + x / 4;
+}
+
+bool mot_cv_tab_fit(const int64_t y[16], int32_t ut[16])
+{
 	static const int64_t vinv[8][4] = { /* V^-1, Q5.58, columns 0 .. 3 */
 		{ -7166573308883288, 24073672518002241, -53920905240486667, 181128994107223585 },
 		{ -7306974780389132, 28953159756898729, -97055065292859510, 928436594062567137 },
@@ -319,38 +315,42 @@ static void tab_start(struct mot_curve_seg *s)
 		{ 899695310372275547, -2562115475870945497, 3834476785802888710,
 		  -4523073764714963030 },
 	};
-	const int64_t *fc = s->fc;
-	int64_t w = fc[1] + fc[2] + fc[3], a[16], y[8];
+	int64_t a[16];
 	unsigned h, i, k;
 	uint64_t sum;
 
 	for (h = 0; h < 2; h++) {
-		for (i = 0; i < 8; i++) {
-			/* t = (2 h + 1 + x) / 4, x the node: x(7 - i) = -x(i) */
-			int64_t x = i < 4 ? node[i] : -node[7 - i];
-			int64_t t = ((int64_t)(2 * h + 1) << 60) + x / 4;
+		const int64_t *yh = y + 8 * h;
 
-			y[i] = (inv_frame(fc, fc[0] + mul62(w, t)) + 2) >> 2; /* Q2.60 */
-		}
 		for (k = 0; k < 8; k++) {
 			mot_acc r = mot_acc_zero();
 
 			for (i = 0; i < 4; i++)
 				r = mot_acc_mac(r, vinv[k][i],
-						k % 2 ? y[i] - y[7 - i] : y[i] + y[7 - i]);
+						k % 2 ? yh[i] - yh[7 - i] : yh[i] + yh[7 - i]);
 			/* Q.118 to Q1.30, within int64 */
 			a[8 * h + k] = (int64_t)mot_acc_lo(mot_cv_acc_round_shift(r, 88));
 		}
-	}
-	for (h = 0; h < 2; h++) {
 		for (sum = 0, k = 0; k < 8; k++)
 			sum += (uint64_t)(a[8 * h + k] < 0 ? -a[8 * h + k] : a[8 * h + k]);
 		if (sum > ((uint64_t)1 << 31) - 256)
-			return;
+			return false;
 	}
 	for (k = 0; k < 16; k++)
-		s->ut[k] = (int32_t)a[k];
-	s->start = START_TAB;
+		ut[k] = (int32_t)a[k];
+	return true;
+}
+
+static void tab_start(struct mot_curve_seg *s)
+{
+	const int64_t *fc = s->fc;
+	int64_t w = fc[1] + fc[2] + fc[3], y[16];
+	unsigned k;
+
+	for (k = 0; k < 16; k++) /* Q2.60 */
+		y[k] = (inv_frame(fc, fc[0] + mul62(w, mot_cv_tab_node(k / 8, k % 8))) + 2) >> 2;
+	if (mot_cv_tab_fit(y, s->ut))
+		s->start = START_TAB;
 }
 
 int mot_cv_prep_spline(struct mot_curve *c)

@@ -87,6 +87,59 @@ static void prep_power(struct mot_curve *c)
 	c->power = true;
 }
 
+/*
+ * The Newton tolerance of a Bezier curve (seg[0].ntol): what its frame
+ * needs, the frame at the solve's u within 2^-4 of a raw unit of f (as
+ * newton_bits() in curve_approx.c), bounded without the minimum of F'.
+ * A Newton step du = (1 + e) F(u) / F'(u) from u (F(u) less the target,
+ * e the step's own error) ends at u' = u - du with, by Taylor's theorem,
+ *     F(u') = -e F'(u) du + F''(x) du^2 / 2,   x between u and u',
+ * so |F(u')| <= 2^-29 Dmax |du| + M2 du^2 / 2 for |e| <= 2^-29, with Dmax
+ * and M2 bounds of |F'| and |F''| on [0, 1]. In raw units of frame (the
+ * scale 2^fsh cancels), x_i the keys' frames less the first's:
+ *     F'(u)  = m sum (x_(i+1) - x_i) B_(i,m-1)(u),
+ *     F''(u) = m (m - 1) sum (x_(i+2) - 2 x_(i+1) + x_i) B_(i,m-2)(u),
+ * the Bernstein polynomials B non-negative with sum 1: F' <= m max dx,
+ * |F''| <= m (m - 1) max |d2x|, and F' >= m min dx > 0 (the keys' frames
+ * increase). Each term at most 2^-5 after a last step below 2^-k, from bit
+ * lengths (x < 2^bitlen(x), bitlen(a b) <= bitlen(a) + bitlen(b)):
+ *     2 k >= bitlen(m (m - 1)) + bitlen(max |d2x|) + 4,
+ *     k >= bitlen(m) + bitlen(max dx) - 24.
+ * e is ratio62()'s 2^-29.4 (curve_solve.c) and F'(u)'s own rounding,
+ * below m^3 units of F (Horner's or de Casteljau's roundings), relative to
+ * F' >= m min dx 2^fsh at most 2^-32 where bitlen(min dx) + fsh >= 48: else
+ * NEWTON_TOL_BITS. At least 16, at most NEWTON_TOL_BITS. |dx| < 2^63 and
+ * |d2x| < 2^63 (|frame| < 2^62 raw): no overflow. Most of the random
+ * scene's Bezier curves need 20 .. 26 bits.
+ */
+static uint8_t bezier_ntol(const struct mot_curve *c)
+{
+	const struct mot_key *k = c->keys;
+	uint32_t m = c->nkeys - 1, i;
+	uint64_t dmin = UINT64_MAX, dmax = 0, d2 = 0;
+	int b, br;
+
+	for (i = 0; i < m; i++) {
+		uint64_t dx = (uint64_t)(k[i + 1].frame - k[i].frame);
+
+		dmin = dx < dmin ? dx : dmin;
+		dmax = dx > dmax ? dx : dmax;
+		if (i + 1 < m) {
+			int64_t e = (k[i + 2].frame - k[i + 1].frame) - (int64_t)dx;
+			uint64_t ae = e < 0 ? 0 - (uint64_t)e : (uint64_t)e;
+
+			d2 = ae > d2 ? ae : d2;
+		}
+	}
+	if ((int)bitlen64(dmin) + c->seg[0].fsh < 48)
+		return NEWTON_TOL_BITS;
+	b = d2 ? ((int)bitlen64((uint64_t)m * (m - 1)) + (int)bitlen64(d2) + 4 + 1) / 2 : 0;
+	br = (int)bitlen64(m) + (int)bitlen64(dmax) - 24;
+	b = b > br ? b : br;
+	b = b < 16 ? 16 : b;
+	return (uint8_t)(b < NEWTON_TOL_BITS ? b : NEWTON_TOL_BITS);
+}
+
 int mot_cv_prep_bezier(struct mot_curve *c)
 {
 	const struct mot_key *k = c->keys;
@@ -108,6 +161,7 @@ int mot_cv_prep_bezier(struct mot_curve *c)
 	s->f1 = k[c->nkeys - 1].frame;
 	s->start = START_CHORD;
 	prep_power(c);
+	s->ntol = c->nkeys > 1 ? bezier_ntol(c) : NEWTON_TOL_BITS;
 	err = mot_recip_init(&s->inv_w, s->f1 - s->f0);
 	if (!err)
 		mot_cv_bezier_start(c);

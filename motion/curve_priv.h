@@ -51,7 +51,8 @@
 #define ONE62 MOT_Q62_ONE
 
 /* The Newton solve's last step is below 2^-NEWTON_TOL_BITS, or below what
- * a spline piece needs (seg->ntol, curve_approx.c), whichever is larger. */
+ * a spline piece or a Bezier curve needs (seg->ntol, curve_approx.c,
+ * curve_bezier.c), whichever is larger. */
 #define NEWTON_TOL_BITS 31
 
 /* Newton start rules (seg->start; curve_solve.c). */
@@ -333,6 +334,14 @@ int mot_cv_prep_spline(struct mot_curve *c);
  * its power form where that keeps the precision (curve_bezier.c). */
 int mot_cv_prep_bezier(struct mot_curve *c);
 void mot_cv_bezier_start(struct mot_curve *c); /* curve_solve.c */
+
+/* START_TAB's fit (curve_approx.c): the chord fraction t in [0, 1] (Q2.62)
+ * of node i of half h, the eight Chebyshev nodes of each half; and the
+ * degree-7 polynomials of each half through u at them (y[8 h + i], Q2.60),
+ * their coefficients in Q1.30 in ut[] as tab62() (curve_solve.c) reads them,
+ * false (ut[] untouched) where tab62()'s sums would not fit. */
+int64_t mot_cv_tab_node(unsigned h, unsigned i) __attribute__((const));
+bool mot_cv_tab_fit(const int64_t y[16], int32_t ut[16]);
 
 /* The running integrals of a prepared interpolating curve (curve_integral.c). */
 int mot_cv_prep_area(struct mot_curve *c);

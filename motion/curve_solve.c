@@ -119,22 +119,70 @@ static inline mot_q32 spline_value(const struct mot_curve_seg *s, int64_t u, uin
 	return value_of_wide(s->vref, mul62(hi, u2) + lo, sh, sat);
 }
 
-/* cbrt(x) for x in Q2.62 [0, 1], to about 2^-16 relative: the Newton start
- * on a piece whose frame grows as u^3 (the tripled end keys). cbrt(1 + m)
- * for m in [0, 1) is its quartic through the five Chebyshev nodes (within
- * 2^-16.2; a linear start, within 1%, cost those pieces three or four
- * Newton iterations where they now take two). */
+/*
+ * a[0] + a[1] x + .. + a[7] x^7 for x in [-1, 1] in Q1.31, the coefficients
+ * in Q1.30, as E(x^2) + x O(x^2), the even and the odd coefficients each by
+ * Horner's rule in x^2: two chains of three products side by side, where
+ * one chain in x took seven (a start's latency is the solve's). In Q1.62
+ * with a partial sum's top 33 bits, a 64-bit product a step (no 128-bit
+ * one): off by 2^-31 a step, below 2^-27 in all with x^2's and the
+ * coefficients' roundings. The coefficients' magnitudes sum below 2: every
+ * partial sum, and E + x O, is below 2 in Q1.62, its top bits below 2^32,
+ * the products below 2^63.
+ */
+static inline __attribute__((always_inline)) int64_t poly7_62(const int32_t a[8], int64_t x)
+{
+	int64_t y = (x * x) >> 31, e, o;
+
+	e = (int64_t)a[6] * ((int64_t)1 << 32);
+	o = (int64_t)a[7] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[4] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[5] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[2] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[3] * ((int64_t)1 << 32);
+	e = (e >> 31) * y + (int64_t)a[0] * ((int64_t)1 << 32);
+	o = (o >> 31) * y + (int64_t)a[1] * ((int64_t)1 << 32);
+	return (o >> 31) * x + e;
+}
+
+/*
+ * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
+ * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
+ * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
+ * poly7_62()'s: below 2^-27 off, where a piece's tolerance is 2^-16 ..
+ * 2^-31 and most solves' 2^-20 .. 2^-21. Clamped to [0, 1].
+ */
+static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
+{
+	int64_t x = t >> 31, r;
+	const int32_t *a = ut;
+
+	if (x >= (int64_t)1 << 30) {
+		a += 8;
+		x -= (int64_t)1 << 30;
+	}
+	r = poly7_62(a, 4 * x - ((int64_t)1 << 31));
+	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
+}
+
+/* cbrt(x) for x in Q2.62 [0, 1], to about 2^-24.5 relative: the Newton
+ * start on a piece whose frame grows as u^3 (the tripled end keys).
+ * cbrt(1 + m) for m in [0, 1) is its degree-7 polynomial in x = 2 m - 1
+ * through the eight Chebyshev nodes (within 2^-24.7 with the coefficients
+ * in Q1.30, summing to 1.29), evaluated as tab62()'s (poly7_62()), within
+ * the 2^-22 or so that those pieces' tolerance asks of a first step
+ * (curve_approx.c, newton_bits()), so most of their solves take one
+ * iteration where the quartic's 2^-16.2 took two. */
 static int64_t cbrt62(int64_t x)
 {
 	static const int64_t k_third[3] = {
 		ONE62, 3660297618499336453, 2905180145061270980, /* 2^(-r/3) */
 	};
-	static const int64_t k_poly[5] = {
-		4611747008944851968, 1534134573646329856, -485750205713352448,
-		196781500799080704,  -46588231386637792,
+	static const int32_t k_poly[8] = {
+		1229127586, 136569721, -15175292, 2810327, -620137, 151412, -46253, 12582,
 	};
 	unsigned e, q, r;
-	int64_t m, g;
+	int64_t m;
 
 	if (x <= 0)
 		return 0;
@@ -142,11 +190,8 @@ static int64_t cbrt62(int64_t x)
 	q = e / 3;
 	r = e % 3;
 	m = (int64_t)((uint64_t)x << e) - ONE62;
-	g = mul62(k_poly[4], m) + k_poly[3];
-	g = mul62(g, m) + k_poly[2];
-	g = mul62(g, m) + k_poly[1];
-	g = mul62(g, m) + k_poly[0];
-	return mul62(g, k_third[r]) >> q;
+	/* x = 2 m - 1 in Q1.31 */
+	return mul62(poly7_62(k_poly, (m >> 30) - ((int64_t)1 << 31)), k_third[r]) >> q;
 }
 
 /* The cubic Hermite from u0, u1 (Q6.58) with slopes m0, m1 (Q6.58, in units
@@ -180,43 +225,6 @@ static int64_t inv62(const uint16_t us[8], int64_t t)
 	return herm62(k > 0 ? (int64_t)us[k - 1] << 43 : 0,
 		      k < 3 ? (int64_t)us[k] << 43 : (int64_t)1 << 58, (int64_t)us[3 + k] << 44,
 		      (int64_t)us[4 + k] << 44, s);
-}
-
-/*
- * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
- * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
- * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
- * as E(x^2) + x O(x^2), the even and the odd coefficients each by Horner's
- * rule in x^2: two chains of three products side by side, where one chain
- * in x took seven (the start's latency is the solve's). In Q1.62 with a
- * partial sum's top 33 bits, a 64-bit product a step (no 128-bit one): off
- * by 2^-31 a step, below 2^-27 in all with x^2's and the coefficients'
- * roundings, where a piece's tolerance is 2^-16 .. 2^-31 and most solves'
- * 2^-22 .. 2^-24. The coefficients' magnitudes sum below 2: every partial
- * sum, and E + x O, is below 2 in Q1.62, its top bits below 2^32, the
- * products below 2^63. Clamped to [0, 1].
- */
-static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
-{
-	int64_t x = t >> 31, y, e, o, r;
-	const int32_t *a = ut;
-
-	if (x >= (int64_t)1 << 30) {
-		a += 8;
-		x -= (int64_t)1 << 30;
-	}
-	x = 4 * x - ((int64_t)1 << 31);
-	y = (x * x) >> 31;
-	e = (int64_t)a[6] * ((int64_t)1 << 32);
-	o = (int64_t)a[7] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[4] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[5] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[2] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[3] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[0] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[1] * ((int64_t)1 << 32);
-	r = (o >> 31) * x + e;
-	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
 }
 
 /* ---- frame(u) and value(u) of a Bezier curve ------------------------------------ */
@@ -358,6 +366,25 @@ static void bez_frame_at(const struct mot_curve *c, const int64_t *pw, int64_t u
 		bezier_frame(c, u, f, df);
 }
 
+/* The u in [lo, 1] where the frame reaches target, by `steps` bisections:
+ * the last u evaluated below it (F increasing). */
+static int64_t bez_bisect(const struct mot_curve *c, const int64_t *pw, int64_t lo,
+			  int64_t target, unsigned steps)
+{
+	int64_t hi = ONE62, f, df;
+
+	while (steps--) {
+		int64_t mid = lo + (hi - lo) / 2;
+
+		bez_frame_at(c, pw, mid, &f, &df);
+		if (f < target)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
 static uint16_t *bez_u(struct mot_curve *c, uint32_t i) /* knot i in 1 .. nt - 1 */
 {
 	return &c->seg[(i - 1) / 4].us[(i - 1) % 4];
@@ -366,6 +393,53 @@ static uint16_t *bez_u(struct mot_curve *c, uint32_t i) /* knot i in 1 .. nt - 1
 static uint16_t *bez_m(struct mot_curve *c, uint32_t i, uint32_t nt) /* knot i in 0 .. nt */
 {
 	return i == nt ? &c->seg[(nt - 1) / 4].us[3] : &c->seg[i / 4].us[4 + i % 4];
+}
+
+/*
+ * The Bezier curve's START_TAB (on a curve in power form without eases,
+ * after START_INV succeeded): spline pieces' tab_start() (curve_approx.c)
+ * on each of the m = nkeys - 1 equal parts of the chord fraction t, part j
+ * in entry j's ut[] (the inv_h and ease that only an eased key interval
+ * reads: sizeof(struct mot_curve_seg) unchanged), each a degree-7
+ * polynomial of the inverse on either half of its part, from u at the
+ * Chebyshev nodes (bisection to 2^-48, F(u) < t W). Kept only where every
+ * part's fit is (mot_cv_tab_fit()). Init only: m 16 bisections of 48
+ * steps of Horner's rule of degree m (de Casteljau curves, up to 32 keys
+ * and m^2 / 2 products an evaluation, keep the Hermite quarters).
+ */
+static void bez_tab_start(struct mot_curve *c, const int64_t *pw, int64_t w)
+{
+	const struct mot_key *kk = c->keys;
+	uint32_t m = c->nkeys - 1, j, k;
+	int64_t y[16];
+
+	for (j = 0; j < m; j++) {
+		for (k = 0; k < 16; k++) {
+			/* the node's t in the whole curve, (j + t') / m, times W:
+			 * below 2^62 2^5 W, exact in 128 bits */
+			mot_acc a = mot_acc_add(mot_acc_mul(w, mot_cv_tab_node(k / 8, k % 8)),
+						acc_shl(mot_acc_mul(w, (int64_t)j), 62));
+			int64_t target = 0;
+
+			if (!mot_cv_acc_div_round(&target, a, -62, m))
+				break;
+			y[k] = (bez_bisect(c, pw, 0, target, 48) + 2) >> 2; /* Q2.60 */
+		}
+		if (k < 16 || !mot_cv_tab_fit(y, c->seg[j].ut))
+			break;
+	}
+	if (j == m) {
+		c->seg[0].start = START_TAB;
+		return;
+	}
+	/* a part that does not fit (not seen on the random scenes): the
+	 * entries before it get back their inv_h and ease as curve.c's init
+	 * made them (every ease the identity; a table on the stack instead
+	 * would be 2 KB), and the curve keeps START_INV */
+	while (j--) {
+		mot_ease_init(&c->seg[j].ease, kk[j].ease_out, kk[j + 1].ease_in, NULL);
+		mot_recip_init(&c->seg[j].inv_h, kk[j + 1].frame - kk[j].frame);
+	}
 }
 
 void mot_cv_bezier_start(struct mot_curve *c)
@@ -389,18 +463,7 @@ void mot_cv_bezier_start(struct mot_curve *c)
 	uk[0] = 0;
 	uk[nt] = ONE62;
 	for (i = 1; i < nt; i++) {
-		int64_t lo = prev, hi = ONE62, target = step * (int64_t)i;
-
-		for (j = 0; j < 40; j++) {
-			int64_t mid = lo + (hi - lo) / 2;
-
-			bez_frame_at(c, pp, mid, &f, &df);
-			if (f < target)
-				lo = mid;
-			else
-				hi = mid;
-		}
-		uk[i] = prev = lo;
+		uk[i] = prev = bez_bisect(c, pp, prev, step * (int64_t)i, 40);
 	}
 	for (i = 0; i <= nt; i++) {
 		uint32_t sat = 0;
@@ -420,6 +483,8 @@ void mot_cv_bezier_start(struct mot_curve *c)
 	for (i = 0; i <= nt; i++)
 		*bez_m(c, i, nt) = (uint16_t)((q[i] + ((uint64_t)1 << 47)) >> 48);
 	c->seg[0].start = START_INV;
+	if (pp && !c->seg_ease)
+		bez_tab_start(c, pp, w);
 }
 
 /* The start at the chord fraction t in [0, 1] from that table: part
@@ -457,6 +522,24 @@ static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 	return herm62(u0, u1, (int64_t)e[4 + r] << 44, m1, s);
 }
 
+/* The START_TAB start of a Bezier curve at the chord fraction t in [0, 1]:
+ * part j = floor(m t) (t to 32 bits), entry j's polynomials at the part's
+ * own fraction m t - j. */
+static inline __attribute__((always_inline)) int64_t bez_tab62(const struct mot_curve *c,
+							       int64_t t)
+{
+	uint32_t m = c->nkeys - 1;
+	uint64_t x = (uint64_t)(t >> 30) * m;
+	uint32_t j = (uint32_t)(x >> 32);
+	int64_t s = (int64_t)((x & 0xffffffffu) << 30);
+
+	if (j >= m) {
+		j = m - 1;
+		s = ONE62;
+	}
+	return tab62(c->seg[j].ut, s);
+}
+
 /* ---- the solve ------------------------------------------------------------------ */
 
 /* How a solve evaluates the frame: a spline piece's cubic, a Bezier curve
@@ -476,8 +559,8 @@ enum form { FORM_SPLINE, FORM_POWER, FORM_CASTELJAU };
  * Determinism: the start is a function of f alone (the chord fraction, or its
  * cube root), the iteration is pure integer arithmetic and the stopping rule
  * is fixed: stop after a Newton step below 2^-ntol, the piece's (the error
- * is then about the square of it: curve_approx.c bounds it for what the
- * frame needs; 2^-31 where it cannot, and on a Bezier curve), or once the
+ * is then about the square of it: curve_approx.c and curve_bezier.c bound
+ * it for what the frame needs; 2^-31 where they cannot), or once the
  * bracket is narrower than 2^-50, or after NEWTON_MAX_IT iterations. Random
  * and sequential access therefore give the same u, bit for bit, on every
  * target.
@@ -605,7 +688,7 @@ start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 	int64_t u = piece_u(x, &s->inv_w);
 
 	if (s->start == START_TAB)
-		return tab62(s->ut, u);
+		return c->kind == MOT_INTERP_BEZIER ? bez_tab62(c, u) : tab62(s->ut, u);
 	if (s->start == START_INV)
 		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
 	if (s->start == START_CUBE0)
