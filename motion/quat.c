@@ -306,6 +306,23 @@ void mot_quat_from_mat(struct mot_quat *out, const struct mot_mat *mat, uint32_t
 	mot_quat_normalize(out, &q, sat);
 }
 
+/* q within +-1 and |q|^2 within 1/8 of 1 (prepare's unit) */
+static bool near_unit(const struct mot_quat *q)
+{
+	const mot_q32 v[4] = { q->w, q->x, q->y, q->z };
+	mot_acc n = mot_acc_zero();
+	mot_q32 n32;
+	int i;
+
+	for (i = 0; i < 4; i++) {
+		if (mot_mag(v[i]) > (uint64_t)ONE)
+			return false;
+		n = mot_acc_mac(n, v[i], v[i]);
+	}
+	n32 = mot_acc_round(n, MOT_Q32_FRAC, NULL); /* below 4 */
+	return n32 >= ONE - ONE / 8 && n32 <= ONE + ONE / 8;
+}
+
 /* ---- slerp -------------------------------------------------------------------- */
 
 /*
@@ -384,6 +401,14 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 	s->small = (mot_mag(a->w) | mot_mag(a->x) | mot_mag(a->y) | mot_mag(a->z) | mot_mag(bb.w) | mot_mag(bb.x) |
 		    mot_mag(bb.y) | mot_mag(bb.z) | mot_mag(s->c.w) | mot_mag(s->c.x) | mot_mag(s->c.y) |
 		    mot_mag(s->c.z)) <= (uint64_t)ONE;
+	s->plain = s->small && !s->nlerp;
+	/* |a cos + c sin|^2 = |a|^2 cos^2 + |c|^2 sin^2 + 2 a.c sin cos is
+	 * then within 1/4 of 1 (nlerp's results are unit). Only where
+	 * 128-bit integers are native: mot_squad_eval() and scene.c use it
+	 * there alone. */
+	s->unit = MOT_HAVE_INT128 && s->small && near_unit(a) && near_unit(&bb) &&
+		  (s->nlerp ||
+		   (near_unit(&s->c) && mot_mag(mot_quat_dot(a, &s->c, NULL)) <= (uint64_t)ONE / 8));
 }
 
 /* mot_slerp_eval()'s sums for arcs not within +-1: saturating */
@@ -404,34 +429,43 @@ static inline int64_t slerp_sum2(mot_q32 a, mot_q32 cs, mot_q32 c, mot_q32 sn)
 	return round_fits(mot_acc_mac(mot_acc_mul(a, cs), c, sn), MOT_Q32_FRAC);
 }
 
-static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
-				     uint32_t *sat)
+/* mot_slerp_eval() for t in (0, 1) */
+static inline HOT void slerp_mid(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
+				 uint32_t *sat)
 {
 	struct mot_sc sc;
 	mot_q32 sn, cs;
 
+	if (!s->plain) {
+		if (s->nlerp) {
+			quat_lerp(out, &s->a, &s->b, t, sat);
+			return;
+		}
+		/* keys far from unit: saturating sums */
+		sc = sincos_fine_in(mot_acc_mul(t, s->theta));
+		slerp_sum_sat(out, s, sc.c, sc.s, sat);
+		return;
+	}
+	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
+	sn = sc.s;
+	cs = sc.c;
+	/* a, c within +-1: every sum below 2, mot_sum_prod()'s bits untested */
+	*out = (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
+				  slerp_sum2(s->a.x, cs, s->c.x, sn),
+				  slerp_sum2(s->a.y, cs, s->c.y, sn),
+				  slerp_sum2(s->a.z, cs, s->c.z, sn) };
+}
+
+static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
+				     uint32_t *sat)
+{
 	if (t <= 0 || t >= ONE) {
 		if ((t < 0 || t > ONE) && sat)
 			*sat |= MOT_SAT_DOMAIN;
 		*out = t <= 0 ? s->a : s->b;
 		return;
 	}
-	if (s->nlerp) {
-		quat_lerp(out, &s->a, &s->b, t, sat);
-		return;
-	}
-	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
-	sn = sc.s;
-	cs = sc.c;
-	if (!s->small) { /* keys far from unit: saturating sums */
-		slerp_sum_sat(out, s, cs, sn, sat);
-		return;
-	}
-	/* a, c within +-1: every sum below 2, mot_sum_prod()'s bits untested */
-	*out = (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
-				  slerp_sum2(s->a.x, cs, s->c.x, sn),
-				  slerp_sum2(s->a.y, cs, s->c.y, sn),
-				  slerp_sum2(s->a.z, cs, s->c.z, sn) };
+	slerp_mid(out, s, t, sat);
 }
 
 void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, uint32_t *sat)
@@ -461,7 +495,8 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
  * and every rounded value fits.
  */
 static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a,
-				  const struct mot_quat *b, mot_q32 t, bool small, uint32_t *sat)
+				  const struct mot_quat *b, mot_q32 t, bool small, bool unit,
+				  uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
 	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, sn, cs;
@@ -491,7 +526,7 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 			bv[i] = -bv[i];
 		d = -d;
 	}
-	if (t <= 0 || t >= ONE) {
+	if (!unit && (t <= 0 || t >= ONE)) { /* unit: t in (0, 1/2] */
 		if ((t < 0 || t > ONE) && sat)
 			*sat |= MOT_SAT_DOMAIN;
 		*out = t <= 0 ? *a : (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
@@ -525,9 +560,13 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 	sn = sc.s;
 	cs = sc.c;
 	/* sh - 62 in [22, 42]: |u| >= 2^-10 and below 2^10 */
-	k62 = mot_acc_round(mot_acc_mul(sn, inv), sh - 62, &local);
-	if (local)
-		return false;
+	if (unit) {
+		k62 = round_fits(mot_acc_mul(sn, inv), sh - 62);
+	} else {
+		k62 = mot_acc_round(mot_acc_mul(sn, inv), sh - 62, &local);
+		if (local)
+			return false;
+	}
 	cs *= (mot_q32)1 << 30; /* Q2.62, |cs| <= 1 */
 	UNROLL4
 	for (i = 0; i < 4; i++)
@@ -550,7 +589,7 @@ static __attribute__((noinline)) void slerp_long(struct mot_quat *out, const str
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
 		    mot_q32 t, uint32_t *sat)
 {
-	if (!slerp_once(out, a, b, t, false, sat))
+	if (!slerp_once(out, a, b, t, false, false, sat))
 		slerp_long(out, a, b, t, sat);
 }
 
@@ -560,11 +599,32 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 	struct mot_quat qa, qb;
 	mot_q32 h;
 
-	slerp_eval_in(&qa, arc, t, sat);
-	slerp_eval_in(&qb, inner, t, sat);
-	h = 2 * mot_mul(t, ONE - t, sat); /* 2 t (1 - t) */
+	/* squad(0) = q(i), squad(1) = q(i+1): the ends of arc */
+	if (t <= 0 || t >= ONE) {
+		if ((t < 0 || t > ONE) && sat)
+			*sat |= MOT_SAT_DOMAIN;
+		*out = t <= 0 ? arc->a : arc->b;
+		return;
+	}
+	slerp_mid(&qa, arc, t, sat);
+	slerp_mid(&qb, inner, t, sat);
+	h = 2 * round_fits(mot_acc_mul(t, ONE - t), MOT_Q32_FRAC); /* 2 t (1 - t), (0, 1/2] */
+	/*
+	 * Near-unit arcs: in-betweens with |q|^2 within 1/4 of 1, so the
+	 * outer slerp's k = sin(h phi) / |u| <= sin(phi / 2) / (|qb| sin psi)
+	 * (psi the angle between qa and qb, tan phi = |qa| tan psi) stays below
+	 * 0.83: no test of it, nor of h's range. Where 128-bit integers are
+	 * native (a second copy of slerp_once() elsewhere is code, the same
+	 * bits).
+	 */
+#if MOT_HAVE_INT128
+	if (arc->unit && inner->unit) {
+		slerp_once(out, &qa, &qb, h, true, true, sat);
+		return;
+	}
+#endif
 	/* in-betweens of arcs within +-1 are below sqrt 2: no test */
-	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, sat))
+	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, false, sat))
 		slerp_long(out, &qa, &qb, h, sat);
 }
 

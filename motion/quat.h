@@ -63,29 +63,18 @@ static inline __attribute__((always_inline)) void mot_quat_rot_pair(int64_t *plu
  * is round((p + q) / 2), and 1 - 2 (p + q) is round((2^63 - p - q) / 2),
  * the same bits as quat.c's exact sums rounded by 4. With |q|^2 < 3/2
  * (every rotation) each entry fits: |xy + wz| <= |q|^2 / 2 < 3/4 and
- * 1 - 2 (x^2 + y^2) > -2, so no entry is tested; otherwise
- * mot_quat_to_rot_q62_sat(), whose bits are the same where an entry fits.
+ * 1 - 2 (x^2 + y^2) > -2, so no entry is tested. For a q known to be such
+ * (components below 2^62 and |q|^2 < 3/2: a rotation track whose arcs are
+ * near unit, struct mot_slerp's unit) this is mot_quat_to_rot_q62()
+ * without its tests, the same bits.
  */
-static inline __attribute__((always_inline)) int mot_quat_rot_q62_in(int64_t r[3][3],
-								      const struct mot_quat *q,
-								      uint32_t *sat)
+static inline __attribute__((always_inline)) void mot_quat_rot_q62_unit(int64_t r[3][3],
+									 const struct mot_quat *q)
 {
-	const mot_q32 lim = (mot_q32)1 << 62;
 	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
 	const mot_acc h = mot_acc_from(1, 63);
-	mot_acc a, b, c, n;
+	mot_acc a = mot_acc_mul(x, x), b = mot_acc_mul(y, y), c = mot_acc_mul(z, z);
 
-	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
-	    z >= lim || z <= -lim)
-		return MOT_E_RANGE;
-	a = mot_acc_mul(x, x);
-	b = mot_acc_mul(y, y);
-	c = mot_acc_mul(z, z);
-	n = mot_acc_mac(mot_acc_add(mot_acc_add(a, b), c), w, w); /* below 2^126 */
-	if (!mot_acc_is_neg(mot_acc_sub(n, mot_acc_from(3, 63)))) {
-		mot_quat_to_rot_q62_sat(r, q, sat);
-		return MOT_OK;
-	}
 	mot_quat_rot_pair(&r[0][1], &r[1][0], x, y, w, z);
 	mot_quat_rot_pair(&r[2][0], &r[0][2], x, z, w, y);
 	mot_quat_rot_pair(&r[1][2], &r[2][1], y, z, w, x);
@@ -93,6 +82,28 @@ static inline __attribute__((always_inline)) int mot_quat_rot_q62_in(int64_t r[3
 	c = mot_acc_sub(h, c);
 	r[1][1] = mot_quat_half_fits(mot_acc_sub(c, a));
 	r[0][0] = mot_quat_half_fits(mot_acc_sub(c, b));
+}
+
+/* The same after the tests: other quaternions take
+ * mot_quat_to_rot_q62_sat(), whose bits are the same where an entry fits. */
+static inline __attribute__((always_inline)) int mot_quat_rot_q62_in(int64_t r[3][3],
+								      const struct mot_quat *q,
+								      uint32_t *sat)
+{
+	const mot_q32 lim = (mot_q32)1 << 62;
+	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
+	mot_acc n;
+
+	if (w >= lim || w <= -lim || x >= lim || x <= -lim || y >= lim || y <= -lim ||
+	    z >= lim || z <= -lim)
+		return MOT_E_RANGE;
+	n = mot_acc_mac(mot_acc_mac(mot_acc_mac(mot_acc_mul(x, x), y, y), z, z), w,
+			w); /* below 2^126 */
+	if (!mot_acc_is_neg(mot_acc_sub(n, mot_acc_from(3, 63)))) {
+		mot_quat_to_rot_q62_sat(r, q, sat);
+		return MOT_OK;
+	}
+	mot_quat_rot_q62_unit(r, q);
 	return MOT_OK;
 }
 
@@ -142,6 +153,11 @@ struct mot_slerp {
 	mot_q32 theta;        /* arc angle between a and b, turns, [0, 1/4] */
 	bool nlerp;           /* theta too small: normalised linear interpolation */
 	bool small;           /* a, b, c within +-1: every in-between below sqrt 2 */
+	bool plain;           /* small and not nlerp: eval's one test */
+	bool unit;            /* small, |q|^2 within 1/8 of 1 for a and b, and for c
+			       * with |a.c| <= 1/8 unless nlerp, so that every
+			       * in-between has |q|^2 within 1/4 of 1 (only where
+			       * 128-bit integers are native; false elsewhere) */
 };
 
 void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const struct mot_quat *b,

@@ -295,6 +295,7 @@ enum {
 	FREE_ROT = 1,  /* a rotation track or four quaternion curves */
 	FREE_SHS = 2,  /* a scale or shear channel */
 	FREE_FITS = 4, /* every scale and shear below 2^40 raw (small_kernels) */
+	FREE_UNIT = 8, /* its quaternions near unit: R(q) untested (small_kernels) */
 };
 
 static unsigned free_flags(const struct mot_scene *sc, const struct mot_free_strand *fs,
@@ -311,6 +312,11 @@ static unsigned free_flags(const struct mot_scene *sc, const struct mot_free_str
 		f |= FREE_SHS;
 		fits = fits && mot_curve_bound(&sc->curves[c]) < (uint64_t)1 << 40;
 	}
+	/* a track of near-unit arcs (mot_rot_track's unit), or curves whose
+	 * value is normalised (mot_quat_normalize(): unit within a few units,
+	 * or the identity) */
+	if (small_kernels && (fs->rot >= 0 ? sc->rot[fs->rot].unit : fs->quat[0] >= 0))
+		f |= FREE_UNIT;
 	return f | (fits ? FREE_FITS : 0);
 }
 
@@ -710,6 +716,10 @@ static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mo
 		(mot_mag(v[MOT_FREE_SX]) | mot_mag(v[MOT_FREE_SY]) | mot_mag(v[MOT_FREE_SZ]) |
 		 mot_mag(v[MOT_FREE_HXY]) | mot_mag(v[MOT_FREE_HXZ]) | mot_mag(v[MOT_FREE_HYZ])) <
 			(uint64_t)1 << 40);
+	if (small_kernels && fits && !held && (how & FREE_UNIT)) {
+		mot_quat_rot_q62_unit(r.r, &d.rot);
+		held = &r;
+	}
 	if (fits && (held || mot_quat_to_rot_q62(r.r, &d.rot, &ev->sat) == MOT_OK)) {
 		const int64_t(*rr)[3] = (held ? held : &r)->r;
 

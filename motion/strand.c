@@ -94,6 +94,12 @@ int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, 
 		prev = cur;
 		cur = next;
 	}
+	/* near-unit arcs give near-unit quaternions (mot_slerp_prepare(),
+	 * mot_squad_eval()); a single key is always held (its matrix made at
+	 * init, or, not made, not near unit) */
+	r->unit = nkeys > 1;
+	for (i = 0; i + 1 < nkeys; i++)
+		r->unit = r->unit && seg[i].arc.unit && (!squad || seg[i].inner.unit);
 	r->nkeys = nkeys;
 	r->squad = squad;
 	r->compact = false;
@@ -119,6 +125,7 @@ int mot_rot_track_init_compact(struct mot_rot_track *r, const struct mot_rot_key
 	r->nkeys = nkeys;
 	r->squad = false;
 	r->compact = true;
+	r->unit = false; /* one-shot slerps of keys not checked */
 	r->keys = keys;
 	r->seg = NULL;
 	rot_ends(r);

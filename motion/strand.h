@@ -52,6 +52,9 @@ struct mot_rot_track {
 	bool squad;
 	bool compact; /* keys only: each slerp prepared when it is evaluated */
 	bool ends_ok; /* end[] made */
+	bool unit;    /* every quaternion it gives (two keys or more) below 2 in
+		       * its components, |q|^2 within 1/4 of 1 (every arc's
+		       * unit, quat.h): mot_quat_rot_q62_unit() takes it */
 	const struct mot_rot_key *keys;
 	struct mot_rot_seg *seg; /* nkeys - 1 entries; NULL when compact */
 	struct mot_rot_q62 end[2]; /* before the first key, after the last */

@@ -292,6 +292,9 @@ static inline void sqrt_core(uint64_t m, int64_t *g, int64_t *h)
 	int64_t gg = mulsh((int64_t)m, hh, 61);            /* a y0, Q62 */
 	int k;
 
+#if MOT_HAVE_INT128
+	_Pragma("GCC unroll 3") /* gcc -O2 keeps the loop and its counter */
+#endif
 	for (k = 0; k < 3; k++) {
 		int64_t r = ((int64_t)1 << 62) - mulsh(gg, hh, 61); /* 1/2 - g h, Q63 */
 
