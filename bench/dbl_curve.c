@@ -526,25 +526,72 @@ static void basis(const struct dbl_curve *c, double b1, double b2, double nb[4][
 	}
 }
 
-/* curve_approx.c's newton_bits(), in frames: the last step leaves u within
- * (max |F''| / (2 min F')) (2 du)^2 of the root, the frame needs it within
- * 2^-36 frames over max F' (a 16th of the core's LSB), and the core's step
- * its own error, 2^-29 of it, no more; 2^-16 at most, 2^-31 where F' may
- * reach 0 */
+/* bit length of a magnitude given in frames, as the core's bitlen64() of the
+ * same number in raw units (2^-32 frames): floor(log2(x 2^32)) + 1, 0 for 0 */
+static int raw_bitlen(double x)
+{
+	int e;
+
+	if (!(x > 0))
+		return 0;
+	frexp(x, &e); /* x = f 2^e, f in [0.5, 1) */
+	return e + 32;
+}
+
+/* curve_approx.c's newton_bits(), in frames: the frame's residual after the
+ * last step h, |F(u') - d| <= (2^-29 Dmax + 4) |h| + M h^2 with M =
+ * max(|fc2|, |fc2 + 3 fc3|) and the core's quotient error 2^-29 (doubles
+ * have none, but the twin stops where the core does), each term within 2^-5
+ * of a raw unit (2^-37 frames); the 4 units of the core's own rounding are
+ * at its scale, which the twin does not have: left out. 2^-16 at most,
+ * 2^-31 at least, for every piece (the cube-root ones too) */
 static double newton_tol(const double fc[4])
 {
-	double d0 = fc[1], d1 = fc[1] + 2 * fc[2] + 3 * fc[3], m = d0 < d1 ? d0 : d1;
+	double m2 = fmax(fabs(fc[2]), fabs(fc[2] + 3 * fc[3]));
 	double dmax = fabs(fc[1]) + 2 * fabs(fc[2]) + 3 * fabs(fc[3]);
-	double m2 = fmax(fabs(2 * fc[2]), fabs(2 * fc[2] + 6 * fc[3])), k, kr;
+	int k = (raw_bitlen(m2) + 6) / 2, kr = raw_bitlen(dmax) - 29 + 6;
 
-	if (fc[3] > 0 && fc[2] < 0 && -fc[2] < 3 * fc[3])
-		m = fc[1] - fc[2] * fc[2] / (3 * fc[3]);
-	if (!(m > 0))
+	k = k > kr ? k : kr;
+	k = k < 16 ? 16 : k > 31 ? 31 : k;
+	return ldexp(1, -k);
+}
+
+/* curve_bezier.c's bezier_ntol(): from the keys' first and second frame
+ * differences (Bernstein bounds of F' and F''), the same integers from the
+ * same raw frames, the core's scale of the frame (bezier_shift()) included */
+static double bezier_tol(const struct dbl_curve *c)
+{
+	uint32_t m = c->nkeys - 1, i;
+	uint64_t dmin = UINT64_MAX, dmax = 0, d2 = 0;
+	int64_t raw[MOT_BEZIER_MAX_KEYS];
+	int b, br, fsh;
+
+	if (m == 0)
 		return NEWTON_TOL;
-	k = ceil((log2(m2 > 0 ? m2 : 1) - log2(m) + 1 + 36 + log2(dmax)) / 2);
-	kr = ceil(log2(dmax) + 8);
-	k = fmin(fmax(fmax(k, kr), 16), 31);
-	return ldexp(1, -(int)k);
+	for (i = 0; i <= m; i++)
+		raw[i] = (int64_t)llround(c->frame[i] * 4294967296.0);
+	for (i = 0; i < m; i++) {
+		uint64_t dx = (uint64_t)(raw[i + 1] - raw[i]);
+
+		dmin = dx < dmin ? dx : dmin;
+		dmax = dx > dmax ? dx : dmax;
+		if (i + 1 < m) {
+			int64_t e = (raw[i + 2] - raw[i + 1]) - (int64_t)dx;
+			uint64_t ae = e < 0 ? 0 - (uint64_t)e : (uint64_t)e;
+
+			d2 = ae > d2 ? ae : d2;
+		}
+	}
+	fsh = 58 - (64 - __builtin_clzll((uint64_t)(raw[m] - raw[0])));
+	if ((64 - __builtin_clzll(dmin)) + fsh < 48)
+		return NEWTON_TOL;
+	b = d2 ? ((64 - __builtin_clzll((uint64_t)m * (m - 1))) + (64 - __builtin_clzll(d2)) + 5) /
+			 2 :
+		 0;
+	br = (64 - __builtin_clzll(m)) + (64 - __builtin_clzll(dmax)) - 24;
+	b = b > br ? b : br;
+	b = b < 16 ? 16 : b > 31 ? 31 : b;
+	return ldexp(1, -b);
 }
 
 static void prep_spline(struct dbl_curve *c, uint32_t j, double nb[4][4], double den)
@@ -589,7 +636,7 @@ static void prep_spline(struct dbl_curve *c, uint32_t j, double nb[4][4], double
 		s->start = START_CUBE0;
 	else if (fabs(nf[1] - 3 * nf[3]) + fabs(nf[2] + 3 * nf[3]) <= 1e-12 * big)
 		s->start = START_CUBE1;
-	s->tol = s->start == START_CHORD ? newton_tol(s->fc) : NEWTON_TOL;
+	s->tol = newton_tol(s->fc);
 }
 
 /* Hermite piece j: Catmull-Rom tangents times h (one-sided at the ends),
@@ -626,7 +673,7 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 		s->f1 = c->frame[n - 1];
 		s->inv_w = 1 / (s->f1 - s->f0);
 		s->start = START_CHORD;
-		s->tol = NEWTON_TOL;
+		s->tol = bezier_tol(c);
 		prep_power(c);
 		bezier_start(c);
 		return;
