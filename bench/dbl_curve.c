@@ -14,7 +14,7 @@
 #include <string.h>
 
 /* Newton start rules and limits: curve_solve.c's */
-enum { START_CHORD, START_CUBE0, START_CUBE1, START_INV };
+enum { START_CHORD, START_CUBE0, START_CUBE1, START_INV, START_TAB };
 #define NEWTON_MAX_IT 64
 #define NEWTON_TOL (1.0 / 2147483648.0)     /* 2^-31 */
 #define BISECT_TOL (1.0 / 1125899906842624.0) /* 2^-50 */
@@ -172,7 +172,139 @@ static inline __attribute__((always_inline)) void frame_at(const struct dbl_curv
 	*df = (double)(c->nkeys - 1) * (w[1] - w[0]);
 }
 
-/* curve_solve.c's mot_cv_bezier_start(): the same table, in the same slots (in doubles
+/* START_TAB (curve_approx.c's tab_start(), curve_solve.c's tab62()): u at
+ * the chord fraction t of a part as half h's degree-7 polynomial in
+ * x = 4 t - 2 h - 1, even and odd powers side by side as the core's */
+static inline double tab_eval(const float ut[16], double t)
+{
+	unsigned h = t >= 0.5; /* an index, not a branch: the half is unpredictable */
+	const float *a = ut + 8 * h;
+	double x = 4 * t - 1 - 2 * h, y, e, o, u;
+
+	y = x * x;
+	e = ((a[6] * y + a[4]) * y + a[2]) * y + a[0];
+	o = ((a[7] * y + a[5]) * y + a[3]) * y + a[1];
+	u = o * x + e;
+	return u < 0 ? 0 : u > 1 ? 1 : u;
+}
+
+/* the Chebyshev node i of 8 on [-1, 1] */
+static double tab_node(unsigned i)
+{
+	return cos((2 * i + 1) * 3.14159265358979323846 / 16);
+}
+
+/* The polynomial through (x_i, y_i), x_i the nodes, in powers of x (Newton's
+ * divided differences, then expanded); false where its coefficients'
+ * magnitudes reach 2, where the core keeps its older start. */
+static bool tab_fit(const double y[8], float a[8])
+{
+	double d[8], p[8] = { 0 }, sum = 0;
+	int i, j;
+
+	for (i = 0; i < 8; i++)
+		d[i] = y[i];
+	for (j = 1; j < 8; j++)
+		for (i = 7; i >= j; i--)
+			d[i] = (d[i] - d[i - 1]) / (tab_node(i) - tab_node(i - j));
+	/* p = d0 + (x - x0)(d1 + (x - x1)(d2 + ...)) */
+	p[0] = d[7];
+	for (j = 6; j >= 0; j--) {
+		for (i = 7; i >= 1; i--)
+			p[i] = p[i - 1] - tab_node(j) * p[i];
+		p[0] = d[j] - tab_node(j) * p[0];
+	}
+	for (i = 0; i < 8; i++) {
+		a[i] = (float)p[i];
+		sum += fabs(p[i]);
+	}
+	return sum < 2;
+}
+
+/* u in [0, 1] with frame offset F(u) = target, by bisection: F the piece's
+ * cubic (s) or the Bezier curve's frame less its first key's (s NULL) */
+static double tab_inverse(const struct dbl_curve *c, const struct dbl_seg *s, double target)
+{
+	double lo = 0, hi = 1, f, df;
+	int i;
+
+	for (i = 0; i < 60; i++) {
+		double mid = (lo + hi) / 2;
+
+		if (s)
+			f = poly_eval(s->fc, mid);
+		else
+			frame_at(c, &c->seg[0], mid, &f, &df);
+		if (f < target)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+/* Fit ut[16] for a chord fraction t = t0 + tw (chord of the part) on the
+ * frame offsets f0w + t w: both halves */
+static bool tab_part(const struct dbl_curve *c, const struct dbl_seg *s, double fa, double w,
+		     float ut[16])
+{
+	double y[8];
+	unsigned h, i;
+
+	for (h = 0; h < 2; h++) {
+		for (i = 0; i < 8; i++)
+			y[i] = tab_inverse(c, s, fa + w * (2 * h + 1 + tab_node(i)) / 4);
+		if (!tab_fit(y, ut + 8 * h))
+			return false;
+	}
+	return true;
+}
+
+/* curve_approx.c's tab_start() on a spline piece (a curve without eases) */
+static void tab_start(const struct dbl_curve *c, struct dbl_seg *s)
+{
+	double w = s->fc[1] + s->fc[2] + s->fc[3];
+
+	if (s->start != START_CHORD || c->seg_ease || !(w > 0))
+		return;
+	if (tab_part(c, s, s->fc[0], w, s->ut))
+		s->start = START_TAB;
+}
+
+/* and on a Bezier curve in power form without eases: entry j's table on
+ * part j of m of the chord fraction; false where a part does not fit */
+static bool bezier_tab(struct dbl_curve *c)
+{
+	uint32_t m = c->nkeys - 1, j;
+	double w, df;
+
+	if (!c->pw || c->seg_ease)
+		return false;
+	frame_at(c, &c->seg[0], 1, &w, &df);
+	if (!(w > 0))
+		return false;
+	for (j = 0; j < m; j++)
+		if (!tab_part(c, NULL, w * j / m, w / m, c->seg[j].ut))
+			return false;
+	c->seg[0].start = START_TAB;
+	return true;
+}
+
+/* curve_solve.c's bez_tab62() */
+static inline double bezier_tab_eval(const struct dbl_curve *c, double t)
+{
+	uint32_t m = c->nkeys - 1, j = (uint32_t)(t * m);
+	double x = t * m - j;
+
+	if (j >= m) {
+		j = m - 1;
+		x = 1;
+	}
+	return tab_eval(c->seg[j].ut, x);
+}
+
+/* (START_INV, where bezier_tab() cannot: eased or de Casteljau curves)
+ * curve_solve.c's mot_cv_bezier_start(): the same table, in the same slots (in doubles
  * too a Bezier curve's step costs more than the table: 69.5 -> 67.5 ns a joint) */
 static void bezier_start(struct dbl_curve *c)
 {
@@ -297,7 +429,9 @@ static double approx_eval(const struct dbl_curve *c, struct dbl_cursor *cur, dou
 
 	s = c->kind == MOT_INTERP_BEZIER ? &c->seg[0] : &c->seg[locate_seg(c, cur, f)];
 	u = frac(f - s->f0, s->inv_w);
-	if (s->start == START_INV)
+	if (s->start == START_TAB)
+		u = c->kind == MOT_INTERP_BEZIER ? bezier_tab_eval(c, u) : tab_eval(s->ut, u);
+	else if (s->start == START_INV)
 		u = bezier_inv(c, u);
 	else if (s->start == START_CUBE0)
 		u = cbrt(u);
@@ -675,7 +809,8 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 		s->start = START_CHORD;
 		s->tol = bezier_tol(c);
 		prep_power(c);
-		bezier_start(c);
+		if (!bezier_tab(c))
+			bezier_start(c);
 		return;
 	}
 	if (c->kind >= MOT_INTERP_BSPLINE) {
@@ -688,11 +823,15 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 			struct dbl_seg *s = &c->seg[j];
 
 			s->f1 = j + 1 < c->nseg ? c->seg[j + 1].f0 : c->frame[n - 1];
-			/* the chord start, where the core takes curve_approx.c's
-			 * inv_start(): in doubles its table costs more time than the
-			 * Newton step it saves (make bench-motion: B-spline keys
-			 * 62 -> 69 ns a joint, Beta 65 -> 69) */
+			/* the core's start (START_TAB) where it takes it; an
+			 * eased curve keeps the chord, where the core keeps its
+			 * Hermite quarters (START_INV): in doubles that table cost
+			 * more time than the Newton step it saved (make
+			 * bench-motion: B-spline keys 62 -> 69 ns a joint, Beta
+			 * 65 -> 69) */
 			s->inv_w = s->f1 > s->f0 ? 1 / (s->f1 - s->f0) : 0;
+			if (s->f1 > s->f0)
+				tab_start(c, s);
 		}
 		return;
 	}

@@ -46,6 +46,9 @@ struct dbl_seg {
 	union {
 		double area;  /* integral from frame 0 to key j */
 		uint16_t us[8]; /* bezier's START_INV: curve_solve.c's table */
+		float ut[16];   /* START_TAB: curve_approx.c's degree-7 inverse on
+				 * each half, coefficients in x, x^0 first (float
+				 * holds them to 2^-24, the start needs 2^-20) */
 		struct {
 			double xa, xd, vw, c; /* an eased linear or hermite piece: the
 					       * plateau a w <= x <= (1 - b) w, there
