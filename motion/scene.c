@@ -418,11 +418,20 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 	mot_q32 *lo = &m->lo, *hi = &m->hi;
 
 	piece_forget(m);
-	if (!c->plain) {
-		/* an approximating kind, a compact curve, one key: always */
+	if (!c->plain && (c->nkeys == 0 || (f > c->span_f0 && f < c->span_f1))) {
+		/* an approximating kind, a compact curve, one key: the whole
+		 * way inside the span, glo..ghi, which joint_slow() tests (every
+		 * frame without a key); its held ends below */
 		m->lo = MOT_Q32_MIN;
 		m->hi = MOT_Q32_MAX;
 		m->how = PIECE_WHOLE;
+		if (c->nkeys) {
+			m->glo = c->span_f0 + 1;
+			m->ghi = c->span_f1;
+		} else {
+			m->glo = MOT_Q32_MIN;
+			m->ghi = MOT_Q32_MAX;
+		}
 		return;
 	}
 	if (f > c->span_f0 && f < c->span_f1 && c->span_ease) {
@@ -718,7 +727,7 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 	*rpm = 0;
 	c = &sc->curves[n->curve];
 	cur = &ev->cursors[n->curve];
-	if (m->how == PIECE_WHOLE)
+	if (m->how == PIECE_WHOLE && frame >= m->glo && frame < m->ghi)
 		return mot_curve_eval(c, cur, frame, &ev->sat);
 	return curve_learn(c, cur, m, frame, &ev->sat);
 }
