@@ -12,51 +12,17 @@
  */
 #include "curve_priv.h"
 
-/*
- * Integral over [f0, f0 + e] of interpolating piece s, 0 <= e <= f1 - f0, in
- * value x frames, Q64.64 (FORMULAS section 8). With s = e / h:
- *   step:     e v0                                  exact
- *   linear:   e v0 + dv e^2 / (2h)                  exact but for one rounding:
- *             e^2 / h = q + r / h and dv r / h = q2 + r2 / h, two exact divisions
- *   hermite:  e (v0 + sum c_p s^p / (p + 1))        the mean value in the block
- *             scale of c (~2^-59 of sum |c_p|), times e in 128 bits; in s'
- *             = e / 2^e' with its own c_p where the piece is kept in s'
- *             (curve.h), the same sum
- */
+/* Integral over [f0, f0 + e] of piece i, 0 <= e <= f1 - f0, at parameter
+ * s62 = e / (f1 - f0) (cv_seg_integral()). */
 static mot_acc seg_integral(const struct mot_curve *c, uint32_t i, int64_t e, int64_t s62)
 {
 	const struct mot_curve_seg *s = &c->seg[i];
-	mot_acc a = mot_acc_mul(e, s->vref);
 
 	if (s->ush >= 0) /* ic[] in s' (curve.h) */
 		s62 = e << s->ush;
-
-	if (c->kind == MOT_INTERP_LINEAR) {
-		/* |dv| < 2^63 and 0 <= e <= h < 2^63 (curve.h limits), so every
-		 * quotient below fits 63 bits */
-		int64_t dv = c->keys[i + 1].value - s->vref;
-		int64_t adv = dv < 0 ? -dv : dv;
-		uint64_t r, r2, q, q2;
-		mot_acc t, ee = mot_acc_mul(e, e), ar;
-
-		/* by h = f1 - f0's prepared reciprocal (mot_cv_prep_area()):
-		 * e^2 < h 2^63 and adv r < h 2^63, high words below h, the
-		 * quotients exact (mot_acc_udiv()'s) */
-		q = mot_udiv_by_inv(mot_acc_hi(ee), mot_acc_lo(ee), &s->inv_hd, &r);
-		ar = mot_acc_mul(adv, (int64_t)r);
-		q2 = mot_udiv_by_inv(mot_acc_hi(ar), mot_acc_lo(ar), &s->inv_hd, &r2);
-		t = mot_acc_add(mot_acc_mul(adv, (int64_t)q), mot_acc_from((int64_t)q2, 0));
-		/* half of t + r2/h, rounded to nearest, ties toward +infinity */
-		if (dv >= 0)
-			t = mot_cv_acc_sar(mot_acc_add(t, mot_acc_from(1, 0)), 1);
-		else
-			t = mot_acc_neg(mot_cv_acc_sar(mot_acc_add(t, mot_acc_from(r2 != 0, 0)), 1));
-		return mot_acc_add(a, t);
-	}
-	if (c->kind == MOT_INTERP_HERMITE)
-		a = mot_acc_add(a, mot_cv_acc_round_shift(mot_acc_mul(e, poly_eval(s->ic, s62)),
-							  s->fsh));
-	return a;
+	if (c->kind == MOT_INTERP_LINEAR)
+		return cv_seg_integral(MOT_INTERP_LINEAR, s, c->keys[i + 1].value - s->vref, e, s62);
+	return cv_seg_integral(c->kind, s, 0, e, s62);
 }
 
 int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_cursor *cur,

@@ -258,6 +258,63 @@ static inline __attribute__((always_inline)) int64_t eased_u(const struct mot_cu
 	return mot_ease_apply62(&s->ease, piece_u(x, &s->inv_w));
 }
 
+/* round(x / 2^sh): mot_cv_acc_round_shift()'s bits, inline for the usual
+ * 0 < sh < 127 where 128-bit integers are the compiler's. */
+static inline __attribute__((always_inline)) mot_acc acc_round_shift_in(mot_acc x, int sh)
+{
+#if MOT_HAVE_INT128
+	if (sh > 0 && sh < 127)
+		return (mot_acc)((mot_uacc)x + ((mot_uacc)1 << (sh - 1))) >> sh;
+#endif
+	return mot_cv_acc_round_shift(x, sh);
+}
+
+/*
+ * Integral over [f0, f0 + e] of interpolating piece s of kind `kind`, 0 <= e
+ * <= f1 - f0, in value x frames, Q64.64 (FORMULAS section 8), for u its
+ * parameter at e (s' = e 2^ush where the piece is kept in s', curve.h) and
+ * dv its key interval's change of value (linear). With s = e / h:
+ *   step:     e v0                                  exact
+ *   linear:   e v0 + dv e^2 / (2h)                  exact but for one rounding:
+ *             e^2 / h = q + r / h and dv r / h = q2 + r2 / h, two exact divisions
+ *   hermite:  e (v0 + sum c_p s^p / (p + 1))        the mean value in the block
+ *             scale of c (~2^-59 of sum |c_p|), times e in 128 bits
+ * curve_integral.c's pieces, and scene.c's spin joints inline (the kind a
+ * constant there).
+ */
+static inline __attribute__((always_inline)) mot_acc
+cv_seg_integral(uint32_t kind, const struct mot_curve_seg *s, int64_t dv, int64_t e, int64_t u)
+{
+	mot_acc a = mot_acc_mul(e, s->vref);
+
+	if (kind == MOT_INTERP_LINEAR) {
+		/* |dv| < 2^63 and 0 <= e <= h < 2^63 (curve.h limits), so every
+		 * quotient below fits 63 bits */
+		int64_t adv = dv < 0 ? -dv : dv;
+		uint64_t r, r2, q, q2, hi, lo;
+		mot_acc t, ee = mot_acc_mul(e, e), ar;
+
+		/* by h = f1 - f0's prepared reciprocal (mot_cv_prep_area()):
+		 * e^2 < h 2^63 and adv r < h 2^63, high words below h, the
+		 * quotients exact (mot_acc_udiv()'s) */
+		q = mot_udiv_by_inv(mot_acc_hi(ee), mot_acc_lo(ee), &s->inv_hd, &r);
+		ar = mot_acc_mul(adv, (int64_t)r);
+		q2 = mot_udiv_by_inv(mot_acc_hi(ar), mot_acc_lo(ar), &s->inv_hd, &r2);
+		/* half of t = adv q + q2 + r2/h (below 2^126), rounded to
+		 * nearest, ties toward +infinity: floor((t + 1) / 2) for dv >= 0,
+		 * -floor((t + (r2 != 0)) / 2) else */
+		t = mot_acc_add(mot_acc_mul(adv, (int64_t)q),
+				mot_acc_make(0, q2 + (dv >= 0 || r2 != 0)));
+		hi = mot_acc_hi(t);
+		lo = mot_acc_lo(t);
+		t = mot_acc_make(hi >> 1, (lo >> 1) | (hi << 63));
+		return mot_acc_add(a, dv >= 0 ? t : mot_acc_neg(t));
+	}
+	if (kind == MOT_INTERP_HERMITE)
+		a = mot_acc_add(a, acc_round_shift_in(mot_acc_mul(e, poly_eval(s->ic, u)), s->fsh));
+	return a;
+}
+
 /* The strand-wide time warp: a frame strictly inside the span to its eased
  * frame, in [span_f0, span_f1] (curve.c, and scene.c's piece memo): the
  * profile's polynomials in the frame (ease.h). */

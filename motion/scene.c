@@ -424,11 +424,20 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 	mot_q32 *lo = &m->lo, *hi = &m->hi;
 
 	piece_forget(m);
-	if (!c->plain) {
-		/* an approximating kind, a compact curve, one key: always */
+	if (!c->plain && (c->nkeys == 0 || (f > c->span_f0 && f < c->span_f1))) {
+		/* an approximating kind, a compact curve, one key: the whole
+		 * way inside the span, glo..ghi, which joint_slow() tests (every
+		 * frame without a key); its held ends below */
 		m->lo = MOT_Q32_MIN;
 		m->hi = MOT_Q32_MAX;
 		m->how = PIECE_WHOLE;
+		if (c->nkeys) {
+			m->glo = c->span_f0 + 1;
+			m->ghi = c->span_f1;
+		} else {
+			m->glo = MOT_Q32_MIN;
+			m->ghi = MOT_Q32_MAX;
+		}
 		return;
 	}
 	if (f > c->span_f0 && f < c->span_f1 && c->span_ease) {
@@ -508,9 +517,11 @@ static inline __attribute__((always_inline)) bool piece_fast(const struct mot_no
 }
 
 /* A frame outside the memo's span: learn the piece there, and the value
- * the whole way. */
-static mot_q32 curve_learn(const struct mot_curve *c, struct mot_cursor *cur,
-			   struct mot_node_memo *m, mot_q32 f, uint32_t *sat)
+ * the whole way (out of line: joint_slow() then saves no register). */
+static __attribute__((noinline)) mot_q32 curve_learn(const struct mot_curve *c,
+						     struct mot_cursor *cur,
+						     struct mot_node_memo *m, mot_q32 f,
+						     uint32_t *sat)
 {
 	piece_learn(m, c, cur, f);
 	/* a piece whose scale value_of() takes the wide way for: out of line */
@@ -562,6 +573,124 @@ static __attribute__((noinline)) mot_q32 spin_value(const struct mot_scene *sc,
 			   &ev->sat);
 }
 
+/*
+ * A spin joint's own memo, where 128-bit integers are the compiler's (the
+ * first pass never takes it: its span lo..hi stays empty, and joint_slow()
+ * comes here): between the frames glo (included) and ghi (excluded), a held
+ * end or a piece of the rpm curve, which gives both the speed (piece_at()'s
+ * bits: mot_curve_eval()'s) and the integral (the piece's area up to its
+ * start plus cv_seg_integral(): mot_curve_integral()'s bits), whose turns
+ * mot_spin_turns_of() makes. spin_value()'s bits without the curve's tests,
+ * its two lookups of the piece (the speed's and the integral's) and four
+ * calls; how says which (spin_learn()), held the held speed or, of a linear
+ * piece, its change of value.
+ */
+enum {
+	SPIN_FIRST,   /* to the first key: the speed held, the integral linear */
+	SPIN_LAST,    /* from the last key, likewise */
+	SPIN_STEP,    /* a step piece: likewise */
+	SPIN_LINEAR,  /* a linear piece */
+	SPIN_SHIFTED, /* a hermite piece in s' (curve.h) */
+	SPIN_WHOLE,   /* spin_value(): one key, or a piece whose scale value_of()
+		       * takes the wide way for */
+};
+
+/* A frame outside the spin's span: learn the held end or piece there, and
+ * the value the whole way. Every frame of a one-key curve is SPIN_WHOLE's;
+ * the held ends' spans stop 2^62 from their key, so that the offset fits
+ * (|key frames| < 2^62: mot_curve_init()). */
+static __attribute__((noinline)) mot_q32 spin_learn(const struct mot_scene *sc,
+						    struct mot_eval *ev,
+						    const struct mot_node *n,
+						    struct mot_node_memo *m, mot_q32 frame,
+						    mot_q32 *rpm)
+{
+	const struct mot_curve *c = &sc->curves[n->spin];
+	const struct mot_curve_seg *s;
+	uint32_t i;
+
+	m->piece = NULL;
+	m->how = SPIN_WHOLE;
+	m->glo = MOT_Q32_MIN;
+	m->ghi = MOT_Q32_MAX;
+	if (!c->plain) {
+		/* no piece: always the whole way */
+	} else if (frame <= c->span_f0) {
+		m->how = SPIN_FIRST;
+		m->held = c->keys[0].value;
+		m->glo = c->span_f0 - MOT_LEN_LIMIT;
+		m->ghi = c->span_f0 + 1; /* e = 0: the first piece's area, the same */
+	} else if (frame >= c->span_f1) {
+		m->how = SPIN_LAST;
+		m->held = c->keys[c->nkeys - 1].value;
+		m->glo = c->span_f1;
+		m->ghi = c->span_f1 + MOT_LEN_LIMIT;
+	} else {
+		i = locate_seg(c, &ev->cursors[n->spin], frame);
+		s = &c->seg[i];
+		m->piece = s;
+		m->glo = s->f0 > c->span_f0 ? s->f0 : c->span_f0 + 1;
+		m->ghi = s->f1;
+		if (c->kind == MOT_INTERP_STEP) {
+			m->how = SPIN_STEP;
+			m->held = s->vref;
+		} else if (s->plain) { /* vsh in [1, 62]; a hermite piece in s' */
+			m->how = c->kind == MOT_INTERP_LINEAR ? SPIN_LINEAR : SPIN_SHIFTED;
+			m->held = c->keys[i + 1].value - s->vref;
+		}
+	}
+	return spin_value(sc, ev, n, frame, rpm);
+}
+
+static __attribute__((noinline)) mot_q32 spin_fast(const struct mot_scene *sc,
+						   struct mot_eval *ev,
+						   const struct mot_node *n,
+						   struct mot_node_memo *m, mot_q32 frame,
+						   mot_q32 *rpm)
+{
+	const struct mot_curve_seg *s = m->piece;
+	const struct mot_curve *c = &sc->curves[n->spin];
+	mot_q32 v = m->held;
+	int64_t e, u, p;
+	mot_acc a;
+
+	if (frame < m->glo || frame >= m->ghi)
+		return spin_learn(sc, ev, n, m, frame, rpm);
+	switch (m->how) {
+	case SPIN_FIRST:
+		a = mot_acc_add(c->area_first, mot_acc_mul(v, frame - c->span_f0));
+		break;
+	case SPIN_LAST:
+		a = mot_acc_add(c->area_last, mot_acc_mul(v, frame - c->span_f1));
+		break;
+	case SPIN_STEP:
+		a = mot_acc_add(s->area, mot_acc_mul(v, frame - s->f0));
+		break;
+	case SPIN_LINEAR:
+	case SPIN_SHIFTED:
+		e = frame - s->f0;
+		if (m->how == SPIN_LINEAR) {
+			u = piece_u(e, &s->inv_w);
+			p = mul62(s->c[1], u);
+			a = cv_seg_integral(MOT_INTERP_LINEAR, s, v, e, u);
+		} else {
+			u = e << s->ush;
+			p = poly_eval(s->c, u);
+			a = cv_seg_integral(MOT_INTERP_HERMITE, s, 0, e, u);
+		}
+		a = mot_acc_add(s->area, a);
+		/* value_of()'s bits, as piece_fast() */
+		p = ((p >> (s->vsh - 1)) + 1) >> 1;
+		if (__builtin_add_overflow(s->vref, p, &v))
+			return spin_value(sc, ev, n, frame, rpm);
+		break;
+	default:
+		return spin_value(sc, ev, n, frame, rpm);
+	}
+	*rpm = v;
+	return mot_add_sat(n->rest, mot_spin_turns_of(a, &sc->timing, &ev->sat), &ev->sat);
+}
+
 /* The joint value of a joint node, and its spin speed (mot_node_local(),
  * and the first pass where 128-bit integers are not the compiler's). */
 static inline __attribute__((always_inline)) mot_q32
@@ -597,12 +726,14 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 	const struct mot_curve *c;
 	struct mot_cursor *cur;
 
+	if (small_kernels && n->curve < 0 && n->spin >= 0)
+		return spin_fast(sc, ev, n, m, frame, rpm);
 	if (!small_kernels || n->curve < 0)
 		return joint_value(sc, ev, n, frame, rpm);
 	*rpm = 0;
 	c = &sc->curves[n->curve];
 	cur = &ev->cursors[n->curve];
-	if (m->how == PIECE_WHOLE)
+	if (m->how == PIECE_WHOLE && frame >= m->glo && frame < m->ghi)
 		return mot_curve_eval(c, cur, frame, &ev->sat);
 	return curve_learn(c, cur, m, frame, &ev->sat);
 }

@@ -246,49 +246,16 @@ mot_q32 mot_warp_apply(const struct mot_warp *w, mot_q32 frame, uint32_t *sat)
 mot_q32 mot_spin_turns(const struct mot_curve *rpm, struct mot_cursor *cur,
 		       const struct mot_timing *t, mot_q32 frame, uint32_t *sat)
 {
-	/*
-	 * turns = integral(rpm dt) / 60 with dt = df * den / num seconds, so
-	 * turns = I * den / (60 num) for the curve's integral I in rpm x frames
-	 * (Q64.64), rounded once to Q32.32: with N = |I| den (up to 151 bits,
-	 * three 64-bit words) and D = 60 num (below 2^31),
-	 * round(floor(N / D) / 2^32) = floor((N + D 2^31) / (D 2^32))
-	 * = floor(floor((N + D 2^31) / 2^32) / D), one exact division of 128
-	 * bits by D through the timing's reciprocal of it (where the schoolbook
-	 * long division took three, a word each). Nothing is summed from tick to
-	 * tick.
-	 */
+	/* turns = integral(rpm dt) / 60 with dt = df * den / num seconds:
+	 * the curve's integral I in rpm x frames (Q64.64) times den / (60 num),
+	 * rounded once (mot_spin_turns_of()). Nothing is summed from tick to
+	 * tick. */
 	mot_acc integ;
-	uint64_t w2, w1, w0, pl, r, hi, lo, q, dd, half;
-	bool neg;
 
 	if (mot_curve_integral(&integ, rpm, cur, frame, sat) != MOT_OK) {
 		if (sat)
 			*sat |= MOT_SAT_DOMAIN;
 		return 0;
 	}
-	neg = mot_acc_is_neg(integ);
-	if (neg)
-		integ = mot_acc_neg(integ);
-	/* N = (H 2^64 + L) den, H < 2^63 */
-	w1 = mot_umul_hi(mot_acc_lo(integ), t->den, &w0);
-	w2 = mot_umul_hi(mot_acc_hi(integ), t->den, &pl);
-	w1 += pl;
-	w2 += w1 < pl;
-	/* + D 2^31 (below 2^62: num <= MOT_RATE_MAX) */
-	dd = t->per_turn.dn >> t->per_turn.s;
-	half = dd << 31;
-	w0 += half;
-	w1 += w0 < half;
-	w2 += w1 == 0 && w0 < half;
-	/* / 2^32: the quotient by D fits 64 bits only for hi < D */
-	hi = (w2 << 32) | (w1 >> 32);
-	lo = (w1 << 32) | (w0 >> 32);
-	if ((w2 >> 32) == 0 && hi < dd) {
-		q = mot_udiv_by_inv(hi, lo, &t->per_turn, &r);
-		if ((q >> 63) == 0)
-			return neg ? -(mot_q32)q : (mot_q32)q;
-	}
-	if (sat)
-		*sat |= MOT_SAT_OVERFLOW;
-	return neg ? MOT_Q32_MIN : MOT_Q32_MAX;
+	return mot_spin_turns_of(integ, t, sat);
 }
