@@ -11,6 +11,7 @@
 #include "dbl_curve.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Newton start rules and limits: curve_solve.c's */
@@ -796,6 +797,8 @@ static void prep_hermite(struct dbl_curve *c, uint32_t j, double h, double dv)
 static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 {
 	uint32_t n = c->nkeys, j;
+	const char *tab = getenv("DBL_SPLINE_TAB");
+	bool spline_tab = tab && *tab == '1';
 
 	if (n == 1)
 		return;
@@ -823,14 +826,17 @@ static void prep_pieces(struct dbl_curve *c, double b1, double b2)
 			struct dbl_seg *s = &c->seg[j];
 
 			s->f1 = j + 1 < c->nseg ? c->seg[j + 1].f0 : c->frame[n - 1];
-			/* the core's start (START_TAB) where it takes it; an
-			 * eased curve keeps the chord, where the core keeps its
-			 * Hermite quarters (START_INV): in doubles that table cost
-			 * more time than the Newton step it saved (make
-			 * bench-motion: B-spline keys 62 -> 69 ns a joint, Beta
-			 * 65 -> 69) */
+			/* the chord start, where the core takes START_TAB (or its
+			 * Hermite quarters, START_INV, on an eased curve): in
+			 * doubles either table costs more time than the Newton
+			 * steps it saves. The quarters: B-spline keys 62 -> 69 ns
+			 * a joint, Beta 65 -> 69; START_TAB (tab_start(), kept for
+			 * the comparison: DBL_SPLINE_TAB=1 in the environment),
+			 * 21 interleaved runs: B-spline 74.2 -> 80.0 ns, Beta
+			 * 73.3 -> 80.7, with fewer instructions (573 -> 530, 581
+			 * -> 531). The twin takes whichever is faster */
 			s->inv_w = s->f1 > s->f0 ? 1 / (s->f1 - s->f0) : 0;
-			if (s->f1 > s->f0)
+			if (s->f1 > s->f0 && spline_tab)
 				tab_start(c, s);
 		}
 		return;
