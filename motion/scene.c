@@ -773,15 +773,20 @@ static inline const struct mot_rot_q62 *free_quat(struct mot_quat *q,
 				  g, &ev->sat);
 }
 
+/* What free_linear() made: no linear part (the identity, not written), a
+ * lower-triangular one (S . H, its zeros written) or any. */
+enum { FREE_LIN_NONE, FREE_LIN_TRI, FREE_LIN_FULL };
+
 /*
  * The linear part S . H . R and the translation (row 3) of a free node
  * (channels without keys at their rest values) in m, what free_flags()
- * says of its strand in `how`. Returns false when the node has no
+ * says of its strand in `how`. Returns FREE_LIN_NONE when the node has no
  * rotation, scale or shear channel: its linear part is then the identity,
- * exactly, and only m's translation row is written.
+ * exactly, and only m's translation row is written; FREE_LIN_TRI when it
+ * has no rotation.
  */
-static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mot_eval *ev,
-			const struct mot_free_strand *fs, unsigned how, mot_q32 frame)
+static unsigned free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mot_eval *ev,
+			    const struct mot_free_strand *fs, unsigned how, mot_q32 frame)
 {
 	mot_q32 *const t = m->m[3];
 	struct mot_decomp d;
@@ -813,7 +818,7 @@ static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mo
 	for (k = 0; k < 3; k++)
 		t[k] = v[MOT_FREE_TX + k];
 	if (!rot && !shs)
-		return false;
+		return FREE_LIN_NONE;
 	/* What mot_mat_compose() would give, bit for bit, with the absent part
 	 * left out: without a rotation track R = I and the linear part is S . H
 	 * itself; without scale and shear channels it is R rounded once from
@@ -821,13 +826,21 @@ static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mo
 	if (!rot) {
 		const mot_q32 *sv = v + MOT_FREE_SX, *hv = v + MOT_FREE_HXY;
 
-		/* row 3 again: the literal would clear it otherwise */
-		*m = (struct mot_mat){ { { sv[0], 0, 0 },
-					 { mot_mul(sv[1], hv[0], &ev->sat), sv[1], 0 },
-					 { mot_mul(sv[2], hv[1], &ev->sat),
-					   mot_mul(sv[2], hv[2], &ev->sat), sv[2] },
-					 { t[0], t[1], t[2] } } };
-		return true;
+		if (small_kernels && (how & FREE_FITS)) {
+			/* mot_mul()'s bits: the products below 2^80 */
+			m->m[1][0] = mot_acc_round_ov(mot_acc_mul(sv[1], hv[0]), 32, &ov);
+			m->m[2][0] = mot_acc_round_ov(mot_acc_mul(sv[2], hv[1]), 32, &ov);
+			m->m[2][1] = mot_acc_round_ov(mot_acc_mul(sv[2], hv[2]), 32, &ov);
+		} else {
+			m->m[1][0] = mot_mul(sv[1], hv[0], &ev->sat);
+			m->m[2][0] = mot_mul(sv[2], hv[1], &ev->sat);
+			m->m[2][1] = mot_mul(sv[2], hv[2], &ev->sat);
+		}
+		m->m[0][0] = sv[0];
+		m->m[1][1] = sv[1];
+		m->m[2][2] = sv[2];
+		m->m[0][1] = m->m[0][2] = m->m[1][2] = 0;
+		return FREE_LIN_TRI;
 	}
 	/* a held end key's matrix without the call (the track's quaternion
 	 * only where mot_mat_compose_r() takes it, below) */
@@ -859,7 +872,7 @@ static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mo
 				for (j = 0; j < 3; j++)
 					m->m[k][j] = mot_acc_round_ov(mot_acc_from(rr[k][j], 0), 30,
 								      &ov);
-			return true; /* |r| < 2^63: ov stays 0 */
+			return FREE_LIN_FULL; /* |r| < 2^63: ov stays 0 */
 		}
 		/* mot_mat_compose_r()'s bits without its tests (mot_mul()'s
 		 * where it fits) */
@@ -869,7 +882,7 @@ static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mo
 				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SZ], v[MOT_FREE_HXZ]), 32, &ov),
 				 mot_acc_round_ov(mot_acc_mul(v[MOT_FREE_SZ], v[MOT_FREE_HYZ]), 32, &ov),
 				 v[MOT_FREE_SZ], rr, &ov);
-		return true; /* ov stays 0 */
+		return FREE_LIN_FULL; /* ov stays 0 */
 	}
 	for (k = 0; k < 3; k++) {
 		d.translate[k] = t[k];
@@ -879,7 +892,7 @@ static bool free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mo
 	if (held) /* the same end, and its quaternion */
 		free_quat(&d.rot, sc, ev, fs, g);
 	mot_mat_compose_r(m, &d, held, &ev->sat);
-	return true;
+	return FREE_LIN_FULL;
 }
 
 /*
@@ -946,7 +959,7 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
 	}
 	fs = &sc->free[n->strand];
 	/* the values tested, not the curves' bounds made (mot_eval_reset()'s) */
-	if (!free_linear(out, sc, ev, fs, free_flags(sc, fs, false), frame)) {
+	if (free_linear(out, sc, ev, fs, free_flags(sc, fs, false), frame) == FREE_LIN_NONE) {
 		/* T(-p) . T(p) . T(t) = T(t), exactly */
 		mot_mat_translate(out, out->m[3]);
 		return;
@@ -1059,13 +1072,28 @@ static inline __attribute__((always_inline)) mot_q32 trans_end(mot_acc x, mot_q3
 
 /* Any linear part M (free nodes, tilted joints); M must not alias W. W's
  * linear part first, row by row, then the translation sums column by
- * column, which read it back: few values live at once. */
+ * column, which read it back: few values live at once. A lower-triangular
+ * M (tri: a free node's S . H without rotation) has exact zeros above its
+ * diagonal, whose products are left out where it is inlined (the same
+ * sums).
+ *
+ * Register pressure (gcc 12, x86_64; mot_scene_eval() has every kernel
+ * inline): the translation sums read W_lin back from memory, not from
+ * registers kept from the row sums, which gcc otherwise spills to the stack
+ * beside their stores to W (nine more stores). An empty asm hides where
+ * wl points (the same rows), or, with `fence`, a compiler barrier, whichever
+ * counted fewer instructions (make bench-count: the barrier for free nodes
+ * of the small case, the hidden pointer for tilted joints and the tested
+ * kernel). In the tested kernel each overflow test is made where its sum
+ * is (an empty asm on ov): otherwise gcc keeps all fifteen 128-bit sums for
+ * one test at the end, spilled. Neither changes a result. */
 static inline __attribute__((always_inline)) void
 node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
 	      const struct mot_mat *restrict m, const mot_q32 p[3], const mot_q32 t[3], bool small,
-	      uint32_t *sat)
+	      bool tri, bool fence, uint32_t *sat)
 {
 	const mot_q32(*restrict y)[3] = par->m;
+	mot_q32(*wl)[3];
 	mot_q32 q[3];
 	uint64_t ov = 0, unused = 0;
 	unsigned i, j;
@@ -1075,13 +1103,22 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 		ov |= (uint64_t)__builtin_add_overflow(p[i], t[i], &q[i]);
 	UNROLL3
 	for (i = 0; i < 3; i++) {
-		const mot_q32 m0 = m->m[i][0], m1 = m->m[i][1], m2 = m->m[i][2];
+		const mot_q32 m0 = m->m[i][0], m1 = tri && i < 1 ? 0 : m->m[i][1];
+		const mot_q32 m2 = tri && i < 2 ? 0 : m->m[i][2];
 
 		UNROLL3
-		for (j = 0; j < 3; j++)
+		for (j = 0; j < 3; j++) {
 			w->m[i][j] = mot_sum3_ov(m0, y[0][j], m1, y[1][j], m2, y[2][j], 0, 32,
 						 small ? &unused : &ov);
+			if (!small)
+				__asm__("" : "+r"(ov));
+		}
 	}
+	wl = w->m;
+	if (fence)
+		__asm__("" ::: "memory");
+	else
+		__asm__("" : "+r"(wl));
 	UNROLL3
 	for (j = 0; j < 3; j++) {
 		/* at most three products and an addend, then three more from a
@@ -1090,9 +1127,9 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 
 		x = mot_acc_mac(mot_acc_mac(x, q[1], y[1][j]), q[2], y[2][j]);
 		pos[j] = trans_end(x, y[3][j], small, &ov);
-		x = mot_acc_sub(x, mot_acc_mul(p[0], w->m[0][j]));
-		x = mot_acc_sub(x, mot_acc_mul(p[1], w->m[1][j]));
-		x = mot_acc_sub(x, mot_acc_mul(p[2], w->m[2][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[0], wl[0][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[1], wl[1][j]));
+		x = mot_acc_sub(x, mot_acc_mul(p[2], wl[2][j]));
 		w->m[3][j] = trans_end(x, y[3][j], small, &ov);
 	}
 	if (!small && ov)
@@ -1104,9 +1141,9 @@ static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		       const mot_q32 p[3], const mot_q32 t[3], bool small, uint32_t *sat)
 {
 	if (small_kernels && small)
-		node_world_in(w, pos, par, m, p, t, true, sat);
+		node_world_in(w, pos, par, m, p, t, true, false, true, sat);
 	else
-		node_world_in(w, pos, par, m, p, t, false, sat);
+		node_world_in(w, pos, par, m, p, t, false, false, false, sat);
 }
 
 /* A revolute joint about a tilted axis: its rotation, then node_world()
@@ -1120,11 +1157,11 @@ static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 
 	tilted_rot(&r, n, s, c);
 	if (small_kernels && small) {
-		node_world_in(w, pos, par, &r, n->pivot, zero, true, sat);
+		node_world_in(w, pos, par, &r, n->pivot, zero, true, false, false, sat);
 		return;
 	}
 	if (small_kernels)
-		node_world_in(w, pos, par, &r, n->pivot, zero, false, sat);
+		node_world_in(w, pos, par, &r, n->pivot, zero, false, false, false, sat);
 	else /* one copy: less code */
 		node_world(w, pos, par, &r, n->pivot, zero, false, sat);
 }
@@ -1462,13 +1499,26 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 			}
 			break;
 		default:
-			if (n->strand < 0)
+			if (n->strand < 0) {
 				translate_world(w, *pos, par, n->pivot, zero, small, &ev->sat);
-			else if (free_linear(&local, sc, ev, &sc->free[n->strand], m->free, frame))
+				break;
+			}
+			switch (free_linear(&local, sc, ev, &sc->free[n->strand], m->free, frame)) {
+			case FREE_LIN_NONE:
+				translate_world(w, *pos, par, n->pivot, local.m[3], small, &ev->sat);
+				break;
+			case FREE_LIN_TRI:
+				if (small_kernels && small) {
+					node_world_in(w, *pos, par, &local, n->pivot, local.m[3], true,
+						      true, true, &ev->sat);
+					break;
+				}
+				/* fall through */
+			default:
 				node_world(w, *pos, par, &local, n->pivot, local.m[3], small,
 					   &ev->sat);
-			else
-				translate_world(w, *pos, par, n->pivot, local.m[3], small, &ev->sat);
+				break;
+			}
 			break;
 		}
 	}

@@ -235,6 +235,24 @@ static void pivots_on_lines(struct synth *sy)
 	}
 }
 
+/* A free node with scale or shear channels and no rotation: S . H is
+ * lower-triangular (scene.c's node_world_in(), tri). */
+static bool free_scales_only(const struct mot_scene *sc, const struct mot_node *n)
+{
+	const struct mot_free_strand *fs;
+	uint32_t k;
+
+	if (n->kind != MOT_NODE_FREE || n->strand < 0)
+		return false;
+	fs = &sc->free[n->strand];
+	if (fs->rot >= 0 || fs->quat[0] >= 0)
+		return false;
+	for (k = MOT_FREE_SX; k < MOT_FREE_NCHANNELS; k++)
+		if (fs->channel[k] >= 0)
+			return true;
+	return false;
+}
+
 static void test_shortcuts(void **state)
 {
 	struct synth sy;
@@ -246,7 +264,7 @@ static void test_shortcuts(void **state)
 		struct mot_eval warm, cold, one, other;
 		struct mot_pose pw, pc, shared;
 		const struct mot_timing *t;
-		uint32_t i, kept = 0, small = 0, total = 0, pieces = 0, line = 0;
+		uint32_t i, kept = 0, small = 0, total = 0, pieces = 0, line = 0, tri = 0;
 		int64_t k, n;
 
 		if (kind == 0)
@@ -273,6 +291,7 @@ static void test_shortcuts(void **state)
 			line += warm.memo[i].small && warm.memo[i].prow < 3 &&
 				b.sc.nodes[i].kind == MOT_NODE_REVOLUTE &&
 				b.sc.nodes[i].axis_id != MOT_AXIS_VEC;
+			tri += warm.memo[i].small && free_scales_only(&b.sc, &b.sc.nodes[i]);
 		}
 		n = mot_timing_trigger_tick(t, 100);
 		for (k = -5; k < n; k += 3) {
@@ -312,6 +331,8 @@ static void test_shortcuts(void **state)
 		assert_true(small > 0);
 		/* the pivots on a line take their own kernel */
 		assert_true(kind < 3 || line > b.sc.nnodes / 4);
+		/* and free nodes that scale or shear without turning theirs */
+		assert_true(kind > 0 || tri > 4);
 		assert_true(kept > total / 50);
 		assert_true(pieces > total / 8);
 		scene_pose_free(&pw);
