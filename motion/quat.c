@@ -638,7 +638,7 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], len, cs;
 	uint64_t ov = 0; /* ov: t theta fits, never set */
 	mot_acc n = mot_acc_zero(), na = mot_acc_zero(), nb = mot_acc_zero();
-	int64_t na62, d62, k62, inv, theta;
+	int64_t na62, d62, sg, k62, inv, theta;
 	struct mot_sc sc;
 	unsigned sh;
 	int i;
@@ -655,15 +655,14 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 	na62 = round_fits(na, 2);
 	d62 = round_fits(mot_acc_mul(round_fits(n, 2), (int64_t)(((uint64_t)1 << 63) - (uint64_t)na62)),
 			 62);
-	if (d62 < 0) {
-		UNROLL4
-		for (i = 0; i < 4; i++)
-			bv[i] = -bv[i];
-		d62 = -d62;
-	}
+	/* the shorter arc: b and d negated when d < 0, by masks (the sign of
+	 * d, about even in a scene, would mispredict) */
+	sg = d62 >> 63;
+	d62 = (d62 ^ sg) - sg;
 	n = mot_acc_zero();
 	UNROLL4
 	for (i = 0; i < 4; i++) {
+		bv[i] = (bv[i] ^ sg) - sg;
 		u[i] = bv[i] - round_fits(mot_acc_mul(av[i], d62), 62);
 		n = mot_acc_mac(n, u[i], u[i]);
 	}
