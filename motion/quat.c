@@ -404,8 +404,8 @@ void mot_slerp_prepare(struct mot_slerp *s, const struct mot_quat *a, const stru
 	s->plain = s->small && !s->nlerp;
 	/* |a cos + c sin|^2 = |a|^2 cos^2 + |c|^2 sin^2 + 2 a.c sin cos is
 	 * then within 1/4 of 1 (nlerp's results are unit). Only where
-	 * 128-bit integers are native: mot_squad_eval() and scene.c use it
-	 * there alone. */
+	 * 128-bit integers are native: scene.c (a track's unit, strand.c)
+	 * uses it there alone. */
 	s->unit = MOT_HAVE_INT128 && s->small && near_unit(a) && near_unit(&bb) &&
 		  (s->nlerp ||
 		   (near_unit(&s->c) && mot_mag(mot_quat_dot(a, &s->c, NULL)) <= (uint64_t)ONE / 8));
@@ -495,8 +495,7 @@ void mot_slerp_eval(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t, 
  * and every rounded value fits.
  */
 static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a,
-				  const struct mot_quat *b, mot_q32 t, bool small, bool unit,
-				  uint32_t *sat)
+				  const struct mot_quat *b, mot_q32 t, bool small, uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
 	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], d, k, len, sn, cs;
@@ -526,7 +525,7 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 			bv[i] = -bv[i];
 		d = -d;
 	}
-	if (!unit && (t <= 0 || t >= ONE)) { /* unit: t in (0, 1/2] */
+	if (t <= 0 || t >= ONE) {
 		if ((t < 0 || t > ONE) && sat)
 			*sat |= MOT_SAT_DOMAIN;
 		*out = t <= 0 ? *a : (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
@@ -560,14 +559,125 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 	sn = sc.s;
 	cs = sc.c;
 	/* sh - 62 in [22, 42]: |u| >= 2^-10 and below 2^10 */
-	if (unit) {
-		k62 = round_fits(mot_acc_mul(sn, inv), sh - 62);
-	} else {
-		k62 = mot_acc_round(mot_acc_mul(sn, inv), sh - 62, &local);
-		if (local)
-			return false;
-	}
+	k62 = mot_acc_round(mot_acc_mul(sn, inv), sh - 62, &local);
+	if (local)
+		return false;
 	cs *= (mot_q32)1 << 30; /* Q2.62, |cs| <= 1 */
+	UNROLL4
+	for (i = 0; i < 4; i++)
+		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], cs), u[i], k62), 62);
+	*out = (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
+	return true;
+}
+
+/* slerp_near()'s nearly equal in-betweens: nlerp, as slerp_once() */
+static __attribute__((noinline)) void slerp_near_lerp(struct mot_quat *out,
+						      const struct mot_quat *a, const mot_q32 bv[4],
+						      mot_q32 t, uint32_t *sat)
+{
+	const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
+
+	quat_lerp(out, a, &bb, t, sat);
+}
+
+/* |q|^2 (Q64.64) in [3/4 - 2^-20, 5/4 + 2^-20]: every in-between of a
+ * unit arc (struct mot_slerp's unit: within 1/4 of 1 but for the
+ * roundings of its products, a few 2^-32) */
+static inline bool near_norm(mot_acc n)
+{
+	const uint64_t lo = ((uint64_t)3 << 62) - ((uint64_t)1 << 44);
+
+	n = mot_acc_sub(n, mot_acc_make(0, lo));
+	return mot_acc_hi(n) == 0 && mot_acc_lo(n) <= ((uint64_t)1 << 63) + ((uint64_t)1 << 45);
+}
+
+/* mot_isqrt_acc_inv_near() for x in [2^44, 2^66): inline where 128-bit
+ * integers are native (mot_isqrt_inv_unit_in(), the same bits) */
+static inline HOT uint64_t isqrt_inv_unit(mot_acc x, int64_t *inv, unsigned *sh)
+{
+#if MOT_HAVE_INT128
+	return mot_isqrt_inv_unit_in(x, inv, sh);
+#else
+	return mot_isqrt_acc_inv_near(x, inv, sh);
+#endif
+}
+
+/*
+ * mot_squad_eval()'s slerp between its in-betweens a and b at t in
+ * (0, 1/2], when both have |q|^2 within 1/4 of 1 (near_norm(), tested
+ * unless unit says so; false otherwise, nothing written: the caller takes
+ * slerp_once()) and components below 2 (both arcs small).
+ * slerp_once()'s a cos(t theta) + u sin(t theta) / |u|, with one pass of
+ * Gram-Schmidt where it takes two: d = a.b / |a|^2 to first order,
+ * a.b (2 - |a|^2) (relative error (|a|^2 - 1)^2, some 2^-60 for
+ * in-betweens unit within a few LSB), kept in Q62, so that a.u = a.b -
+ * d |a|^2 - a.r (r the roundings of a d, |r| <= 1 LSB) is what the second
+ * pass left: an LSB, not d (|a|^2 - 1). The second pass and its dot product
+ * leave the dependent chain. And cos(t theta) / |a| multiplies a, to first
+ * order cos (3 - |a|^2) / 2: a's norm error (a few LSB, the arc's slerp)
+ * no longer passes to the result, whose own is then the roundings of the
+ * sine, cosine and sums (tests/test_quat.c: 1.5 LSB where slerp_once()
+ * gave 3.4).
+ *
+ * Bounds, with |a|^2, |b|^2 in [3/4, 5/4] (the 2^-20 more of near_norm()
+ * changes none): |a.b| <= 5/4, 2 - |a|^2 in [3/4, 5/4], (3 - |a|^2) / 2 in
+ * [7/8, 9/8], d <= 25/16, each in Q62 below 2^63. With p = a.b / |a|^2,
+ * b = p a + w (w orthogonal to a), d = p + e, e = -p (|a|^2 - 1)^2 / |a|^2
+ * (|e| <= |p| / 12, 5/48): u = w - e a, |u| <= |b| + 5/48 |a| < 1.24, its
+ * square below 2^65 in Q64.64 (the range of isqrt_inv_unit()), its root
+ * below 2^33. k = sin(t theta) / |u| with tan theta = |u| / d, theta <= 1/4
+ * turn: k = (sin(t theta) / sin theta) / sqrt(|u|^2 + d^2) <= (1 / sqrt 2) /
+ * sqrt(|w|^2 + (p + e)^2), and |w|^2 + p^2 |a|^2 = |b|^2 >= 3/4 gives
+ * |w|^2 >= 3/8 or p^2 >= 3/10, (p + e)^2 >= (11/12)^2 3/10: k below 1.5,
+ * k62 fits untested. The sums a cos / |a| + u k are below 1.3 + 1.9.
+ */
+static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a,
+				  const struct mot_quat *b, mot_q32 t, bool unit, uint32_t *sat)
+{
+	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
+	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], len, cs;
+	uint64_t ov = 0; /* ov: t theta fits, never set */
+	mot_acc n = mot_acc_zero(), na = mot_acc_zero(), nb = mot_acc_zero();
+	int64_t na62, d62, sg, k62, inv, theta;
+	struct mot_sc sc;
+	unsigned sh;
+	int i;
+
+	UNROLL4
+	for (i = 0; i < 4; i++) {
+		n = mot_acc_mac(n, av[i], bv[i]);
+		na = mot_acc_mac(na, av[i], av[i]);
+		if (!unit)
+			nb = mot_acc_mac(nb, bv[i], bv[i]);
+	}
+	if (!unit && (!near_norm(na) || !near_norm(nb)))
+		return false;
+	na62 = round_fits(na, 2);
+	d62 = round_fits(mot_acc_mul(round_fits(n, 2), (int64_t)(((uint64_t)1 << 63) - (uint64_t)na62)),
+			 62);
+	/* the shorter arc: b and d negated when d < 0, by masks (the sign of
+	 * d, about even in a scene, would mispredict) */
+	sg = d62 >> 63;
+	d62 = (d62 ^ sg) - sg;
+	n = mot_acc_zero();
+	UNROLL4
+	for (i = 0; i < 4; i++) {
+		bv[i] = (bv[i] ^ sg) - sg;
+		u[i] = bv[i] - round_fits(mot_acc_mul(av[i], d62), 62);
+		n = mot_acc_mac(n, u[i], u[i]);
+	}
+	/* |u| below 2^-10 (len below SLERP_NLERP_SIN): nlerp */
+	if (mot_acc_hi(n) == 0 && mot_acc_lo(n) < (uint64_t)1 << 44) {
+		slerp_near_lerp(out, a, bv, t, sat);
+		return true;
+	}
+	len = (mot_q32)isqrt_inv_unit(n, &inv, &sh); /* |u|, within 0.51 LSB */
+	theta = mot_atan2_unit_q62(len, round_fits(mot_acc_from(d62, 0), 30));
+	sc = sincos_fine_in(mot_acc_from(mot_acc_floor_ov(mot_acc_mul(t, theta), 30, &ov), 0));
+	/* cos / |a| to first order, Q2.62 */
+	cs = round_fits(mot_acc_mul(sc.c, (int64_t)((3 * ((uint64_t)1 << 62) - (uint64_t)na62) >> 1)),
+			32);
+	k62 = round_fits(mot_acc_mul(sc.s, inv), sh - 62);
 	UNROLL4
 	for (i = 0; i < 4; i++)
 		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], cs), u[i], k62), 62);
@@ -589,7 +699,7 @@ static __attribute__((noinline)) void slerp_long(struct mot_quat *out, const str
 void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct mot_quat *b,
 		    mot_q32 t, uint32_t *sat)
 {
-	if (!slerp_once(out, a, b, t, false, false, sat))
+	if (!slerp_once(out, a, b, t, false, sat))
 		slerp_long(out, a, b, t, sat);
 }
 
@@ -609,22 +719,18 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 	slerp_mid(&qa, arc, t, sat);
 	slerp_mid(&qb, inner, t, sat);
 	h = 2 * round_fits(mot_acc_mul(t, ONE - t), MOT_Q32_FRAC); /* 2 t (1 - t), (0, 1/2] */
-	/*
-	 * Near-unit arcs: in-betweens with |q|^2 within 1/4 of 1, so the
-	 * outer slerp's k = sin(h phi) / |u| <= sin(phi / 2) / (|qb| sin psi)
-	 * (psi the angle between qa and qb, tan phi = |qa| tan psi) stays below
-	 * 0.83: no test of it, nor of h's range. Where 128-bit integers are
-	 * native (a second copy of slerp_once() elsewhere is code, the same
-	 * bits).
-	 */
+	/* in-betweens of arcs within +-1 are below sqrt 2 (slerp_near()'s
+	 * components below 2), those of unit arcs pass its test (only where
+	 * 128-bit integers are native: the same bits) */
 #if MOT_HAVE_INT128
 	if (arc->unit && inner->unit) {
-		slerp_once(out, &qa, &qb, h, true, true, sat);
+		slerp_near(out, &qa, &qb, h, true, sat);
 		return;
 	}
 #endif
-	/* in-betweens of arcs within +-1 are below sqrt 2: no test */
-	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, false, sat))
+	if (arc->small && inner->small && slerp_near(out, &qa, &qb, h, false, sat))
+		return;
+	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, sat))
 		slerp_long(out, &qa, &qb, h, sat);
 }
 

@@ -94,7 +94,8 @@ static inline int64_t mulsh(int64_t a, int64_t b, unsigned shift)
 /* the table unfolded over the turn: two reads (10 kB where the quarter
  * wave is 2 kB, for a fifth fewer instructions) */
 const struct mot_trig_turn mot_trig_turn = {
-	mot_trig_sin_turn_q62, MOT_TRIG_RAD_PER_PHASE_Q70, MOT_TRIG_RAD6_PER_PHASE_Q70
+	mot_trig_sin_turn_q62, MOT_TRIG_RAD_PER_PHASE_Q70, MOT_TRIG_RAD6_PER_PHASE_Q70,
+	mot_trig_rsqrt_q14
 };
 #endif
 
@@ -281,28 +282,10 @@ int64_t mot_atan2_unit_q62(mot_q32 y, mot_q32 x)
 
 /* ---- square roots ------------------------------------------------------------------ */
 
-/*
- * Goldschmidt on m in [2^60, 2^62), a = m / 2^62: *g = sqrt(a) and
- * *h = 1 / (2 sqrt(a)), both Q62, within a few units of 2^-62 relative.
- */
+/* Goldschmidt on m in [2^60, 2^62): mot_sqrt_core() (trig.h) */
 static inline void sqrt_core(uint64_t m, int64_t *g, int64_t *h)
 {
-	int64_t y0 = mot_trig_rsqrt_q14[(m >> 54) - 64]; /* 1/sqrt(a), Q14 */
-	int64_t hh = y0 << 47;                             /* y0 / 2, Q62 */
-	int64_t gg = mulsh((int64_t)m, hh, 61);            /* a y0, Q62 */
-	int k;
-
-#if MOT_HAVE_INT128
-	_Pragma("GCC unroll 3") /* gcc -O2 keeps the loop and its counter */
-#endif
-	for (k = 0; k < 3; k++) {
-		int64_t r = ((int64_t)1 << 62) - mulsh(gg, hh, 61); /* 1/2 - g h, Q63 */
-
-		gg += mulsh(gg, r, 63);
-		hh += mulsh(hh, r, 63);
-	}
-	*g = gg;
-	*h = hh;
+	mot_sqrt_core(m, mot_trig_rsqrt_q14, g, h);
 }
 
 /* Scale the unsigned 128-bit n (hi, lo) by a power of 4: *m = floor(n / 4^q)

@@ -104,6 +104,42 @@ static inline uint32_t mot_sincos_point64(uint64_t phase, int64_t *dr, int64_t *
 /* sin and cos of phase 2^-64 turn, worst error 0.52 LSB (tests/test_trig.c) */
 struct mot_sc mot_sincos64(uint64_t phase);
 
+/* floor(a b / 2^shift), 1 <= shift <= 63, known to fit */
+static inline int64_t mot_trig_mulsh(int64_t a, int64_t b, unsigned shift)
+{
+	mot_acc p = mot_acc_mul(a, b);
+
+	return (int64_t)((mot_acc_lo(p) >> shift) | (mot_acc_hi(p) << (64 - shift)));
+}
+
+/*
+ * Goldschmidt on m in [2^60, 2^62), a = m / 2^62: *g = sqrt(a) and
+ * *h = 1 / (2 sqrt(a)), both Q62, within a few units of 2^-62 relative
+ * (trig.c says how), from tab, trig.c's seeds of 1/sqrt(a) in Q14. For
+ * trig.c's square roots and an inline copy in a hot loop
+ * (mot_isqrt_inv_unit_in()).
+ */
+static inline __attribute__((always_inline)) void mot_sqrt_core(uint64_t m, const uint16_t *tab,
+								  int64_t *g, int64_t *h)
+{
+	int64_t y0 = tab[(m >> 54) - 64];                      /* 1/sqrt(a), Q14 */
+	int64_t hh = y0 << 47;                                 /* y0 / 2, Q62 */
+	int64_t gg = mot_trig_mulsh((int64_t)m, hh, 61);       /* a y0, Q62 */
+	int k;
+
+#if MOT_HAVE_INT128
+	_Pragma("GCC unroll 3") /* gcc -O2 keeps the loop and its counter */
+#endif
+	for (k = 0; k < 3; k++) {
+		int64_t r = ((int64_t)1 << 62) - mot_trig_mulsh(gg, hh, 61); /* 1/2 - g h, Q63 */
+
+		gg += mot_trig_mulsh(gg, r, 63);
+		hh += mot_trig_mulsh(hh, r, 63);
+	}
+	*g = gg;
+	*h = hh;
+}
+
 #if MOT_HAVE_INT128
 /* What mot_sincos_in() reads: trig.c's table of sin(j/1024 turn), j =
  * 0..1279 (cos is entry j + 256), and the two constants of
@@ -111,6 +147,7 @@ struct mot_sc mot_sincos64(uint64_t phase);
 struct mot_trig_turn {
 	const int64_t *sin;
 	int64_t k, k6;
+	const uint16_t *rsqrt; /* mot_sqrt_core()'s seeds */
 };
 extern const struct mot_trig_turn mot_trig_turn;
 
@@ -123,6 +160,30 @@ static inline __attribute__((always_inline)) struct mot_sc mot_sincos_in(mot_q32
 
 	return mot_sincos_add(mot_trig_turn.sin[j], mot_trig_turn.sin[j + 256], d,
 			      mot_trig_turn.k, mot_trig_turn.k6);
+}
+
+/*
+ * mot_isqrt_acc_inv_near() inline for x in [2^44, 2^66) (the square of
+ * the part of a near-unit quaternion orthogonal to another, Q64.64, its
+ * root 2^-10 or more): the root within 1/2 + 2^-8 and 1/sqrt(x) = *inv
+ * 2^-*sh, *sh in [84, 94], with the relative error of mot_sqrt_core(),
+ * without the general scaling and its tests.
+ */
+static inline __attribute__((always_inline)) uint64_t mot_isqrt_inv_unit_in(mot_acc x,
+									    int64_t *inv,
+									    unsigned *sh)
+{
+	uint64_t v = (mot_acc_lo(x) >> 4) | (mot_acc_hi(x) << 60); /* below 2^62 */
+	unsigned s = (mot_clz64(v) - 2) & ~1u; /* v << s: 61 or 62 bits */
+	int64_t g, h;
+
+	/* x 2^(s - 4), its bits below 2^-58 of it dropped */
+	mot_sqrt_core((uint64_t)(((mot_uacc)x << s) >> 4), mot_trig_turn.rsqrt, &g, &h);
+	/* sqrt(x) = 4 sqrt(v 2^s) 2^(-s/2) = g 2^(-29 - s/2), 1/sqrt(x) =
+	 * h 2^(s/2 - 94) */
+	*inv = h;
+	*sh = 94 - s / 2;
+	return ((uint64_t)g + ((uint64_t)1 << (28 + s / 2))) >> (29 + s / 2);
 }
 
 /* mot_sincos64() inline, the same way */

@@ -492,6 +492,36 @@ static double velocity_jump(const struct mot_quat *keys, const struct mot_quat *
 	return jump;
 }
 
+/* keys a random step of up to 100 degrees apart, every other sequence
+ * (odd i) with a key on the far side of the sphere, and their inner points
+ * s (wi: their angle from the double ones) */
+static void squad_keys(struct mot_quat q[4], struct mot_quat s[4], struct ref_quat rq[4],
+		       struct ref_quat rs[4], struct tu_rng *rng, int i, struct tu_worst *wi,
+		       uint32_t *sat)
+{
+	struct ref_quat d;
+	double ax[3];
+	int k;
+
+	rand_quat(&q[0], &rq[0], rng);
+	for (k = 1; k < 4; k++) {
+		ref_rand_axis(ax, rng);
+		ref_quat_axis_angle(&d, ax, tu_uniform(rng, 0.2, 1.75));
+		ref_quat_mul(&rq[k], &rq[k - 1], &d);
+		if (k == 2 && (i & 1))
+			rq[k] = (struct ref_quat){ -rq[k].w, -rq[k].x, -rq[k].y, -rq[k].z };
+		ref_to_quat(&q[k], &rq[k]);
+		ref_from_quat(&rq[k], &q[k]);
+	}
+	for (k = 0; k < 4; k++) {
+		const int p = k ? k - 1 : 0, n = k < 3 ? k + 1 : 3;
+
+		mot_squad_inner(&s[k], &q[p], &q[k], &q[n], sat);
+		ref_squad_inner(&rs[k], &rq[p], &rq[k], &rq[n]);
+		tu_worst_add(wi, fix_angle(&s[k], &rs[k]), k);
+	}
+}
+
 static void test_squad(void **state)
 {
 	struct tu_rng rng;
@@ -502,29 +532,10 @@ static void test_squad(void **state)
 	tu_seed(&rng, 38);
 	for (i = 0; i < N / 3; i++) {
 		struct mot_quat q[4], s[4], out;
-		struct ref_quat rq[4], rs[4], r, d;
-		double ax[3];
+		struct ref_quat rq[4], rs[4], r;
 		uint32_t sat = 0;
 
-		/* keys a random step of up to 100 degrees apart; every other
-		 * sequence has a key on the far side of the sphere */
-		rand_quat(&q[0], &rq[0], &rng);
-		for (k = 1; k < 4; k++) {
-			ref_rand_axis(ax, &rng);
-			ref_quat_axis_angle(&d, ax, tu_uniform(&rng, 0.2, 1.75));
-			ref_quat_mul(&rq[k], &rq[k - 1], &d);
-			if (k == 2 && (i & 1))
-				rq[k] = (struct ref_quat){ -rq[k].w, -rq[k].x, -rq[k].y, -rq[k].z };
-			ref_to_quat(&q[k], &rq[k]);
-			ref_from_quat(&rq[k], &q[k]);
-		}
-		for (k = 0; k < 4; k++) {
-			const int p = k ? k - 1 : 0, n = k < 3 ? k + 1 : 3;
-
-			mot_squad_inner(&s[k], &q[p], &q[k], &q[n], &sat);
-			ref_squad_inner(&rs[k], &rq[p], &rq[k], &rq[n]);
-			tu_worst_add(&wi, fix_angle(&s[k], &rs[k]), k);
-		}
+		squad_keys(q, s, rq, rs, &rng, i, &wi, &sat);
 		for (k = 0; k < 3; k++) {
 			mot_q32 t = (mot_q32)(tu_u64(&rng) >> 32);
 			struct mot_quat nq = { -q[k + 1].w, -q[k + 1].x, -q[k + 1].y, -q[k + 1].z };
@@ -556,6 +567,57 @@ static void test_squad(void **state)
 	assert_true(smooth_slerp < N / 3 / 100);
 }
 
+/* squad of prepared arcs (mot_squad_eval(), as a rotation track makes it):
+ * the same keys and bounds as the one-shot squad above */
+static void test_squad_prepared(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst wi = { 0, 0 }, w = { 0, 0 }, wn = { 0, 0 };
+	long small = 0, keys_missed = 0;
+	int i, k;
+
+	(void)state;
+	tu_seed(&rng, 39);
+	for (i = 0; i < N / 3; i++) {
+		struct mot_quat q[4], s[4], out;
+		struct ref_quat rq[4], rs[4], r;
+		uint32_t sat = 0;
+
+		squad_keys(q, s, rq, rs, &rng, i, &wi, &sat);
+		for (k = 0; k < 3; k++) {
+			struct mot_quat b = q[k + 1], sb = s[k + 1];
+			struct mot_slerp arc, inner;
+			int j;
+
+			if (mot_quat_dot(&q[k], &b, NULL) < 0) {
+				b = (struct mot_quat){ -b.w, -b.x, -b.y, -b.z };
+				sb = (struct mot_quat){ -sb.w, -sb.x, -sb.y, -sb.z };
+			}
+			mot_slerp_prepare(&arc, &q[k], &b, &sat);
+			mot_slerp_prepare(&inner, &s[k], &sb, &sat);
+			small += arc.small && inner.small;
+			for (j = 0; j < 4; j++) {
+				mot_q32 t = (mot_q32)(tu_u64(&rng) >> 32);
+
+				mot_squad_eval(&out, &arc, &inner, t, &sat);
+				ref_squad(&r, &rq[k], &rq[k + 1], &rs[k], &rs[k + 1], q2d(t));
+				tu_worst_add(&w, fix_angle(&out, &r), q2d(t));
+				tu_worst_add(&wn, fix_norm_err(&out) / LSB, q2d(t));
+			}
+			mot_squad_eval(&out, &arc, &inner, 0, &sat);
+			keys_missed += memcmp(&out, &q[k], sizeof(out)) != 0;
+			mot_squad_eval(&out, &arc, &inner, MOT_Q32_ONE, &sat);
+			keys_missed += memcmp(&out, &b, sizeof(out)) != 0;
+		}
+		assert_int_equal(sat, 0);
+	}
+	assert_int_equal(keys_missed, 0);
+	/* every segment's arcs within +-1: slerp_near() */
+	printf("prepared squad: %ld of %d segments with arcs within +-1\n", small, N / 3 * 3);
+	tu_bound("quat.squad prepared vs double", &w, 1e-8, "rad");
+	tu_bound("quat.squad prepared |q| - 1", &wn, 4, "LSB");
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -564,6 +626,7 @@ int main(void)
 		cmocka_unit_test(test_mul_ref),    cmocka_unit_test(test_normalize),
 		cmocka_unit_test(test_axis_euler), cmocka_unit_test(test_slerp_ref),
 		cmocka_unit_test(test_slerp_nlerp), cmocka_unit_test(test_squad),
+		cmocka_unit_test(test_squad_prepared),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

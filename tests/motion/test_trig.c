@@ -496,6 +496,39 @@ static void test_isqrt_acc(void **state)
 	assert_int_equal(sat, MOT_SAT_DOMAIN);
 }
 
+#if MOT_HAVE_INT128
+/* mot_isqrt_inv_unit_in() on its range [2^44, 2^66), log-uniform */
+static void test_isqrt_inv_unit(void **state)
+{
+	struct tu_rng rng;
+	struct tu_worst w = { 0, 0 }, wi = { 0, 0 };
+	int i;
+
+	(void)state;
+	tu_seed(&rng, 47);
+	for (i = 0; i < 4 * N; i++) {
+		unsigned bits = 45 + (unsigned)(tu_u64(&rng) % 22); /* 45..66 */
+		unsigned __int128 n = ((unsigned __int128)tu_u64(&rng) << 64) | tu_u64(&rng);
+		int64_t inv;
+		unsigned sh;
+		uint64_t r;
+
+		n = (n >> (128 - bits)) | (unsigned __int128)1 << (bits - 1);
+		if (i < 4)
+			n = i < 2 ? (unsigned __int128)1 << 44 : ((unsigned __int128)1 << 66) - 1;
+		if (i & 1 && i < 4)
+			n = i < 2 ? ((unsigned __int128)1 << 44) + 1 : ((unsigned __int128)1 << 65);
+		r = mot_isqrt_inv_unit_in(mot_acc_make((uint64_t)(n >> 64), (uint64_t)n), &inv, &sh);
+		assert_true(sh >= 84 && sh <= 94);
+		tu_worst_add(&w, fabsl((long double)r - sqrtl((long double)n)), (double)n);
+		tu_worst_add(&wi, fabsl(ldexpl((long double)inv, -(int)sh) * sqrtl((long double)n) - 1),
+			     (double)n);
+	}
+	tu_bound("trig.isqrt_inv_unit root", &w, 0.5 + 0x1p-8, "units");
+	tu_bound("trig.isqrt_inv_unit 1/sqrt relative", &wi, 0x1p-58, "(1)");
+}
+#endif
+
 static void test_rsqrt(void **state)
 {
 	struct tu_rng rng;
@@ -635,6 +668,9 @@ int main(void)
 		cmocka_unit_test(test_atan2_unit),
 		cmocka_unit_test(test_acos),            cmocka_unit_test(test_sqrt),
 		cmocka_unit_test(test_isqrt_acc),       cmocka_unit_test(test_rsqrt),
+#if MOT_HAVE_INT128
+		cmocka_unit_test(test_isqrt_inv_unit),
+#endif
 		cmocka_unit_test(test_norm3),           cmocka_unit_test(test_portable_same_bits),
 	};
 
