@@ -229,19 +229,41 @@ static int64_t inv62(const uint16_t us[8], int64_t t)
 
 /* ---- frame(u) and value(u) of a Bezier curve ------------------------------------ */
 
-/* Horner's rule on the power form (curve_bezier.c), a[k - 1] multiplying
- * u^k: the frame and its derivative (the value's: mot_cv_approx_eval()). */
-static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int64_t *df)
+/*
+ * floor(r u / 2^64) for |u| <= 2^62: the high word of the 128-bit product,
+ * one instruction on x86_64 and aarch64 (no rounding's add and shift): the
+ * power form's Horner step 4 mulhi(r, u) + a is r u / 2^62 + a to a
+ * multiple of 4 units, floored (curve_bezier.c: its coefficients carry the
+ * 2 units that centre it). |r u| < 2^125: 4 mulhi(r, u) is within 4 units
+ * of r u / 2^62, below 2^63 where |r| is.
+ */
+static inline int64_t mulhi(int64_t r, int64_t u)
+{
+	return (int64_t)mot_acc_hi(mot_acc_mul(r, u));
+}
+
+/*
+ * Horner's rule on the power form (curve_bezier.c), a[k - 1] multiplying
+ * u^k: the frame less the solve's target, 4 mulhi(r_1, u) + c0 with
+ * c0 = 2 - d (the 2 units centring the last floor too), and its derivative
+ * (the value's: mot_cv_approx_eval()). Each step's error is within 2 units
+ * of 2^fsh (half a unit of 2^(fsh - 2)), m of them in all. The
+ * derivative's coefficients k a_k without the 2 units (the low two bits
+ * masked): its partial sums stay within sum k |a_k| 2^fsh + 4 m < 2^63
+ * for every m; an error of 4 units a step (floors) where only its top 32
+ * bits are read (ratio62()). With c0 = 2 the frame itself (init).
+ */
+static int64_t power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t c0, int64_t *df)
 {
 	int64_t r = a[m - 1], d = (int64_t)m * a[m - 1];
 	uint32_t k;
 
 	for (k = m - 1; k >= 1; k--) {
-		r = mul62(r, u) + a[k - 1];
-		d = mul62f(d, u) + (int64_t)k * a[k - 1];
+		r = 4 * mulhi(r, u) + a[k - 1];
+		d = 4 * mulhi(d, u) + (int64_t)k * (a[k - 1] & ~(int64_t)3);
 	}
-	*f = mul62(r, u);
 	*df = d;
+	return 4 * mulhi(r, u) + c0;
 }
 
 /*
@@ -249,16 +271,19 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
  * the c[] and fc[] of one entry (power_slot, power_vslot), each step's
  * place and factor k a constant, entered at the degree's step (without the
  * loop's index arithmetic and multiplications by k: a fifth of a Bezier
- * solve). The same products and sums as power_frame(), so the same bits.
- * With df NULL (a constant: inlined) the value's Horner, without the
- * derivative.
+ * solve). The frame's products and sums are power_frame()'s, so its bits;
+ * the derivative's take k a_k with the 2 units (no mask on its chain: at
+ * most 2 k more a step, 72 in all, its partial sums below 2^63 with
+ * m <= 8 and 2^fsh >= 2^10). With df NULL (a constant: inlined) the
+ * value's Horner without the derivative, its result mulhi(r_1, u): the
+ * value's polynomial in units of 2^(vsh - 2), floored.
  */
 #define POWER_A(j) ((j) < 4 ? s->c[(j)] : s->fc[(j) - 4])
 #define POWER_STEP(k)                                                       \
 	do {                                                                \
-		r = mul62(r, u) + POWER_A((k) - 1);                         \
+		r = 4 * mulhi(r, u) + POWER_A((k) - 1);                     \
 		if (df)                                                     \
-			d = mul62f(d, u) + (int64_t)(k) * POWER_A((k) - 1); \
+			d = 4 * mulhi(d, u) + (int64_t)(k) * POWER_A((k) - 1); \
 	} while (0)
 #define POWER_TOP(k)                                                        \
 	case k:                                                             \
@@ -267,7 +292,7 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
 		goto step##k
 
 static inline __attribute__((always_inline)) int64_t
-power_horner8(const struct mot_curve_seg *s, uint32_t m, int64_t u, int64_t *df)
+power_horner8(const struct mot_curve_seg *s, uint32_t m, int64_t u, int64_t c0, int64_t *df)
 {
 	int64_t r, d;
 
@@ -299,9 +324,10 @@ step3:
 step2:
 	POWER_STEP(1);
 step1:
-	if (df)
-		*df = d;
-	return mul62(r, u);
+	if (!df)
+		return mulhi(r, u);
+	*df = d;
+	return 4 * mulhi(r, u) + c0;
 }
 
 #undef POWER_TOP
@@ -361,7 +387,7 @@ static void bez_frame_at(const struct mot_curve *c, const int64_t *pw, int64_t u
 			 int64_t *df)
 {
 	if (pw)
-		power_frame(pw, c->nkeys - 1, u, f, df);
+		*f = power_frame(pw, c->nkeys - 1, u, 2, df);
 	else
 		bezier_frame(c, u, f, df);
 }
@@ -576,7 +602,7 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	const int64_t tol = (int64_t)1 << (62 - s->ntol);
 	/* a piece's F(u) - d as F's Horner with c0 - d, F(0) - d: at most the
 	 * piece's frame range, as F(u) - d is */
-	const int64_t c0 = form == FORM_SPLINE ? s->fc[0] - d : 0;
+	const int64_t c0 = form == FORM_SPLINE ? s->fc[0] - d : form == FORM_POWER ? 2 - d : 0;
 	bool lo_known = false, hi_known = false;
 	int64_t lo = 0, hi = ONE62, dx = ONE62, dxold = ONE62;
 	int it;
@@ -587,17 +613,17 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 
 		if (form == FORM_POWER) {
 			if (pw)
-				power_frame(pw, c->nkeys - 1, u, &f, &df);
+				f = power_frame(pw, c->nkeys - 1, u, c0, &df);
 			else
-				f = power_horner8(s, c->nkeys - 1, u, &df);
+				f = power_horner8(s, c->nkeys - 1, u, c0, &df);
 		} else if (form == FORM_CASTELJAU) {
 			bezier_frame(c, u, &f, &df);
+			f -= d;
 		} else {
 			f = poly_frame(s->fc, c0, u, &df);
 		}
-		if (form != FORM_SPLINE)
-			f -= d;
-		if (f == 0)
+		/* (the power form's f is 2 modulo 4: never 0) */
+		if (form != FORM_POWER && f == 0)
 			break;
 		if (f < 0) {
 			lo = u;
@@ -740,13 +766,14 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 	u = solve_u(FORM_POWER, c, s, fw, d, u, &it);
 	if (iters)
 		*iters = it;
+	/* the value's Horner, power_frame()'s without the derivative, its
+	 * last product floored to units of 2^(vsh - 2) (vsh >= 10) */
 	if (m <= 8) {
-		r = m > 1 ? power_horner8(&c->seg[1], m, u, NULL) : mul62(s->c[1], u);
-		return value_of(s->vref, r, s->vsh, sat);
+		r = m > 1 ? power_horner8(&c->seg[1], m, u, 0, NULL) : mulhi(s->c[1], u);
+		return value_of(s->vref, r, s->vsh - 2, sat);
 	}
-	/* the value's, power_frame()'s Horner without the derivative */
 	r = *power_slot(c, 2 * m - 1);
 	for (j = m - 1; j >= 1; j--)
-		r = mul62(r, u) + *power_slot(c, m + j - 1);
-	return value_of(s->vref, mul62(r, u), s->vsh, sat);
+		r = 4 * mulhi(r, u) + *power_slot(c, m + j - 1);
+	return value_of(s->vref, mulhi(r, u), s->vsh - 2, sat);
 }
