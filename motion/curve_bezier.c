@@ -77,7 +77,8 @@ static void prep_power(struct mot_curve *c)
 			return;
 	}
 	for (side = 0; side < 2; side++) {
-		int sh = 63 - (int)len[side];
+		/* (62 at most: a constant value has sum |a_k| = 0) */
+		int sh = len[side] ? 63 - (int)len[side] : 62;
 
 		/* |a_j| 2^sh <= 2^63 - 2^sh: the 2 units fit */
 		for (j = 0; j < m; j++) {

@@ -123,26 +123,29 @@ static inline mot_q32 spline_value(const struct mot_curve_seg *s, int64_t u, uin
  * a[0] + a[1] x + .. + a[7] x^7 for x in [-1, 1] in Q1.31, the coefficients
  * in Q1.30, as E(x^2) + x O(x^2), the even and the odd coefficients each by
  * Horner's rule in x^2: two chains of three products side by side, where
- * one chain in x took seven (a start's latency is the solve's). In Q1.62
- * with a partial sum's top 33 bits, a 64-bit product a step (no 128-bit
- * one): off by 2^-31 a step, below 2^-27 in all with x^2's and the
- * coefficients' roundings. The coefficients' magnitudes sum below 2: every
- * partial sum, and E + x O, is below 2 in Q1.62, its top bits below 2^32,
- * the products below 2^63.
+ * one chain in x took seven (a start's latency is the solve's). The
+ * partial sums in Q1.31, a 64-bit product a step (no 128-bit one) floored
+ * back to Q1.31 and the next coefficient added at twice its Q1.30 (one
+ * lea: no shift of the coefficient up or of the partial sum down), off by
+ * 2^-31 a step, below 2^-27 in all with x^2's and the coefficients'
+ * roundings; the last products x O and E 2^31 in Q1.62. The
+ * coefficients' magnitudes sum below 2 - 2^-22 (mot_cv_tab_fit()): every
+ * partial sum is below 2^32 in Q1.31, the products below 2^63, and
+ * E + x O below 2 in Q1.62.
  */
 static inline __attribute__((always_inline)) int64_t poly7_62(const int32_t a[8], int64_t x)
 {
 	int64_t y = (x * x) >> 31, e, o;
 
-	e = (int64_t)a[6] * ((int64_t)1 << 32);
-	o = (int64_t)a[7] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[4] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[5] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[2] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[3] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[0] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[1] * ((int64_t)1 << 32);
-	return (o >> 31) * x + e;
+	e = 2 * (int64_t)a[6];
+	o = 2 * (int64_t)a[7];
+	e = ((e * y) >> 31) + 2 * (int64_t)a[4];
+	o = ((o * y) >> 31) + 2 * (int64_t)a[5];
+	e = ((e * y) >> 31) + 2 * (int64_t)a[2];
+	o = ((o * y) >> 31) + 2 * (int64_t)a[3];
+	e = ((e * y) >> 31) + 2 * (int64_t)a[0];
+	o = ((o * y) >> 31) + 2 * (int64_t)a[1];
+	return o * x + e * ((int64_t)1 << 31);
 }
 
 /*
@@ -296,6 +299,8 @@ power_horner8(const struct mot_curve_seg *s, uint32_t m, int64_t u, int64_t c0, 
 {
 	int64_t r, d;
 
+	if (m > 8)
+		__builtin_unreachable(); /* the callers' test: no range check */
 	switch (m) {
 	POWER_TOP(8);
 	POWER_TOP(7);
@@ -566,6 +571,23 @@ static inline __attribute__((always_inline)) int64_t bez_tab62(const struct mot_
 	return tab62(c->seg[j].ut, s);
 }
 
+/*
+ * A power form's value, vref + round(p / 2^(vsh - 2)) for p its Horner's
+ * mulhi(r_1, u): value_of()'s bits without its tests, none of which can
+ * fail here. vsh - 2 is in [8, 61] (POWER_MIN_SHIFT; 60 for a constant
+ * value, sum |a_k| = 0), |p| <= (sum |a_k| 2^vsh + 8 m) / 4 < 2^61, so
+ * p + 2^(vsh - 3) fits; and the rounded quotient is the value's offset
+ * from the first key within a unit, in the keys' hull (|value| < 2^62 raw,
+ * MOT_LEN_LIMIT): vref + it fits.
+ */
+static inline __attribute__((always_inline)) mot_q32 power_value_of(const struct mot_curve_seg *s,
+								     int64_t p)
+{
+	int sh = s->vsh - 2;
+
+	return s->vref + ((p + ((int64_t)1 << (sh - 1))) >> sh);
+}
+
 /* ---- the solve ------------------------------------------------------------------ */
 
 /* How a solve evaluates the frame: a spline piece's cubic, a Bezier curve
@@ -634,6 +656,9 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		}
 		if (lo >= hi) /* the root lies beyond an end of the piece */
 			break;
+		/* (the power form's f is never 0: ratio62() need not test it) */
+		if (form == FORM_POWER && f == 0)
+			__builtin_unreachable();
 		newton = df > 0 && ratio62(f, df, &adu);
 		if (newton) {
 			/* un = u - du, du = adu with f's sign: a conditional
@@ -731,7 +756,6 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 {
 	const struct mot_curve_seg *s;
 	int64_t u, d, r, pw[MOT_BEZIER_MAX_KEYS - 1];
-	const int64_t *fw;
 	uint32_t m, j;
 	int it; /* the solve's iterations, a register: *iters written only
 		 * where asked for (mot_curve_eval() does not) */
@@ -754,26 +778,26 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		return bezier_value(c, u, sat);
 	}
 	/* the frame's coefficients are power_slot(c, 0 .. m - 1): entry 0's for
-	 * m <= 8, read in place (pw NULL), and the value's entry 1's
-	 * (power_vslot); else copied */
+	 * m <= 8, read in place (pw NULL, a constant: that solve's loop tests
+	 * nothing of it), and the value's entry 1's (power_vslot); else
+	 * copied. The value's Horner is power_frame()'s without the
+	 * derivative, its last product floored to units of 2^(vsh - 2)
+	 * (vsh >= 10). */
 	m = c->nkeys - 1;
-	fw = NULL;
-	if (m > 8) {
-		for (j = 0; j < m; j++)
-			pw[j] = *power_slot(c, j);
-		fw = pw;
+	if (m <= 8) {
+		u = solve_u(FORM_POWER, c, s, NULL, d, u, &it);
+		if (iters)
+			*iters = it;
+		r = m > 1 ? power_horner8(&c->seg[1], m, u, 0, NULL) : mulhi(s->c[1], u);
+		return power_value_of(s, r);
 	}
-	u = solve_u(FORM_POWER, c, s, fw, d, u, &it);
+	for (j = 0; j < m; j++)
+		pw[j] = *power_slot(c, j);
+	u = solve_u(FORM_POWER, c, s, pw, d, u, &it);
 	if (iters)
 		*iters = it;
-	/* the value's Horner, power_frame()'s without the derivative, its
-	 * last product floored to units of 2^(vsh - 2) (vsh >= 10) */
-	if (m <= 8) {
-		r = m > 1 ? power_horner8(&c->seg[1], m, u, 0, NULL) : mulhi(s->c[1], u);
-		return value_of(s->vref, r, s->vsh - 2, sat);
-	}
 	r = *power_slot(c, 2 * m - 1);
 	for (j = m - 1; j >= 1; j--)
 		r = 4 * mulhi(r, u) + *power_slot(c, m + j - 1);
-	return value_of(s->vref, mulhi(r, u), s->vsh - 2, sat);
+	return power_value_of(s, mulhi(r, u));
 }
