@@ -554,21 +554,24 @@ static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 }
 
 /* The START_TAB start of a Bezier curve at the chord fraction t in [0, 1]:
- * part j = floor(m t) (t to 32 bits), entry j's polynomials at the part's
- * own fraction m t - j. */
+ * half k = floor(2 m t) of the m parts (t to 32 bits; t = 1 in the last),
+ * entry k / 2's polynomial of half k % 2 (tab62()'s) at x = 2 (2 m t - k)
+ * - 1 in Q1.31 (to 2^-31), one index where the part and then its half
+ * were two (the half a branch). Clamped to [0, 1]. */
 static inline __attribute__((always_inline)) int64_t bez_tab62(const struct mot_curve *c,
 							       int64_t t)
 {
-	uint32_t m = c->nkeys - 1;
-	uint64_t x = (uint64_t)(t >> 30) * m;
-	uint32_t j = (uint32_t)(x >> 32);
-	int64_t s = (int64_t)((x & 0xffffffffu) << 30);
+	uint32_t n2 = 2 * (c->nkeys - 1);
+	uint64_t x = (uint64_t)(t >> 30) * n2; /* t >> 30 <= 2^32, n2 <= 62 */
+	uint32_t k = (uint32_t)(x >> 32);
+	int64_t xs = (int64_t)(x & 0xffffffffu) - ((int64_t)1 << 31), r;
 
-	if (j >= m) {
-		j = m - 1;
-		s = ONE62;
+	if (k >= n2) {
+		k = n2 - 1;
+		xs = (int64_t)1 << 31;
 	}
-	return tab62(c->seg[j].ut, s);
+	r = poly7_62(c->seg[k / 2].ut + 8 * (k % 2), xs);
+	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
 }
 
 /*
