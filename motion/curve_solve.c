@@ -299,10 +299,13 @@ power_horner8(const struct mot_curve_seg *s, uint32_t m, int64_t u, int64_t c0, 
 {
 	int64_t r, d;
 
-	if (m > 8)
-		__builtin_unreachable(); /* the callers' test: no range check */
-	switch (m) {
-	POWER_TOP(8);
+	/* m % 8, 8 as 0: every case of the table taken, so no range check
+	 * (the callers' test is m <= 8, m >= 1) */
+	switch (m % 8) {
+	case 0:
+		r = POWER_A(7);
+		d = 8 * r;
+		goto step8;
 	POWER_TOP(7);
 	POWER_TOP(6);
 	POWER_TOP(5);
@@ -772,9 +775,9 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		return spline_value(s, u, sat);
 	}
 	s = &c->seg[0];
-	d = frame_offset(s, f);
 	u = start_u(c, s, f - s->f0);
 	if (!c->power) {
+		d = frame_offset(s, f);
 		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, &it);
 		if (iters)
 			*iters = it;
@@ -787,6 +790,10 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 	 * derivative, its last product floored to units of 2^(vsh - 2)
 	 * (vsh >= 10). */
 	m = c->nkeys - 1;
+	/* frame_offset()'s d without its tests: f - fref is in [0, f1 - f0)
+	 * (f inside the span), and (f1 - f0) 2^fsh = F(1) < 2^63 with fsh in
+	 * [10, 62] (curve_bezier.c) */
+	d = (int64_t)((uint64_t)(f - s->fref) << s->fsh);
 	if (m <= 8) {
 		u = solve_u(FORM_POWER, c, s, NULL, d, u, &it);
 		if (iters)
