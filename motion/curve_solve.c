@@ -521,17 +521,17 @@ void mot_cv_bezier_start(struct mot_curve *c)
 		bez_tab_start(c, pp, w);
 }
 
-/* The start at the chord fraction t in [0, 1] from that table: part
- * j = floor(nt t) (t to 32 bits), its cubic at s = nt t - j. Knot j + 1's
+/* The start at the chord fraction t in [0, 1] from that table (t32 =
+ * floor(t 2^32), bez_start_u()): part j = floor(nt t), its cubic at s = nt t - j. Knot j + 1's
  * u and knot j's slope are in part j's entry e (j / 4), at r = j % 4 and
  * 4 + r; knot j's u one place before (the entry before's last for r = 0)
  * and knot j + 1's slope one after (the next entry's first for r = 3, or
  * e's us[3] after the last knot). */
-static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
+static int64_t bez_inv62(const struct mot_curve *c, uint64_t t32)
 {
 	const struct mot_curve_seg *sg = c->seg;
 	uint32_t nt = 4 * (c->nkeys - 1);
-	uint64_t x = (uint64_t)(t >> 30) * nt;
+	uint64_t x = t32 * nt;
 	uint32_t j = (uint32_t)(x >> 32), r;
 	int64_t s = (int64_t)((x & 0xffffffffu) << 30), u0, u1, m1;
 	const uint16_t *e;
@@ -556,16 +556,17 @@ static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 	return herm62(u0, u1, (int64_t)e[4 + r] << 44, m1, s);
 }
 
-/* The START_TAB start of a Bezier curve at the chord fraction t in [0, 1]:
- * half k = floor(2 m t) of the m parts (t to 32 bits; t = 1 in the last),
+/* The START_TAB start of a Bezier curve at the chord fraction t in [0, 1]
+ * (t32 = floor(t 2^32), bez_start_u()): half k = floor(2 m t) of the m
+ * parts (t = 1 in the last),
  * entry k / 2's polynomial of half k % 2 (tab62()'s) at x = 2 (2 m t - k)
  * - 1 in Q1.31 (to 2^-31), one index where the part and then its half
  * were two (the half a branch). Clamped to [0, 1]. */
 static inline __attribute__((always_inline)) int64_t bez_tab62(const struct mot_curve *c,
-							       int64_t t)
+							       uint64_t t32)
 {
 	uint32_t n2 = 2 * (c->nkeys - 1);
-	uint64_t x = (uint64_t)(t >> 30) * n2; /* t >> 30 <= 2^32, n2 <= 62 */
+	uint64_t x = t32 * n2; /* t32 <= 2^32, n2 <= 62 */
 	uint32_t k = (uint32_t)(x >> 32);
 	int64_t xs = (int64_t)(x & 0xffffffffu) - ((int64_t)1 << 31), r;
 
@@ -745,14 +746,34 @@ start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 	int64_t u = piece_u(x, &s->inv_w);
 
 	if (s->start == START_TAB)
-		return c->kind == MOT_INTERP_BEZIER ? bez_tab62(c, u) : tab62(s->ut, u);
+		return tab62(s->ut, u);
 	if (s->start == START_INV)
-		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
+		return inv62(s->us, u);
 	if (s->start == START_CUBE0)
 		return cbrt62(u);
 	if (s->start == START_CUBE1)
 		return ONE62 - cbrt62(ONE62 - u);
 	return u;
+}
+
+/* The Bezier curve's Newton start at the frame offset x = f - f0 (inside
+ * the curve, as start_u()'s), by its rule. Its tables read the chord
+ * fraction t to 32 bits: t32 = floor(t 2^32) from piece_u()'s product,
+ * floored, x' m / 2^64 = t 2^61 (x' < 2^63 and 0 < m < 2^63, m rounded
+ * down: t32 <= 2^32), one product's high word and a shift where piece_u()'s
+ * rounding, its clamp and the tables' shift took seven instructions more
+ * on the solve's path. */
+static inline __attribute__((always_inline)) int64_t
+bez_start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
+{
+	uint64_t t32 = (uint64_t)mulhi((int64_t)((uint64_t)x << (93 - s->inv_w.shift)),
+				       s->inv_w.m) >> 29;
+
+	if (s->start == START_TAB)
+		return bez_tab62(c, t32);
+	if (s->start == START_INV)
+		return bez_inv62(c, t32);
+	return piece_u(x, &s->inv_w);
 }
 
 /* The piece of f (a Bezier curve has one), the start of the solve by the
@@ -775,7 +796,7 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		return spline_value(s, u, sat);
 	}
 	s = &c->seg[0];
-	u = start_u(c, s, f - s->f0);
+	u = bez_start_u(c, s, f - s->f0);
 	if (!c->power) {
 		d = frame_offset(s, f);
 		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, &it);
