@@ -149,15 +149,15 @@ static inline __attribute__((always_inline)) int64_t poly7_62(const int32_t a[8]
 }
 
 /*
- * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
- * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
+ * The START_TAB start of a spline piece at the chord fraction t in [0, 1]
+ * (t31 = floor(t 2^31), start_u()): half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
  * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
  * poly7_62()'s: below 2^-27 off, where a piece's tolerance is 2^-16 ..
  * 2^-31 and most solves' 2^-20 .. 2^-21. Clamped to [0, 1].
  */
-static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
+static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t31)
 {
-	int64_t x = t >> 31, r;
+	int64_t x = t31, r;
 	const int32_t *a = ut;
 
 	if (x >= (int64_t)1 << 30) {
@@ -743,10 +743,15 @@ static inline __attribute__((always_inline)) int64_t frame_offset(const struct m
 static inline __attribute__((always_inline)) int64_t
 start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 {
-	int64_t u = piece_u(x, &s->inv_w);
+	int64_t u;
 
+	/* START_TAB reads t to 31 bits: floor(t 2^31), piece_u()'s product's
+	 * high word shifted (x' m / 2^64 = t 2^61; bez_start_u()), without
+	 * its rounding and clamp */
 	if (s->start == START_TAB)
-		return tab62(s->ut, u);
+		return tab62(s->ut, mulhi((int64_t)((uint64_t)x << (93 - s->inv_w.shift)),
+					  s->inv_w.m) >> 30);
+	u = piece_u(x, &s->inv_w);
 	if (s->start == START_INV)
 		return inv62(s->us, u);
 	if (s->start == START_CUBE0)
