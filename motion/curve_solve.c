@@ -121,30 +121,29 @@ static inline mot_q32 spline_value(const struct mot_curve_seg *s, int64_t u, uin
 
 /*
  * a[0] + a[1] x + .. + a[7] x^7 for x in [-1, 1] in Q1.31, the coefficients
- * in Q1.30, as E(x^2) + x O(x^2), the even and the odd coefficients each by
- * Horner's rule in x^2: two chains of three products side by side, where
- * one chain in x took seven (a start's latency is the solve's). The
- * partial sums in Q1.31, a 64-bit product a step (no 128-bit one) floored
- * back to Q1.31 and the next coefficient added at twice its Q1.30 (one
- * lea: no shift of the coefficient up or of the partial sum down), off by
- * 2^-31 a step, below 2^-27 in all with x^2's and the coefficients'
- * roundings; the last products x O and E 2^31 in Q1.62. The
- * coefficients' magnitudes sum below 2 - 2^-22 (mot_cv_tab_fit()): every
- * partial sum is below 2^32 in Q1.31, the products below 2^63, and
- * E + x O below 2 in Q1.62.
+ * in Q1.30, as E(y) + x O(y), y = x^2, the even and the odd coefficients
+ * each by Estrin's scheme, (c0 + c1 y) + y^2 (c2 + c3 y): y, then y^2 and
+ * the four halves side by side, then each chain's product by y^2: three
+ * products deep where Horner's rule in y was four (a start's latency is
+ * the solve's), one product more. The partial sums in Q1.31, a 64-bit
+ * product each (no 128-bit one) floored back to Q1.31 and a coefficient
+ * added at twice its Q1.30 (one lea: no shift of the coefficient up or of
+ * the partial sum down), off by 2^-31 each, below 2^-27 in all with y's,
+ * y^2's and the coefficients' roundings; the last products x O and
+ * E 2^31 in Q1.62. The coefficients' magnitudes sum below 2 - 2^-22
+ * (mot_cv_tab_fit()): every partial sum is below 2^32 in Q1.31, the
+ * products below 2^63, and E + x O below 2 in Q1.62.
  */
 static inline __attribute__((always_inline)) int64_t poly7_62(const int32_t a[8], int64_t x)
 {
-	int64_t y = (x * x) >> 31, e, o;
+	int64_t y = (x * x) >> 31, y2 = (y * y) >> 31, e, o, eh, oh;
 
-	e = 2 * (int64_t)a[6];
-	o = 2 * (int64_t)a[7];
-	e = ((e * y) >> 31) + 2 * (int64_t)a[4];
-	o = ((o * y) >> 31) + 2 * (int64_t)a[5];
-	e = ((e * y) >> 31) + 2 * (int64_t)a[2];
-	o = ((o * y) >> 31) + 2 * (int64_t)a[3];
-	e = ((e * y) >> 31) + 2 * (int64_t)a[0];
-	o = ((o * y) >> 31) + 2 * (int64_t)a[1];
+	eh = ((2 * (int64_t)a[6] * y) >> 31) + 2 * (int64_t)a[4];
+	oh = ((2 * (int64_t)a[7] * y) >> 31) + 2 * (int64_t)a[5];
+	e = ((2 * (int64_t)a[2] * y) >> 31) + 2 * (int64_t)a[0];
+	o = ((2 * (int64_t)a[3] * y) >> 31) + 2 * (int64_t)a[1];
+	e += (eh * y2) >> 31;
+	o += (oh * y2) >> 31;
 	return o * x + e * ((int64_t)1 << 31);
 }
 
