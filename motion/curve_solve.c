@@ -18,18 +18,20 @@
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * |q| for q = r * 2^62 / d in Q2.62, d > 0, to a relative 2^-29.4, with
- * |q| < 2^62; false when it would not fit. The top 32 bits a of |r| times a
- * reciprocal x = 2^63 / b of d's top 32 bits b: one 64-bit division, exact,
- * so the same on every target (the hardware's on x86_64 and aarch64, a
- * dozen cycles; libgcc's elsewhere), and a 32 x 32 product. Three
- * truncations of at most 2^-31 each (a, b and x), within the 2^-29 of a
- * step that the tolerances allow for (curve_approx.c, newton_bits()); a
- * Newton step of the curve solve needs only a good direction and size, the
- * solve's own convergence makes up the rest. The product a x is in [2^62,
- * 2^64), so q is it shifted right, never left: fewer tests than a quotient
- * of |r| moved up to 62 bits, which q had to be shifted either way from.
- * The sign is the caller's (r's), applied without a branch (solve_u()).
+ * |q| for q = r * 2^62 / d in Q2.62, d > 0, to a relative 2^-30 (within
+ * the 2^-29.4 the tolerances allow for), with |q| < 2^62; false when it
+ * would not fit. |r| moved up to 64 bits over d's top 32 bits b: one
+ * 64-bit division, exact, so the same on every target (the hardware's on
+ * x86_64 and aarch64, a dozen cycles; libgcc's elsewhere), its quotient in
+ * (2^31, 2^33) moved up by 31 bits (a shift where the reciprocal's product
+ * took a multiplication, on the iteration's path). Two truncations of at
+ * most 2^-31 each (b and the quotient), within the 2^-29 of a step that
+ * the tolerances allow for (curve_approx.c, newton_bits()); a Newton step
+ * of the curve solve needs only a good direction and size, the solve's own
+ * convergence makes up the rest. The quotient p is in [2^62, 2^64), so q
+ * is it shifted right, never left: fewer tests than a quotient of |r|
+ * moved up to 62 bits, which q had to be shifted either way from. The
+ * sign is the caller's (r's), applied without a branch (solve_u()).
  */
 static inline bool ratio62(int64_t r, int64_t d, int64_t *aq)
 {
@@ -46,9 +48,9 @@ static inline bool ratio62(int64_t r, int64_t d, int64_t *aq)
 	 * them (the division waits for b: a shift less on the iteration's
 	 * path) */
 	b = __builtin_expect(ld >= 31, 1) ? (uint64_t)d >> (ld - 31) : (uint64_t)d << (31 - ld);
-	/* |r| ~ a 2^(32 - cr), d ~ b 2^(ld - 31), a and b in [2^31, 2^32), x
-	 * in (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(62 - ld - cr) */
-	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / b);
+	/* |r| = A 2^-cr with A = |r| << cr in [2^63, 2^64), d ~ b 2^(ld - 31)
+	 * with b in [2^31, 2^32): |r| / d 2^62 ~ (A / b) 2^31 2^(62 - ld - cr) */
+	p = ((ar << cr) / b) << 31;
 	sh = cr + ld - 62;
 	if (sh <= 0 || (sh == 1 && p >> 63))
 		return false; /* |q| >= 2^62 */
