@@ -26,8 +26,9 @@
  * word of the 128-bit product r u, u in Q2.62, times 4: the product to a
  * multiple of 4 units, floored, one product and one lea; each a_k but the
  * top one holds 2 units more, so that the floor's loss of [0, 4) becomes
- * [-2, 2): half a unit of 2^(sh - 2), the rounding of the 2^61 scale
- * before, and m of them stay below 1/16 LSB (2^(sh - 2) >= 2^8, m <= 31).
+ * (-2, 2]: half a unit of 2^(sh - 2), the rounding of the 2^61 scale
+ * before, and m of them (the value's last a floor: a unit) stay within
+ * 1/16 LSB (2^(sh - 2) >= 2^8, m <= 31).
  * Other curves (many keys, or keys far apart: 12 keys over +-1000 units,
  * 32 keys of any size) keep de Casteljau. The coefficients live in the c[]
  * and fc[] of the curve's entries, which a Bezier curve does not otherwise
