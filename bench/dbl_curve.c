@@ -175,16 +175,18 @@ static inline __attribute__((always_inline)) void frame_at(const struct dbl_curv
 
 /* START_TAB (curve_approx.c's tab_start(), curve_solve.c's tab62()): u at
  * the chord fraction t of a part as half h's degree-7 polynomial in
- * x = 4 t - 2 h - 1, even and odd powers side by side as the core's */
+ * x = 4 t - 2 h - 1, even and odd powers side by side, each by Estrin's
+ * scheme in y = x^2, as the core's (poly7_62()) */
 static inline double tab_eval(const float ut[16], double t)
 {
 	unsigned h = t >= 0.5; /* an index, not a branch: the half is unpredictable */
 	const float *a = ut + 8 * h;
-	double x = 4 * t - 1 - 2 * h, y, e, o, u;
+	double x = 4 * t - 1 - 2 * h, y, y2, e, o, u;
 
 	y = x * x;
-	e = ((a[6] * y + a[4]) * y + a[2]) * y + a[0];
-	o = ((a[7] * y + a[5]) * y + a[3]) * y + a[1];
+	y2 = y * y;
+	e = (a[2] * y + a[0]) + y2 * (a[6] * y + a[4]);
+	o = (a[3] * y + a[1]) + y2 * (a[7] * y + a[5]);
 	u = o * x + e;
 	return u < 0 ? 0 : u > 1 ? 1 : u;
 }

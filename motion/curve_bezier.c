@@ -20,16 +20,22 @@
  * ill-conditioned: sum |a_k| can reach 3^m max |x_i| while the curve stays
  * within max |x_i|, and Horner's rounding is relative to sum |a_k|. So the
  * coefficients are kept as exact integers (raw Q32.32 units) scaled by 2^sh,
- * sum k |a_k| 2^sh < 2^61 for the frame (its derivative's partial sums too)
- * and sum |a_k| 2^sh < 2^61 for the value, and the form is used only when
- * sh >= 8: Horner's m roundings of half a unit stay below 1/16 LSB. Other
- * curves (many keys, or keys far apart: 12 keys over +-1000 units, 32 keys
- * of any size) keep de Casteljau. The coefficients live in the c[] and
- * fc[] of the curve's entries, which a Bezier curve does not otherwise use:
- * the frame's a_1 .. a_m in slots 0 .. m - 1, the value's from slot
+ * sum k |a_k| 2^sh < 2^63 for the frame (its derivative's partial sums too)
+ * and sum |a_k| 2^sh < 2^63 for the value, and the form is used only when
+ * sh >= 10. Horner's step (curve_solve.c, power_frame()) takes the high
+ * word of the 128-bit product r u, u in Q2.62, times 4: the product to a
+ * multiple of 4 units, floored, one product and one lea; each a_k but the
+ * top one holds 2 units more, so that the floor's loss of [0, 4) becomes
+ * (-2, 2]: half a unit of 2^(sh - 2), the rounding of the 2^61 scale
+ * before, and m of them (the value's last a floor: a unit) stay within
+ * 1/16 LSB (2^(sh - 2) >= 2^8, m <= 31).
+ * Other curves (many keys, or keys far apart: 12 keys over +-1000 units,
+ * 32 keys of any size) keep de Casteljau. The coefficients live in the c[]
+ * and fc[] of the curve's entries, which a Bezier curve does not otherwise
+ * use: the frame's a_1 .. a_m in slots 0 .. m - 1, the value's from slot
  * power_vslot(m) (the n - 1 entries hold 8 (n - 1) slots, enough for both).
  */
-#define POWER_MIN_SHIFT 8
+#define POWER_MIN_SHIFT 10
 
 /* Bezier: scales that keep the key offsets from the first key within 2^58:
  * de Casteljau differences are then within 2^59, and the frame derivative
@@ -68,16 +74,18 @@ static void prep_power(struct mot_curve *c)
 			sum += (side ? 1 : j) * (uint64_t)mot_abs(a[side][j - 1]);
 		}
 		len[side] = bitlen64(sum);
-		if (len[side] > 61 - POWER_MIN_SHIFT)
+		if (len[side] > 63 - POWER_MIN_SHIFT)
 			return;
 	}
 	for (side = 0; side < 2; side++) {
-		int sh = 61 - (int)len[side];
+		/* (62 at most: a constant value has sum |a_k| = 0) */
+		int sh = len[side] ? 63 - (int)len[side] : 62;
 
+		/* |a_j| 2^sh <= 2^63 - 2^sh: the 2 units fit */
 		for (j = 0; j < m; j++) {
 			uint32_t slot = side ? power_vslot(m) + j : j;
 
-			*power_slot(c, slot) = a[side][j] * ((int64_t)1 << sh);
+			*power_slot(c, slot) = a[side][j] * ((int64_t)1 << sh) + (j + 1 < m ? 2 : 0);
 		}
 		if (side)
 			c->seg[0].vsh = (int16_t)sh;
@@ -106,8 +114,10 @@ static void prep_power(struct mot_curve *c)
  *     2 k >= bitlen(m (m - 1)) + bitlen(max |d2x|) + 4,
  *     k >= bitlen(m) + bitlen(max dx) - 24.
  * e is ratio62()'s 2^-29.4 (curve_solve.c) and F'(u)'s own rounding,
- * below m^3 units of F (Horner's or de Casteljau's roundings), relative to
- * F' >= m min dx 2^fsh at most 2^-32 where bitlen(min dx) + fsh >= 48: else
+ * below m^3 units of F (Horner's or de Casteljau's roundings; the power
+ * form's units are 2^(fsh - 2), its steps' floors to 4 of 2^fsh), relative
+ * to F' >= m min dx 2^fsh at most 2^-32 where bitlen(min dx) + fsh >= 48
+ * (50 in power form: the same curves as its 2^61 scale took): else
  * NEWTON_TOL_BITS. At least 16, at most NEWTON_TOL_BITS. |dx| < 2^63 and
  * |d2x| < 2^63 (|frame| < 2^62 raw): no overflow. Most of the random
  * scene's Bezier curves need 20 .. 26 bits.
@@ -131,7 +141,7 @@ static uint8_t bezier_ntol(const struct mot_curve *c)
 			d2 = ae > d2 ? ae : d2;
 		}
 	}
-	if ((int)bitlen64(dmin) + c->seg[0].fsh < 48)
+	if ((int)bitlen64(dmin) + c->seg[0].fsh < 48 + 2 * c->power)
 		return NEWTON_TOL_BITS;
 	b = d2 ? ((int)bitlen64((uint64_t)m * (m - 1)) + (int)bitlen64(d2) + 4 + 1) / 2 : 0;
 	br = (int)bitlen64(m) + (int)bitlen64(dmax) - 24;

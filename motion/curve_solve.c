@@ -18,18 +18,20 @@
 #define BISECT_TOL ((int64_t)1 << 12) /* 2^-50: a bracket this narrow is the answer */
 
 /*
- * |q| for q = r * 2^62 / d in Q2.62, d > 0, to a relative 2^-29.4, with
- * |q| < 2^62; false when it would not fit. The top 32 bits a of |r| times a
- * reciprocal x = 2^63 / b of d's top 32 bits b: one 64-bit division, exact,
- * so the same on every target (the hardware's on x86_64 and aarch64, a
- * dozen cycles; libgcc's elsewhere), and a 32 x 32 product. Three
- * truncations of at most 2^-31 each (a, b and x), within the 2^-29 of a
- * step that the tolerances allow for (curve_approx.c, newton_bits()); a
- * Newton step of the curve solve needs only a good direction and size, the
- * solve's own convergence makes up the rest. The product a x is in [2^62,
- * 2^64), so q is it shifted right, never left: fewer tests than a quotient
- * of |r| moved up to 62 bits, which q had to be shifted either way from.
- * The sign is the caller's (r's), applied without a branch (solve_u()).
+ * |q| for q = r * 2^62 / d in Q2.62, d > 0, to a relative 2^-30 (within
+ * the 2^-29.4 the tolerances allow for), with |q| < 2^62; false when it
+ * would not fit. |r| moved up to 64 bits over d's top 32 bits b: one
+ * 64-bit division, exact, so the same on every target (the hardware's on
+ * x86_64 and aarch64, a dozen cycles; libgcc's elsewhere), its quotient in
+ * (2^31, 2^33) moved up by 31 bits (a shift where the reciprocal's product
+ * took a multiplication, on the iteration's path). Two truncations of at
+ * most 2^-31 each (b and the quotient), within the 2^-29 of a step that
+ * the tolerances allow for (curve_approx.c, newton_bits()); a Newton step
+ * of the curve solve needs only a good direction and size, the solve's own
+ * convergence makes up the rest. The quotient p is in [2^62, 2^64), so q
+ * is it shifted right, never left: fewer tests than a quotient of |r|
+ * moved up to 62 bits, which q had to be shifted either way from. The
+ * sign is the caller's (r's), applied without a branch (solve_u()).
  */
 static inline bool ratio62(int64_t r, int64_t d, int64_t *aq)
 {
@@ -46,9 +48,9 @@ static inline bool ratio62(int64_t r, int64_t d, int64_t *aq)
 	 * them (the division waits for b: a shift less on the iteration's
 	 * path) */
 	b = __builtin_expect(ld >= 31, 1) ? (uint64_t)d >> (ld - 31) : (uint64_t)d << (31 - ld);
-	/* |r| ~ a 2^(32 - cr), d ~ b 2^(ld - 31), a and b in [2^31, 2^32), x
-	 * in (2^31, 2^32]: |r| / d 2^62 ~ a x 2^(62 - ld - cr) */
-	p = ((ar << cr) >> 32) * (((uint64_t)1 << 63) / b);
+	/* |r| = A 2^-cr with A = |r| << cr in [2^63, 2^64), d ~ b 2^(ld - 31)
+	 * with b in [2^31, 2^32): |r| / d 2^62 ~ (A / b) 2^31 2^(62 - ld - cr) */
+	p = ((ar << cr) / b) << 31;
 	sh = cr + ld - 62;
 	if (sh <= 0 || (sh == 1 && p >> 63))
 		return false; /* |q| >= 2^62 */
@@ -121,40 +123,42 @@ static inline mot_q32 spline_value(const struct mot_curve_seg *s, int64_t u, uin
 
 /*
  * a[0] + a[1] x + .. + a[7] x^7 for x in [-1, 1] in Q1.31, the coefficients
- * in Q1.30, as E(x^2) + x O(x^2), the even and the odd coefficients each by
- * Horner's rule in x^2: two chains of three products side by side, where
- * one chain in x took seven (a start's latency is the solve's). In Q1.62
- * with a partial sum's top 33 bits, a 64-bit product a step (no 128-bit
- * one): off by 2^-31 a step, below 2^-27 in all with x^2's and the
- * coefficients' roundings. The coefficients' magnitudes sum below 2: every
- * partial sum, and E + x O, is below 2 in Q1.62, its top bits below 2^32,
- * the products below 2^63.
+ * in Q1.30, as E(y) + x O(y), y = x^2, the even and the odd coefficients
+ * each by Estrin's scheme, (c0 + c1 y) + y^2 (c2 + c3 y): y, then y^2 and
+ * the four halves side by side, then each chain's product by y^2: three
+ * products deep where Horner's rule in y was four (a start's latency is
+ * the solve's), one product more. The partial sums in Q1.31, a 64-bit
+ * product each (no 128-bit one) floored back to Q1.31 and a coefficient
+ * added at twice its Q1.30 (one lea: no shift of the coefficient up or of
+ * the partial sum down), off by 2^-31 each, below 2^-27 in all with y's,
+ * y^2's and the coefficients' roundings; the last products x O and
+ * E 2^31 in Q1.62. The coefficients' magnitudes sum below 2 - 2^-22
+ * (mot_cv_tab_fit()): every partial sum is below 2^32 in Q1.31, the
+ * products below 2^63, and E + x O below 2 in Q1.62.
  */
 static inline __attribute__((always_inline)) int64_t poly7_62(const int32_t a[8], int64_t x)
 {
-	int64_t y = (x * x) >> 31, e, o;
+	int64_t y = (x * x) >> 31, y2 = (y * y) >> 31, e, o, eh, oh;
 
-	e = (int64_t)a[6] * ((int64_t)1 << 32);
-	o = (int64_t)a[7] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[4] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[5] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[2] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[3] * ((int64_t)1 << 32);
-	e = (e >> 31) * y + (int64_t)a[0] * ((int64_t)1 << 32);
-	o = (o >> 31) * y + (int64_t)a[1] * ((int64_t)1 << 32);
-	return (o >> 31) * x + e;
+	eh = ((2 * (int64_t)a[6] * y) >> 31) + 2 * (int64_t)a[4];
+	oh = ((2 * (int64_t)a[7] * y) >> 31) + 2 * (int64_t)a[5];
+	e = ((2 * (int64_t)a[2] * y) >> 31) + 2 * (int64_t)a[0];
+	o = ((2 * (int64_t)a[3] * y) >> 31) + 2 * (int64_t)a[1];
+	e += (eh * y2) >> 31;
+	o += (oh * y2) >> 31;
+	return o * x + e * ((int64_t)1 << 31);
 }
 
 /*
- * The START_TAB start of a spline piece at the chord fraction t in [0, 1]:
- * half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
+ * The START_TAB start of a spline piece at the chord fraction t in [0, 1]
+ * (t31 = floor(t 2^31), start_u()): half h's polynomial (curve_approx.c, tab_start()) at x = 4 t - 2 h - 1 in
  * Q1.31 (t to 2^-31, x to 2^-29: u to about 2^-31 where du/dt is near 1),
  * poly7_62()'s: below 2^-27 off, where a piece's tolerance is 2^-16 ..
  * 2^-31 and most solves' 2^-20 .. 2^-21. Clamped to [0, 1].
  */
-static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t)
+static inline __attribute__((always_inline)) int64_t tab62(const int32_t ut[16], int64_t t31)
 {
-	int64_t x = t >> 31, r;
+	int64_t x = t31, r;
 	const int32_t *a = ut;
 
 	if (x >= (int64_t)1 << 30) {
@@ -229,19 +233,41 @@ static int64_t inv62(const uint16_t us[8], int64_t t)
 
 /* ---- frame(u) and value(u) of a Bezier curve ------------------------------------ */
 
-/* Horner's rule on the power form (curve_bezier.c), a[k - 1] multiplying
- * u^k: the frame and its derivative (the value's: mot_cv_approx_eval()). */
-static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int64_t *df)
+/*
+ * floor(r u / 2^64) for |u| <= 2^62: the high word of the 128-bit product,
+ * one instruction on x86_64 and aarch64 (no rounding's add and shift): the
+ * power form's Horner step 4 mulhi(r, u) + a is r u / 2^62 + a to a
+ * multiple of 4 units, floored (curve_bezier.c: its coefficients carry the
+ * 2 units that centre it). |r u| < 2^125: 4 mulhi(r, u) is within 4 units
+ * of r u / 2^62, below 2^63 where |r| is.
+ */
+static inline int64_t mulhi(int64_t r, int64_t u)
+{
+	return (int64_t)mot_acc_hi(mot_acc_mul(r, u));
+}
+
+/*
+ * Horner's rule on the power form (curve_bezier.c), a[k - 1] multiplying
+ * u^k: the frame less the solve's target, 4 mulhi(r_1, u) + c0 with
+ * c0 = 2 - d (the 2 units centring the last floor too), and its derivative
+ * (the value's: mot_cv_approx_eval()). Each step's error is within 2 units
+ * of 2^fsh (half a unit of 2^(fsh - 2)), m of them in all. The
+ * derivative's coefficients k a_k without the 2 units (the low two bits
+ * masked): its partial sums stay within sum k |a_k| 2^fsh + 4 m < 2^63
+ * for every m; an error of 4 units a step (floors) where only its top 32
+ * bits are read (ratio62()). With c0 = 2 the frame itself (init).
+ */
+static int64_t power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t c0, int64_t *df)
 {
 	int64_t r = a[m - 1], d = (int64_t)m * a[m - 1];
 	uint32_t k;
 
 	for (k = m - 1; k >= 1; k--) {
-		r = mul62(r, u) + a[k - 1];
-		d = mul62f(d, u) + (int64_t)k * a[k - 1];
+		r = 4 * mulhi(r, u) + a[k - 1];
+		d = 4 * mulhi(d, u) + (int64_t)k * (a[k - 1] & ~(int64_t)3);
 	}
-	*f = mul62(r, u);
 	*df = d;
+	return 4 * mulhi(r, u) + c0;
 }
 
 /*
@@ -249,16 +275,19 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
  * the c[] and fc[] of one entry (power_slot, power_vslot), each step's
  * place and factor k a constant, entered at the degree's step (without the
  * loop's index arithmetic and multiplications by k: a fifth of a Bezier
- * solve). The same products and sums as power_frame(), so the same bits.
- * With df NULL (a constant: inlined) the value's Horner, without the
- * derivative.
+ * solve). The frame's products and sums are power_frame()'s, so its bits;
+ * the derivative's take k a_k with the 2 units (no mask on its chain: at
+ * most 2 k more a step, 72 in all, its partial sums below 2^63 with
+ * m <= 8 and 2^fsh >= 2^10). With df NULL (a constant: inlined) the
+ * value's Horner without the derivative, its result mulhi(r_1, u): the
+ * value's polynomial in units of 2^(vsh - 2), floored.
  */
 #define POWER_A(j) ((j) < 4 ? s->c[(j)] : s->fc[(j) - 4])
 #define POWER_STEP(k)                                                       \
 	do {                                                                \
-		r = mul62(r, u) + POWER_A((k) - 1);                         \
+		r = 4 * mulhi(r, u) + POWER_A((k) - 1);                     \
 		if (df)                                                     \
-			d = mul62f(d, u) + (int64_t)(k) * POWER_A((k) - 1); \
+			d = 4 * mulhi(d, u) + (int64_t)(k) * POWER_A((k) - 1); \
 	} while (0)
 #define POWER_TOP(k)                                                        \
 	case k:                                                             \
@@ -267,12 +296,17 @@ static void power_frame(const int64_t *a, uint32_t m, int64_t u, int64_t *f, int
 		goto step##k
 
 static inline __attribute__((always_inline)) int64_t
-power_horner8(const struct mot_curve_seg *s, uint32_t m, int64_t u, int64_t *df)
+power_horner8(const struct mot_curve_seg *s, uint32_t m, int64_t u, int64_t c0, int64_t *df)
 {
 	int64_t r, d;
 
-	switch (m) {
-	POWER_TOP(8);
+	/* m % 8, 8 as 0: every case of the table taken, so no range check
+	 * (the callers' test is m <= 8, m >= 1) */
+	switch (m % 8) {
+	case 0:
+		r = POWER_A(7);
+		d = 8 * r;
+		goto step8;
 	POWER_TOP(7);
 	POWER_TOP(6);
 	POWER_TOP(5);
@@ -299,9 +333,10 @@ step3:
 step2:
 	POWER_STEP(1);
 step1:
-	if (df)
-		*df = d;
-	return mul62(r, u);
+	if (!df)
+		return mulhi(r, u);
+	*df = d;
+	return 4 * mulhi(r, u) + c0;
 }
 
 #undef POWER_TOP
@@ -361,7 +396,7 @@ static void bez_frame_at(const struct mot_curve *c, const int64_t *pw, int64_t u
 			 int64_t *df)
 {
 	if (pw)
-		power_frame(pw, c->nkeys - 1, u, f, df);
+		*f = power_frame(pw, c->nkeys - 1, u, 2, df);
 	else
 		bezier_frame(c, u, f, df);
 }
@@ -487,17 +522,17 @@ void mot_cv_bezier_start(struct mot_curve *c)
 		bez_tab_start(c, pp, w);
 }
 
-/* The start at the chord fraction t in [0, 1] from that table: part
- * j = floor(nt t) (t to 32 bits), its cubic at s = nt t - j. Knot j + 1's
+/* The start at the chord fraction t in [0, 1] from that table (t32 =
+ * floor(t 2^32), bez_start_u()): part j = floor(nt t), its cubic at s = nt t - j. Knot j + 1's
  * u and knot j's slope are in part j's entry e (j / 4), at r = j % 4 and
  * 4 + r; knot j's u one place before (the entry before's last for r = 0)
  * and knot j + 1's slope one after (the next entry's first for r = 3, or
  * e's us[3] after the last knot). */
-static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
+static int64_t bez_inv62(const struct mot_curve *c, uint64_t t32)
 {
 	const struct mot_curve_seg *sg = c->seg;
 	uint32_t nt = 4 * (c->nkeys - 1);
-	uint64_t x = (uint64_t)(t >> 30) * nt;
+	uint64_t x = t32 * nt;
 	uint32_t j = (uint32_t)(x >> 32), r;
 	int64_t s = (int64_t)((x & 0xffffffffu) << 30), u0, u1, m1;
 	const uint16_t *e;
@@ -522,22 +557,43 @@ static int64_t bez_inv62(const struct mot_curve *c, int64_t t)
 	return herm62(u0, u1, (int64_t)e[4 + r] << 44, m1, s);
 }
 
-/* The START_TAB start of a Bezier curve at the chord fraction t in [0, 1]:
- * part j = floor(m t) (t to 32 bits), entry j's polynomials at the part's
- * own fraction m t - j. */
+/* The START_TAB start of a Bezier curve at the chord fraction t in [0, 1]
+ * (t32 = floor(t 2^32), bez_start_u()): half k = floor(2 m t) of the m
+ * parts (t = 1 in the last),
+ * entry k / 2's polynomial of half k % 2 (tab62()'s) at x = 2 (2 m t - k)
+ * - 1 in Q1.31 (to 2^-31), one index where the part and then its half
+ * were two (the half a branch). Clamped to [0, 1]. */
 static inline __attribute__((always_inline)) int64_t bez_tab62(const struct mot_curve *c,
-							       int64_t t)
+							       uint64_t t32)
 {
-	uint32_t m = c->nkeys - 1;
-	uint64_t x = (uint64_t)(t >> 30) * m;
-	uint32_t j = (uint32_t)(x >> 32);
-	int64_t s = (int64_t)((x & 0xffffffffu) << 30);
+	uint32_t n2 = 2 * (c->nkeys - 1);
+	uint64_t x = t32 * n2; /* t32 <= 2^32, n2 <= 62 */
+	uint32_t k = (uint32_t)(x >> 32);
+	int64_t xs = (int64_t)(x & 0xffffffffu) - ((int64_t)1 << 31), r;
 
-	if (j >= m) {
-		j = m - 1;
-		s = ONE62;
+	if (k >= n2) {
+		k = n2 - 1;
+		xs = (int64_t)1 << 31;
 	}
-	return tab62(c->seg[j].ut, s);
+	r = poly7_62(c->seg[k / 2].ut + 8 * (k % 2), xs);
+	return r <= 0 ? 0 : r >= ONE62 ? ONE62 : r;
+}
+
+/*
+ * A power form's value, vref + round(p / 2^(vsh - 2)) for p its Horner's
+ * mulhi(r_1, u): value_of()'s bits without its tests, none of which can
+ * fail here. vsh - 2 is in [8, 61] (POWER_MIN_SHIFT; 60 for a constant
+ * value, sum |a_k| = 0), |p| <= (sum |a_k| 2^vsh + 8 m) / 4 < 2^61, so
+ * p + 2^(vsh - 3) fits; and the rounded quotient is the value's offset
+ * from the first key within a unit, in the keys' hull (|value| < 2^62 raw,
+ * MOT_LEN_LIMIT): vref + it fits.
+ */
+static inline __attribute__((always_inline)) mot_q32 power_value_of(const struct mot_curve_seg *s,
+								     int64_t p)
+{
+	int sh = s->vsh - 2;
+
+	return s->vref + ((p + ((int64_t)1 << (sh - 1))) >> sh);
 }
 
 /* ---- the solve ------------------------------------------------------------------ */
@@ -576,7 +632,7 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 	const int64_t tol = (int64_t)1 << (62 - s->ntol);
 	/* a piece's F(u) - d as F's Horner with c0 - d, F(0) - d: at most the
 	 * piece's frame range, as F(u) - d is */
-	const int64_t c0 = form == FORM_SPLINE ? s->fc[0] - d : 0;
+	const int64_t c0 = form == FORM_SPLINE ? s->fc[0] - d : form == FORM_POWER ? 2 - d : 0;
 	bool lo_known = false, hi_known = false;
 	int64_t lo = 0, hi = ONE62, dx = ONE62, dxold = ONE62;
 	int it;
@@ -587,17 +643,17 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 
 		if (form == FORM_POWER) {
 			if (pw)
-				power_frame(pw, c->nkeys - 1, u, &f, &df);
+				f = power_frame(pw, c->nkeys - 1, u, c0, &df);
 			else
-				f = power_horner8(s, c->nkeys - 1, u, &df);
+				f = power_horner8(s, c->nkeys - 1, u, c0, &df);
 		} else if (form == FORM_CASTELJAU) {
 			bezier_frame(c, u, &f, &df);
+			f -= d;
 		} else {
 			f = poly_frame(s->fc, c0, u, &df);
 		}
-		if (form != FORM_SPLINE)
-			f -= d;
-		if (f == 0)
+		/* (the power form's f is 2 modulo 4: never 0) */
+		if (form != FORM_POWER && f == 0)
 			break;
 		if (f < 0) {
 			lo = u;
@@ -608,6 +664,9 @@ solve_u(const enum form form, const struct mot_curve *c, const struct mot_curve_
 		}
 		if (lo >= hi) /* the root lies beyond an end of the piece */
 			break;
+		/* (the power form's f is never 0: ratio62() need not test it) */
+		if (form == FORM_POWER && f == 0)
+			__builtin_unreachable();
 		newton = df > 0 && ratio62(f, df, &adu);
 		if (newton) {
 			/* un = u - du, du = adu with f's sign: a conditional
@@ -685,17 +744,42 @@ static inline __attribute__((always_inline)) int64_t frame_offset(const struct m
 static inline __attribute__((always_inline)) int64_t
 start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
 {
-	int64_t u = piece_u(x, &s->inv_w);
+	int64_t u;
 
+	/* START_TAB reads t to 31 bits: floor(t 2^31), piece_u()'s product's
+	 * high word shifted (x' m / 2^64 = t 2^61; bez_start_u()), without
+	 * its rounding and clamp */
 	if (s->start == START_TAB)
-		return c->kind == MOT_INTERP_BEZIER ? bez_tab62(c, u) : tab62(s->ut, u);
+		return tab62(s->ut, mulhi((int64_t)((uint64_t)x << (93 - s->inv_w.shift)),
+					  s->inv_w.m) >> 30);
+	u = piece_u(x, &s->inv_w);
 	if (s->start == START_INV)
-		return c->kind == MOT_INTERP_BEZIER ? bez_inv62(c, u) : inv62(s->us, u);
+		return inv62(s->us, u);
 	if (s->start == START_CUBE0)
 		return cbrt62(u);
 	if (s->start == START_CUBE1)
 		return ONE62 - cbrt62(ONE62 - u);
 	return u;
+}
+
+/* The Bezier curve's Newton start at the frame offset x = f - f0 (inside
+ * the curve, as start_u()'s), by its rule. Its tables read the chord
+ * fraction t to 32 bits: t32 = floor(t 2^32) from piece_u()'s product,
+ * floored, x' m / 2^64 = t 2^61 (x' < 2^63 and 0 < m < 2^63, m rounded
+ * down: t32 <= 2^32), one product's high word and a shift where piece_u()'s
+ * rounding, its clamp and the tables' shift took seven instructions more
+ * on the solve's path. */
+static inline __attribute__((always_inline)) int64_t
+bez_start_u(const struct mot_curve *c, const struct mot_curve_seg *s, int64_t x)
+{
+	uint64_t t32 = (uint64_t)mulhi((int64_t)((uint64_t)x << (93 - s->inv_w.shift)),
+				       s->inv_w.m) >> 29;
+
+	if (s->start == START_TAB)
+		return bez_tab62(c, t32);
+	if (s->start == START_INV)
+		return bez_inv62(c, t32);
+	return piece_u(x, &s->inv_w);
 }
 
 /* The piece of f (a Bezier curve has one), the start of the solve by the
@@ -705,7 +789,6 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 {
 	const struct mot_curve_seg *s;
 	int64_t u, d, r, pw[MOT_BEZIER_MAX_KEYS - 1];
-	const int64_t *fw;
 	uint32_t m, j;
 	int it; /* the solve's iterations, a register: *iters written only
 		 * where asked for (mot_curve_eval() does not) */
@@ -719,34 +802,39 @@ mot_q32 mot_cv_approx_eval(const struct mot_curve *c, struct mot_cursor *cur, mo
 		return spline_value(s, u, sat);
 	}
 	s = &c->seg[0];
-	d = frame_offset(s, f);
-	u = start_u(c, s, f - s->f0);
+	u = bez_start_u(c, s, f - s->f0);
 	if (!c->power) {
+		d = frame_offset(s, f);
 		u = solve_u(FORM_CASTELJAU, c, s, NULL, d, u, &it);
 		if (iters)
 			*iters = it;
 		return bezier_value(c, u, sat);
 	}
 	/* the frame's coefficients are power_slot(c, 0 .. m - 1): entry 0's for
-	 * m <= 8, read in place (pw NULL), and the value's entry 1's
-	 * (power_vslot); else copied */
+	 * m <= 8, read in place (pw NULL, a constant: that solve's loop tests
+	 * nothing of it), and the value's entry 1's (power_vslot); else
+	 * copied. The value's Horner is power_frame()'s without the
+	 * derivative, its last product floored to units of 2^(vsh - 2)
+	 * (vsh >= 10). */
 	m = c->nkeys - 1;
-	fw = NULL;
-	if (m > 8) {
-		for (j = 0; j < m; j++)
-			pw[j] = *power_slot(c, j);
-		fw = pw;
+	/* frame_offset()'s d without its tests: f - fref is in [0, f1 - f0)
+	 * (f inside the span), and (f1 - f0) 2^fsh = F(1) < 2^63 with fsh in
+	 * [10, 62] (curve_bezier.c) */
+	d = (int64_t)((uint64_t)(f - s->fref) << s->fsh);
+	if (m <= 8) {
+		u = solve_u(FORM_POWER, c, s, NULL, d, u, &it);
+		if (iters)
+			*iters = it;
+		r = m > 1 ? power_horner8(&c->seg[1], m, u, 0, NULL) : mulhi(s->c[1], u);
+		return power_value_of(s, r);
 	}
-	u = solve_u(FORM_POWER, c, s, fw, d, u, &it);
+	for (j = 0; j < m; j++)
+		pw[j] = *power_slot(c, j);
+	u = solve_u(FORM_POWER, c, s, pw, d, u, &it);
 	if (iters)
 		*iters = it;
-	if (m <= 8) {
-		r = m > 1 ? power_horner8(&c->seg[1], m, u, NULL) : mul62(s->c[1], u);
-		return value_of(s->vref, r, s->vsh, sat);
-	}
-	/* the value's, power_frame()'s Horner without the derivative */
 	r = *power_slot(c, 2 * m - 1);
 	for (j = m - 1; j >= 1; j--)
-		r = mul62(r, u) + *power_slot(c, m + j - 1);
-	return value_of(s->vref, mul62(r, u), s->vsh, sat);
+		r = 4 * mulhi(r, u) + *power_slot(c, m + j - 1);
+	return power_value_of(s, mulhi(r, u));
 }
