@@ -793,14 +793,19 @@ channel_value(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 g, uint
 	int64_t p;
 	mot_q32 v;
 
-	if (!(c->plain || c->solve))
+	if (c->solve) {
+		if (g <= c->span_f0)
+			return c->keys[0].value;
+		if (g >= c->span_f1)
+			return c->keys[c->nkeys - 1].value;
+		return mot_cv_approx_eval(c, cur, g, NULL, sat);
+	}
+	if (!c->plain)
 		return mot_curve_eval(c, cur, g, sat);
 	if (g <= c->span_f0)
 		return c->keys[0].value;
 	if (g >= c->span_f1)
 		return c->keys[c->nkeys - 1].value;
-	if (c->solve)
-		return mot_cv_approx_eval(c, cur, g, NULL, sat);
 	j = cur->seg;
 	s = &c->seg[j];
 	if (j >= c->nseg || g < s->f0 || g >= s->f1 || c->span_ease)
