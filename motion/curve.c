@@ -159,10 +159,10 @@ static __attribute__((noinline)) mot_q32 eval_warped(const struct mot_curve *c,
 
 /* mot_curve_eval() for a plain curve (c->plain) strictly inside its span:
  * out of the way of the approximating curves' tail call, which then saves
- * no register (this path's calls make it save some). */
-static __attribute__((noinline)) mot_q32 eval_plain(const struct mot_curve *c,
-						    struct mot_cursor *cur, mot_q32 frame,
-						    uint32_t *sat)
+ * no register (this path's calls make it save some); scene.c's free nodes
+ * call it straight (curve_priv.h). */
+mot_q32 mot_cv_eval_plain(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+			  uint32_t *sat)
 {
 	const struct mot_curve_seg *s;
 
@@ -200,7 +200,7 @@ mot_q32 mot_curve_eval(const struct mot_curve *c, struct mot_cursor *cur, mot_q3
 		return c->keys[0].value;
 	if (frame >= c->span_f1)
 		return c->keys[c->nkeys - 1].value;
-	return eval_plain(c, cur, frame, sat);
+	return mot_cv_eval_plain(c, cur, frame, sat);
 }
 
 int mot_curve_newton_iterations(const struct mot_curve *c, mot_q32 frame)

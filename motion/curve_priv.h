@@ -41,7 +41,9 @@
  * mot_ names; these are not curve.h's).
  *
  * scene.c includes this header too, for a joint's plainest case inline
- * (its curve_at()): one piece's arithmetic, below.
+ * (its piece_fast()) and a free node's channels (channel_value(), which
+ * calls mot_cv_eval_plain() and the solve straight): one piece's
+ * arithmetic, below.
  */
 #ifndef MOT_CURVE_PRIV_H
 #define MOT_CURVE_PRIV_H
@@ -355,6 +357,11 @@ static inline uint32_t locate_key(const struct mot_curve *c, struct mot_cursor *
 		cur->key = i;
 	return i;
 }
+
+/* mot_curve_eval() for a plain curve (c->plain) strictly inside its span
+ * (curve.c). */
+mot_q32 mot_cv_eval_plain(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 frame,
+			  uint32_t *sat);
 
 /* ---- Bezier in power form (curve_bezier.c) --------------------------------------- */
 

@@ -296,6 +296,7 @@ enum {
 	FREE_SHS = 2,  /* a scale or shear channel */
 	FREE_FITS = 4, /* every scale and shear below 2^40 raw (small_kernels) */
 	FREE_UNIT = 8, /* its quaternions near unit: R(q) untested (small_kernels) */
+	FREE_OWN = MOT_MEMO_FREE_OWN, /* channel_value() (small_kernels; scene.h) */
 };
 
 static unsigned free_flags(const struct mot_scene *sc, const struct mot_free_strand *fs,
@@ -317,7 +318,7 @@ static unsigned free_flags(const struct mot_scene *sc, const struct mot_free_str
 	 * or the identity) */
 	if (small_kernels && (fs->rot >= 0 ? sc->rot[fs->rot].unit : fs->quat[0] >= 0))
 		f |= FREE_UNIT;
-	return f | (fits ? FREE_FITS : 0);
+	return f | (fits ? FREE_FITS : 0) | (small_kernels && bounds ? FREE_OWN : 0);
 }
 
 /*
@@ -778,6 +779,89 @@ static inline const struct mot_rot_q62 *free_quat(struct mot_quat *q,
 enum { FREE_LIN_NONE, FREE_LIN_TRI, FREE_LIN_FULL };
 
 /*
+ * A free node's channel curve at frame g (FREE_OWN): mot_curve_eval()'s
+ * bits without its call and its dispatch, where 128-bit integers are the
+ * compiler's. The held ends of any curve; an approximating curve's solve
+ * called straight; of a plain curve without a strand-wide ease, the piece
+ * the cursor holds inline (curve.c's piece_at(), eased or not, and for vsh
+ * in [1, 62] piece_fast()'s rounding, which cannot overflow: the sum with
+ * vref is tested instead), and eval_plain() called straight for any other
+ * piece, which moves the cursor. The rest the whole way. (Random free
+ * nodes' channels: about as many held ends, plain pieces and solves.)
+ */
+static inline __attribute__((always_inline)) mot_q32
+channel_value(const struct mot_curve *c, struct mot_cursor *cur, mot_q32 g, uint32_t *sat)
+{
+	const struct mot_curve_seg *s;
+	uint32_t j;
+	int64_t p;
+	mot_q32 v;
+
+	if (c->solve) {
+		if (g <= c->span_f0)
+			return c->keys[0].value;
+		if (g >= c->span_f1)
+			return c->keys[c->nkeys - 1].value;
+		return mot_cv_approx_eval(c, cur, g, NULL, sat);
+	}
+	if (!c->plain)
+		return mot_curve_eval(c, cur, g, sat);
+	if (g <= c->span_f0)
+		return c->keys[0].value;
+	if (g >= c->span_f1)
+		return c->keys[c->nkeys - 1].value;
+	j = cur->seg;
+	s = &c->seg[j];
+	if (j >= c->nseg || g < s->f0 || g >= s->f1 || c->span_ease)
+		return mot_cv_eval_plain(c, cur, g, sat);
+	if (c->kind == MOT_INTERP_STEP)
+		return s->vref;
+	if (s->vsh < 1 || s->vsh > 62)
+		return mot_cv_eval_plain(c, cur, g, sat);
+	if (s->ush >= 0) {
+		p = poly_eval(s->c, (g - s->f0) << s->ush);
+	} else {
+		int64_t u = c->seg_ease && !mot_ease_is_identity(&s->ease) ?
+				    eased_u(s, g - s->f0) :
+				    piece_u(g - s->f0, &s->inv_w);
+
+		p = c->kind == MOT_INTERP_LINEAR ? mul62(s->c[1], u) : poly_eval(s->c, u);
+	}
+	p = ((p >> (s->vsh - 1)) + 1) >> 1;
+	if (__builtin_add_overflow(s->vref, p, &v))
+		return mot_cv_eval_plain(c, cur, g, sat);
+	return v;
+}
+
+/*
+ * A free strand's nine channels at g, each at its rest value without a
+ * curve: channel_value()'s (own) or mot_curve_eval()'s. A loop, one copy of
+ * channel_value(): unrolled (nine copies) it took 18 instructions fewer a
+ * random node (823 against 833 a node a tick, make bench-count) but 8 KB
+ * more code on the scene's hot path, and callgrind's cache simulation had
+ * five times the instruction cache misses of a random scene (37 thousand
+ * to 184 thousand; 39 thousand this way).
+ */
+static inline __attribute__((always_inline)) void
+free_channels(mot_q32 v[MOT_FREE_NCHANNELS], const struct mot_curve *curves,
+	      struct mot_cursor *cursors, const struct mot_free_strand *fs, mot_q32 g, bool own,
+	      uint32_t *sat)
+{
+	uint32_t k;
+
+	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
+		int32_t c = fs->channel[k];
+
+		if (c < 0)
+			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
+		else if (own)
+			v[k] = channel_value(&curves[c], &cursors[c], g, sat);
+		else
+			v[k] = mot_curve_eval(&curves[c], &cursors[c], g, sat);
+	}
+}
+
+/*
  * The linear part S . H . R and the translation (row 3) of a free node
  * (channels without keys at their rest values) in m, what free_flags()
  * says of its strand in `how`. Returns FREE_LIN_NONE when the node has no
@@ -802,19 +886,11 @@ static unsigned free_linear(struct mot_mat *m, const struct mot_scene *sc, struc
 
 	if (fs->warp.on) /* most strands have none: not even the call */
 		g = mot_warp_apply(&fs->warp, frame, &ev->sat);
-	/* the channels' indices and rest values constants where unrolled, the
-	 * arrays loaded once (not again after every call) */
-#if MOT_HAVE_INT128
-	_Pragma("GCC unroll 9")
-#endif
-	for (k = 0; k < MOT_FREE_NCHANNELS; k++) {
-		int32_t c = fs->channel[k];
-
-		if (c >= 0)
-			v[k] = mot_curve_eval(&curves[c], &cursors[c], g, &ev->sat);
-		else
-			v[k] = (k >= MOT_FREE_SX && k <= MOT_FREE_SZ) ? MOT_Q32_ONE : 0;
-	}
+	/* the call alone where asked for (free_local(), the tests) */
+	if (small_kernels && (how & FREE_OWN))
+		free_channels(v, curves, cursors, fs, g, true, &ev->sat);
+	else
+		free_channels(v, curves, cursors, fs, g, false, &ev->sat);
 	for (k = 0; k < 3; k++)
 		t[k] = v[MOT_FREE_TX + k];
 	if (!rot && !shs)

@@ -115,7 +115,8 @@ struct mot_node_memo {
 	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
 	uint8_t small;  /* every sum of the node's matrix is known to fit */
 	uint8_t prow;   /* the pivot's one nonzero component (any if none), 3: more */
-	uint8_t free;   /* a free node's strand: what its channels are (scene.c) */
+	uint8_t free;   /* a free node's strand: what its channels are (scene.c);
+			 * MOT_MEMO_FREE_OWN below */
 	/* A joint's curve between the frames lo (included) and hi (excluded):
 	 * the held value `held` (piece NULL) or the piece `piece` of an
 	 * interpolating curve, evaluated as `how` says, inline where `op`
@@ -133,6 +134,11 @@ struct mot_node_memo {
 	uint64_t lin;   /* bound on |W_lin|'s 2-norm (raw), UINT64_MAX: none */
 	uint64_t bound; /* bound on |W_t| (raw), UINT64_MAX: none */
 };
+
+/* A bit of mot_node_memo.free: the node's channel curves take scene.c's own
+ * way to mot_curve_eval()'s bits, else the call (the tests clear it to
+ * compare the two). */
+#define MOT_MEMO_FREE_OWN 16u
 
 /* Mutable evaluation state. cursors has mot_eval_cursor_count() entries,
  * memo mot_eval_memo_count(). */

@@ -34,6 +34,7 @@
 #define mot_cv_prep_bezier cvp_cv_prep_bezier_
 #define mot_cv_prep_area cvp_cv_prep_area_
 #define mot_cv_approx_eval cvp_cv_approx_eval_
+#define mot_cv_eval_plain cvp_cv_eval_plain_
 #define mot_cv_bezier_start cvp_cv_bezier_start_
 #define mot_cv_tab_node cvp_cv_tab_node_
 #define mot_cv_tab_fit cvp_cv_tab_fit_
