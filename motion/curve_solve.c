@@ -186,7 +186,7 @@ static int64_t cbrt62(int64_t x)
 		1229127586, 136569721, -15175292, 2810327, -620137, 151412, -46253, 12582,
 	};
 	unsigned e, q, r;
-	int64_t m;
+	int64_t m, y;
 
 	if (x <= 0)
 		return 0;
@@ -195,7 +195,14 @@ static int64_t cbrt62(int64_t x)
 	r = e % 3;
 	m = (int64_t)((uint64_t)x << e) - ONE62;
 	/* x = 2 m - 1 in Q1.31 */
-	return mul62(poly7_62(k_poly, (m >> 30) - ((int64_t)1 << 31)), k_third[r]) >> q;
+	y = mul62(poly7_62(k_poly, (m >> 30) - ((int64_t)1 << 31)), k_third[r]) >> q;
+	/* at most 1: the polynomial at x near 1 is above it (cbrt(1) as
+	 * 1 + 38 2^-30), and a start outside [0, 1] (START_CUBE0 near its
+	 * piece's end, START_CUBE1 at its start, 1 - cbrt) could end the solve
+	 * outside it: a root below 0 masked to about 2 (solve_u()'s u &
+	 * INT64_MAX), the value's products then overflowing (a B-spline's
+	 * value at its last piece's first frame far outside its keys' hull) */
+	return y > ONE62 ? ONE62 : y;
 }
 
 /* The cubic Hermite from u0, u1 (Q6.58) with slopes m0, m1 (Q6.58, in units
