@@ -220,7 +220,8 @@ static uint64_t add_sat(uint64_t a, uint64_t b)
 
 /* |ref + round(P(u) / 2^sh)| for u in [0, 1] and P with coefficients c[0..n)
  * evaluated with `rounds` roundings (Horner's rule, curve_priv.h: the
- * partial sums stay within sum |c| + rounds). */
+ * partial sums stay within sum |c| + rounds): the coarse bound, for the
+ * scales that hull_bound() does not take. */
 static uint64_t poly_bound(mot_q32 ref, const int64_t *c, uint32_t n, uint32_t rounds, int sh)
 {
 	uint64_t s = rounds;
@@ -235,18 +236,172 @@ static uint64_t poly_bound(mot_q32 ref, const int64_t *c, uint32_t n, uint32_t r
 	return add_sat(add_sat(mot_mag(ref), s), 1);
 }
 
+static bool acc_lt(mot_acc x, mot_acc y) /* |x|, |y| < 2^126 */
+{
+	return mot_acc_is_neg(mot_acc_sub(x, y));
+}
+
+static mot_acc acc_abs(mot_acc x)
+{
+	return mot_acc_is_neg(x) ? mot_acc_neg(x) : x;
+}
+
+/*
+ * The tight bound. A polynomial of degree m on u in [0, 1] is
+ * sum_k b_k B_k(u) in the Bernstein basis, B_k(u) = C(m,k) u^k (1-u)^(m-k)
+ * >= 0 with sum_k B_k(u) = 1: every P(u) is a convex combination of the
+ * b_k, in [min b_k, max b_k] (the convex hull property). Evaluated with
+ * roundings whose errors add up to at most e units (each Horner step's
+ * error is multiplied by powers of u <= 1 after it), the result p is in
+ * [min b_k - e, max b_k + e], and ref + round(p / 2^sh), an integer, is at
+ * most M + 1/2 in magnitude for M = max |ref + x / 2^sh| over that
+ * interval (a linear function of x: its largest magnitude at an end), so
+ * at most floor(M) + 1. Here the b_k come scaled by K (K b_k exact for the
+ * cubics, K = 3), lo and hi their extremes, and M = max |K ref 2^sh + lo -
+ * K e|, |K ref 2^sh + hi + K e| over K 2^sh, floored by one division
+ * (for sh <= 0, value_of()'s exact ref + p 2^-sh: the same with the hull
+ * scaled by 2^-sh instead).
+ * With ref + hull the keys' range rather than |ref| + sum |c_p|, a piece
+ * from 0.7 to 1.4 is bounded by about 1.4, where the sum of its
+ * coefficients' magnitudes gave up to 2.1 and more (its cubic's terms
+ * cancel). 0 when the scale is not one it takes (the caller falls back to
+ * poly_bound()): sh in [-32, 63] and K 2^sh < 2^64; |ref| < 2^63, |lo|,
+ * |hi| < 2^90 and e <= 2^60 keep every sum within 128 bits.
+ */
+static uint64_t hull_bound(mot_q32 ref, mot_acc lo, mot_acc hi, uint64_t e, unsigned K, int sh)
+{
+	mot_acc r = mot_acc_mul(ref, (int64_t)K), ke = mot_acc_mul((int64_t)e, (int64_t)K), a, b;
+	unsigned up = sh < 0 ? (unsigned)-sh : 0;
+	uint64_t rem, q;
+
+	if (sh < -32 || sh > 63 || (sh > 0 && (uint64_t)K > UINT64_MAX >> sh) ||
+	    e > (uint64_t)1 << 60)
+		return 0;
+	if (sh > 0)
+		r = acc_shl(r, (unsigned)sh);
+	a = acc_shl(mot_acc_sub(lo, ke), up);
+	b = acc_shl(mot_acc_add(hi, ke), up);
+	a = acc_abs(mot_acc_add(r, a));
+	b = acc_abs(mot_acc_add(r, b));
+	q = mot_acc_udiv(acc_lt(a, b) ? b : a, (uint64_t)K << (sh > 0 ? sh : 0), &rem, NULL);
+	return add_sat(q, 1);
+}
+
+/*
+ * A cubic piece: |vref + round(P(u) / 2^vsh)| for u in [0, rho] (rho = 1,
+ * or rho62 / 2^62 for a hermite piece in s', curve.h: its u' = (f - f0)
+ * 2^ush is below (f1 - f0) 2^ush = rho62 <= 2^62), P's value computed with
+ * errors of at most 2 units (poly_eval()'s three roundings 3/2; the
+ * solve's spline_value() 2, its comment; a linear piece's one 1/2).
+ * On [0, rho] P(u) = Q(t), t = u / rho in [0, 1], Q's coefficients
+ * c_p rho^p, each here by mul62()s (p roundings of 1/2 and the products
+ * by rho <= 1 after them: at most p / 2 units off, 3 in all at any t).
+ * Q's Bernstein coefficients times 3: 3 q0, 3 q0 + q1, 3 q0 + 2 q1 + q2,
+ * 3 (q0 + q1 + q2 + q3), exact in 128 bits. So e = 2 + 3, taken as 8.
+ */
+static uint64_t cubic_bound(mot_q32 vref, const int64_t c[4], int64_t rho62, int vsh)
+{
+	int64_t q[4];
+	mot_acc b[4], lo, hi;
+	uint64_t r;
+	int p;
+
+	q[0] = c[0];
+	q[1] = rho62 == ONE62 ? c[1] : mul62(c[1], rho62);
+	q[2] = rho62 == ONE62 ? c[2] : mul62(mul62(c[2], rho62), rho62);
+	q[3] = rho62 == ONE62 ? c[3] : mul62(mul62(mul62(c[3], rho62), rho62), rho62);
+	b[0] = mot_acc_mul(q[0], 3);
+	b[1] = mot_acc_add(b[0], mot_acc_from(q[1], 0));
+	b[2] = mot_acc_add(mot_acc_add(b[1], mot_acc_from(q[1], 0)), mot_acc_from(q[2], 0));
+	b[3] = mot_acc_add(mot_acc_add(b[0], mot_acc_mul(q[1], 3)),
+			   mot_acc_add(mot_acc_mul(q[2], 3), mot_acc_mul(q[3], 3)));
+	lo = hi = b[0];
+	for (p = 1; p < 4; p++) {
+		lo = acc_lt(b[p], lo) ? b[p] : lo;
+		hi = acc_lt(hi, b[p]) ? b[p] : hi;
+	}
+	r = hull_bound(vref, lo, hi, 8, 3, vsh);
+	return r ? r : poly_bound(vref, c, 4, 4, vsh);
+}
+
+/*
+ * A Bezier curve in power form (curve_solve.c, mot_cv_approx_eval()):
+ * value = vref + round(4 p / 2^vsh), 4 p its Horner on A(u) = sum a_k u^k,
+ * k = 1 .. m, with m floored products (4 mulhi(r, u), each in
+ * (r u / 2^62 - 4, r u / 2^62], the partial sums' errors multiplied by
+ * u^j <= 1 after): 4 p in [A(u) - 4 m, A(u)]. A's Bernstein coefficients
+ * are b_k = sum_{i=1..k} C(k,i) / C(m,i) a_i (a_0 = 0); with the weights
+ * floored to W = floor(C(k,i) 2^32 / C(m,i)) (<= 2^32, below the exact
+ * weight by less than 2^-32) and the sum floored once, b~_k = floor(sum a_i
+ * W / 2^32) is within (sum |a_i|) 2^-32 + 1 of b_k. So e = 4 m + (sum
+ * |a_i| >> 32) + 2 with the hull of the b~_k.
+ */
+static uint64_t power_bound(const struct mot_curve *c, uint64_t fallback)
+{
+	uint32_t m = c->nkeys - 1, k, i;
+	int64_t a[MOT_BEZIER_MAX_KEYS];
+	uint64_t cm[MOT_BEZIER_MAX_KEYS], ck[MOT_BEZIER_MAX_KEYS], s = 0, r, rem;
+	mot_acc lo = mot_acc_zero(), hi = mot_acc_zero(); /* b_0 = a_0 = 0 */
+
+	for (i = 1; i <= m; i++) {
+		a[i] = *power_slot(c, power_vslot(m) + i - 1);
+		s = add_sat(s, mot_mag(a[i]));
+	}
+	/* row m of Pascal's triangle (C(31, 15) < 2^29), and row k built in
+	 * place as k goes up */
+	cm[0] = ck[0] = 1;
+	for (i = 1; i <= m; i++)
+		cm[i] = 0;
+	for (k = 1; k <= m; k++)
+		for (i = k; i >= 1; i--)
+			cm[i] += cm[i - 1];
+	for (k = 1; k <= m; k++) {
+		mot_acc t = mot_acc_zero();
+
+		ck[k] = 0;
+		for (i = k; i >= 1; i--)
+			ck[i] += ck[i - 1];
+		for (i = 1; i <= k; i++) {
+			uint64_t w = mot_acc_udiv(mot_acc_make(0, ck[i] << 32), cm[i], &rem, NULL);
+
+			t = mot_acc_add(t, mot_acc_mul(a[i], (int64_t)w));
+		}
+		t = mot_cv_acc_sar(t, 32);
+		lo = acc_lt(t, lo) ? t : lo;
+		hi = acc_lt(hi, t) ? t : hi;
+	}
+	r = hull_bound(c->seg[0].vref, lo, hi, 4 * (uint64_t)m + (s >> 32) + 2, 1, c->seg[0].vsh);
+	return r ? r : fallback;
+}
+
+/*
+ * Every value mot_curve_eval() returns (and scene.c's paths, which give
+ * its bits) is one of: a key's value (a single key, the held ends before
+ * and after the span, also after the strand-wide or a key interval's warp
+ * in frames, or a compact step); a compact linear value between two keys
+ * rounded once; a piece's value at a parameter in [0, 1] (interpolating
+ * kinds: s from piece_u() or eased_u(), both clamped to [0, 2^62], or s'
+ * below the piece's rho; approximating kinds: the solve's root, in its
+ * bracket [0, 1]); or a Bezier curve's value at a root in [0, 1], in power
+ * form or by de Casteljau. Each piece's bound is its polynomial's convex
+ * hull and the evaluation's roundings (above); de Casteljau's points are
+ * convex combinations of the keys' offsets from the first key scaled by
+ * 2^vsh (exact for vsh >= 0, else rounded: 1/2 unit), each level's product
+ * rounded (1/2 unit, nkeys - 1 levels), so v0 + that hull is within the
+ * keys' values and nkeys units of 2^-vsh. Saturated (UINT64_MAX) where it
+ * does not fit.
+ */
 uint64_t mot_curve_bound(const struct mot_curve *c)
 {
-	uint64_t b = 0, off = 0;
-	uint32_t i, m;
+	uint64_t b = 0;
+	uint32_t i;
 
 	if (!c || c->nkeys == 0)
 		return 0;
 	for (i = 0; i < c->nkeys; i++) {
-		uint64_t v = mot_mag(c->keys[i].value), d = mot_mag(c->keys[i].value - c->keys[0].value);
+		uint64_t v = mot_mag(c->keys[i].value);
 
 		b = v > b ? v : b;
-		off = d > off ? d : off;
 	}
 	if (c->nkeys == 1)
 		return b;
@@ -254,23 +409,34 @@ uint64_t mot_curve_bound(const struct mot_curve *c)
 		return add_sat(b, 1);
 	if (c->kind != MOT_INTERP_BEZIER) {
 		for (i = 0; i < c->nseg; i++) {
-			uint64_t p = poly_bound(c->seg[i].vref, c->seg[i].c, 4, 4, c->seg[i].vsh);
+			const struct mot_curve_seg *s = &c->seg[i];
+			int64_t cf[4] = { 0, 0, 0, 0 }, rho62 = ONE62;
+			uint64_t p;
 
+			if (c->kind == MOT_INTERP_LINEAR) /* value_of(vref, c1 u): c[1] alone */
+				cf[1] = s->c[1];
+			else if (c->kind != MOT_INTERP_STEP) /* step: vref alone */
+				cf[0] = s->c[0], cf[1] = s->c[1], cf[2] = s->c[2], cf[3] = s->c[3];
+			if (c->kind == MOT_INTERP_HERMITE && s->ush >= 0)
+				rho62 = (int64_t)((uint64_t)(s->f1 - s->f0) << s->ush);
+			p = cubic_bound(s->vref, cf, rho62, s->vsh);
 			b = p > b ? p : b;
 		}
 		return b;
 	}
-	m = c->nkeys - 1;
 	if (c->power) {
-		/* the value's coefficients, from slot power_vslot(m) */
+		/* the coarse bound, as before, where the tight one cannot be had */
+		uint32_t m = c->nkeys - 1;
 		int64_t a[MOT_BEZIER_MAX_KEYS];
+		uint64_t p;
 
 		for (i = 0; i < m; i++)
 			a[i] = *power_slot(c, power_vslot(m) + i);
-		return add_sat(b, poly_bound(c->seg[0].vref, a, m, m, c->seg[0].vsh));
+		p = power_bound(c, add_sat(b, poly_bound(c->seg[0].vref, a, m, m, c->seg[0].vsh)));
+		return p > b ? p : b;
 	}
-	/* de Casteljau: convex combinations of the offsets, a rounding a level */
-	return add_sat(add_sat(b, off), poly_bound(0, NULL, 0, c->nkeys, c->seg[0].vsh));
+	/* de Casteljau (above) */
+	return add_sat(b, poly_bound(0, NULL, 0, c->nkeys, c->seg[0].vsh));
 }
 
 /* ---- preparation ------------------------------------------------------------------- */

@@ -258,9 +258,11 @@ int mot_curve_integral(mot_acc *out, const struct mot_curve *c, struct mot_curso
 /*
  * A bound on |mot_curve_eval(c, ..)| at any frame, in raw Q32.32 units
  * (UINT64_MAX when it would not fit; 0 for a curve that failed init): the
- * keys' values, and for every piece its reference value and the sum of its
- * coefficients' magnitudes, with a unit for each rounding. The curve stays
- * inside it whatever its ease or overshoot. Init only.
+ * keys' values, and for every piece the convex hull of its polynomial's
+ * Bernstein coefficients with the evaluation's roundings (curve.c's proof):
+ * within a few units of the largest value for the interpolating kinds'
+ * pieces and the splines', the keys' largest for a Bezier curve. The curve
+ * stays inside it whatever its ease or overshoot. Init only.
  */
 uint64_t mot_curve_bound(const struct mot_curve *c);
 

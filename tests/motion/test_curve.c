@@ -443,6 +443,139 @@ static void test_convex_hull(void **state)
 	tu_bound("curve.convex_hull_excess", &w, 1, "LSB");
 }
 
+/*
+ * mot_curve_bound() on random curves of every kind, sampled densely: 97
+ * frames a key interval evenly (its ends included), a key's frame and one
+ * LSB either side, random frames and frames beyond the span; every value
+ * within the bound. Key sets: gen()'s (values in +-1000, half of them
+ * eased), values in [0.7, 1.4] (a scale channel, scene.c's case), values
+ * near +-2^29 and tiny ones; hermite with random explicit tangents on a
+ * third of its sets; Beta shapes at their extremes; Bezier curves in power
+ * form (a few keys close together) and up to MOT_BEZIER_MAX_KEYS keys by de
+ * Casteljau; compact step and linear curves. Reported: the bound's slack
+ * over the largest |value| sampled, relative (per set: bound / max - 1,
+ * the worst set whose values reach a unit) and in LSB (the worst).
+ */
+static void test_bound_dense(void **state)
+{
+	static struct keyset ks;
+	static struct mot_tangent tan[MAXK];
+	static const double beta1x[] = { 0, 1e-6, 0.01, 1, 5, 256 };
+	static const double beta2x[] = { 0, 1e-6, 1, 100, 16777216 };
+	struct tu_rng rng;
+	int kind, set, i, sets = 0;
+	long samples = 0;
+
+	tu_seed(&rng, 230);
+	for (kind = 0; kind <= MOT_INTERP_BEZIER; kind++) {
+		double rel = 0, lsb = 0;
+		int npower = 0;
+
+		for (set = 0; set < 300; set++) {
+			unsigned vcls = (unsigned)(tu_u64(&rng) % 4);
+			uint32_t j, sat = 0;
+			uint64_t b, vmax = 0;
+			struct mot_cursor cur = { 0, 0 };
+			int err;
+
+			gen(&rng, &ks, (enum mot_interp)kind, set % 2);
+			if (kind == MOT_INTERP_BEZIER && set % 3 != 2) /* new frames: no span ease */
+				ks.o.ease_in_frames = ks.o.ease_out_frames = 0;
+			for (j = ks.n; j < MAXK; j++) /* keys beyond gen()'s: no ease */
+				ks.k[j].ease_in = ks.k[j].ease_out = 0;
+			if (kind == MOT_INTERP_BEZIER && set % 3 != 2) { /* power form */
+				ks.n = 2 + (uint32_t)(tu_u64(&rng) % 9);
+				for (j = 1; j < ks.n; j++)
+					ks.k[j].frame = ks.k[j - 1].frame +
+							d2q(log_uniform(&rng, 0.1, 100));
+			} else if (kind == MOT_INTERP_BEZIER && set % 6 == 5) {
+				ks.n = MOT_BEZIER_MAX_KEYS;
+				ks.o.ease_in_frames = ks.o.ease_out_frames = 0;
+				for (j = 1; j < ks.n; j++)
+					ks.k[j].frame = ks.k[j - 1].frame +
+							d2q(log_uniform(&rng, 0.01, 1000));
+				for (j = 0; j < ks.n; j++)
+					ks.k[j].ease_in = ks.k[j].ease_out = 0;
+			}
+			for (j = 0; j < ks.n && vcls; j++)
+				ks.k[j].value = vcls == 1 ? d2q(tu_uniform(&rng, 0.7, 1.4)) :
+						vcls == 2 ? (mot_q32)((double)(MOT_LEN_LIMIT - 1) *
+								      tu_uniform(&rng, -1, 1)) :
+							    (mot_q32)(tu_u64(&rng) % 2001) - 1000;
+			if (kind == MOT_INTERP_BETA && set % 3 == 0) {
+				ks.o.beta1 = d2q(beta1x[tu_u64(&rng) % 6]);
+				ks.o.beta2 = d2q(beta2x[tu_u64(&rng) % 5]);
+			}
+			ks.o.tangents = NULL;
+			ks.o.compact = kind <= MOT_INTERP_LINEAR && set % 4 == 3;
+			if (ks.o.compact) {
+				ks.o.ease_in_frames = ks.o.ease_out_frames = 0;
+				for (j = 0; j < ks.n; j++)
+					ks.k[j].ease_in = ks.k[j].ease_out = 0;
+			}
+			if (kind == MOT_INTERP_HERMITE && set % 3 == 0 && vcls != 2) {
+				ks.o.tangents = tan;
+				for (j = 0; j < ks.n; j++) {
+					/* up to 4 times the keys' slopes, either way */
+					int64_t h = ks.k[j + (j + 1 < ks.n)].frame -
+						    ks.k[j - (j + 1 == ks.n)].frame;
+					double m = (double)(ks.k[j + (j + 1 < ks.n)].value -
+							    ks.k[j - (j + 1 == ks.n)].value) /
+						   (double)h;
+
+					tan[j].in = d2q(m * tu_uniform(&rng, -4, 4));
+					tan[j].out = d2q(m * tu_uniform(&rng, -4, 4));
+					tan[j].set = (uint32_t)(tu_u64(&rng) % 4);
+				}
+			}
+			err = mot_curve_init(&ks.c, (enum mot_interp)kind, ks.k, ks.n, &ks.o,
+					     ks.seg, MAXK + 2, &sat);
+			ks.o.tangents = NULL;
+			ks.o.compact = false;
+			if (err == MOT_E_RANGE && kind == MOT_INTERP_HERMITE)
+				continue; /* a tangent beyond the core's range */
+			assert_int_equal(err, MOT_OK);
+			npower += ks.c.power;
+			b = mot_curve_bound(&ks.c);
+			assert_true(b < (uint64_t)1 << 63);
+			for (j = 0; j + 1 < ks.n; j++) {
+				mot_q32 f0 = ks.k[j].frame, f1 = ks.k[j + 1].frame;
+
+				for (i = -1; i <= 97; i++) {
+					mot_q32 f = i < 0    ? f0 - 1 :
+						    i == 97 ? f0 + 1 :
+							      f0 + (mot_q32)((double)(f1 - f0) * i / 96);
+					mot_q32 v = mot_curve_eval(&ks.c, &cur, f, &sat);
+					uint64_t a = mot_mag(v);
+
+					assert_true(a <= b);
+					vmax = a > vmax ? a : vmax;
+					samples++;
+				}
+			}
+			for (i = 0; i < 200; i++) {
+				uint64_t a = mot_mag(mot_curve_eval(&ks.c, NULL, sample(&rng, &ks), &sat));
+
+				assert_true(a <= b);
+				vmax = a > vmax ? a : vmax;
+				samples++;
+			}
+			assert_int_equal(sat, 0);
+			if (vmax >= (uint64_t)1 << 32 && (double)(b - vmax) / (double)vmax > rel)
+				rel = (double)(b - vmax) / (double)vmax;
+			lsb = (double)(b - vmax) > lsb ? (double)(b - vmax) : lsb;
+			sets++;
+		}
+		printf("INFO curve.bound_%s: slack over the largest |value| sampled at most "
+		       "%.3g of it (values of a unit or more), %.4g LSB\n",
+		       kind_name[kind], rel, lsb);
+		if (kind == MOT_INTERP_BEZIER)
+			printf("INFO curve.bound_bezier: %d sets in power form\n", npower);
+	}
+	assert_true(sets >= 1700);
+	assert_true(samples >= 1000000);
+}
+
 /* The paper's "exaggerated path": Catmull-Rom swings beyond the keys. Keys
  * (0, 0), (1, 10), (2, 10), (10, 0): between frames 1 and 2 the curve rises
  * above 10 (to 10.76 near 1.5) and matches the reference there. */
@@ -969,6 +1102,7 @@ int main(void)
 		cmocka_unit_test(test_newton_adversarial),
 		cmocka_unit_test(test_through_keys),
 		cmocka_unit_test(test_convex_hull),
+		cmocka_unit_test(test_bound_dense),
 		cmocka_unit_test(test_hermite_overshoot),
 		cmocka_unit_test(test_beta_limits),
 		cmocka_unit_test(test_sequential_random),
