@@ -372,6 +372,8 @@ enum {
 	PIECE_CUBIC_EASE,  /* u eased, hermite */
 	PIECE_SLOW,        /* op only: the rest, out of line (joint_slow()) */
 	PIECE_WHOLE,       /* how only: no piece, mot_curve_eval() every time */
+	PIECE_SOLVE,       /* how only: no piece, the solve (c->solve) called straight */
+	PIECE_WARP_SOLVE,  /* how only: the same at the strand-wide warped frame */
 };
 
 static void piece_forget(struct mot_node_memo *m)
@@ -432,6 +434,13 @@ static void piece_learn(struct mot_node_memo *m, const struct mot_curve *c,
 		m->lo = MOT_Q32_MIN;
 		m->hi = MOT_Q32_MAX;
 		m->how = PIECE_WHOLE;
+		/* curve.c's eval() without its tests: the solve at the frame, or
+		 * at the warped frame under a strand-wide ease alone */
+		if (c->solve)
+			m->how = PIECE_SOLVE;
+		else if (c->nkeys && c->kind >= MOT_INTERP_BSPLINE && c->span_ease &&
+			 !c->seg_ease && !c->compact)
+			m->how = PIECE_WARP_SOLVE;
 		if (c->nkeys) {
 			m->glo = c->span_f0 + 1;
 			m->ghi = c->span_f1;
@@ -526,7 +535,7 @@ static __attribute__((noinline)) mot_q32 curve_learn(const struct mot_curve *c,
 {
 	piece_learn(m, c, cur, f);
 	/* a piece whose scale value_of() takes the wide way for: out of line */
-	m->op = m->how == PIECE_WHOLE || (m->piece && (m->piece->vsh < 1 || m->piece->vsh > 62)) ?
+	m->op = m->how >= PIECE_WHOLE || (m->piece && (m->piece->vsh < 1 || m->piece->vsh > 62)) ?
 			PIECE_SLOW :
 			m->how;
 	if (m->op == PIECE_SLOW)
@@ -713,7 +722,9 @@ joint_value(const struct mot_scene *sc, struct mot_eval *ev, const struct mot_no
  * span (every frame of a PIECE_SLOW joint's, which is empty: a spin, or the
  * whole curve as how says), or a warped frame that left its piece
  * (piece_fast() said so), learns the piece there and takes
- * mot_curve_eval(). Where 128-bit integers are not the compiler's,
+ * mot_curve_eval(); inside the span of an approximating curve without
+ * eases, or with the strand-wide one alone, the solve called straight
+ * (curve.c's eval() without its call and tests). Where 128-bit integers are not the compiler's,
  * joint_value() alone: the memo's copies of the arithmetic would cost more
  * code than they save time (a Cortex-M4), and it is the path the other
  * builds check them against (make check-cross). The same bits every way.
@@ -734,9 +745,19 @@ static __attribute__((noinline)) mot_q32 joint_slow(const struct mot_scene *sc,
 	*rpm = 0;
 	c = &sc->curves[n->curve];
 	cur = &ev->cursors[n->curve];
-	if (m->how == PIECE_WHOLE && frame >= m->glo && frame < m->ghi)
+	if (m->how < PIECE_WHOLE || frame < m->glo || frame >= m->ghi)
+		return curve_learn(c, cur, m, frame, &ev->sat);
+	/* strictly inside the span (glo..ghi): eval()'s way to the solve */
+	if (m->how == PIECE_SOLVE)
+		return mot_cv_approx_eval(c, cur, frame, NULL, &ev->sat);
+	if (m->how == PIECE_WHOLE)
 		return mot_curve_eval(c, cur, frame, &ev->sat);
-	return curve_learn(c, cur, m, frame, &ev->sat);
+	frame = span_warp(c, frame);
+	if (frame <= c->span_f0)
+		return c->keys[0].value;
+	if (frame >= c->span_f1)
+		return c->keys[c->nkeys - 1].value;
+	return mot_cv_approx_eval(c, cur, frame, NULL, &ev->sat);
 }
 
 /* A rotation kept as four component curves: their value normalised (out
