@@ -27,7 +27,8 @@ DEB_BUILD := gcc make pkg-config libc6-dev libyaml-dev libjansson-dev libexpat1-
              libwebsockets-dev
 DEB_TEST  := libcmocka-dev
 DEB_CROSS := gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross \
-             libc6-dev-armhf-cross qemu-user gcc-arm-none-eabi binutils-arm-none-eabi
+             libc6-dev-armhf-cross qemu-user gcc-arm-none-eabi binutils-arm-none-eabi \
+             clang libclang-rt-14-dev
 DEB_BENCH := libfixmath-dev
 
 # ---- flags -------------------------------------------------------------------

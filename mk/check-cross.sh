@@ -33,7 +33,7 @@ for arg in "$@"; do
 		status=1
 		continue
 	fi
-	printf 'DIGEST %s  %-10s %3s s  %s\n' "$digest" "$name" "$(cat "$dir/$i.time")" "${arg#*=}"
+	printf 'DIGEST %s  %-11s %3s s  %s\n' "$digest" "$name" "$(cat "$dir/$i.time")" "${arg#*=}"
 	[ -n "$first" ] || first=$digest
 	[ "$digest" = "$first" ] || status=2
 done

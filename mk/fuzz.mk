@@ -14,7 +14,9 @@
 
 .PHONY: fuzz
 
-DEB_FUZZ := clang
+# libFuzzer and the sanitizers' runtimes are in libclang-rt-14-dev, which
+# clang only recommends (mk/deps.sh installs without recommends)
+DEB_FUZZ := clang libclang-rt-14-dev
 $(BUILD)/.deps-fuzz: mk/deps.sh $(BUILD)/.deps-build
 	$(Q)sh mk/deps.sh $(DEB_FUZZ) && touch $@
 deps: $(BUILD)/.deps-fuzz
