@@ -386,6 +386,9 @@ static void piece_forget(struct mot_node_memo *m)
 	m->warp = NULL;
 	m->glo = MOT_Q32_MAX;
 	m->ghi = MOT_Q32_MIN;
+	m->arc = NULL;
+	m->end = NULL;
+	m->f0 = 0;
 }
 
 /* A joint the first pass never takes inline (PIECE_SLOW) has an empty span
@@ -795,6 +798,105 @@ static inline const struct mot_rot_q62 *free_quat(struct mot_quat *q,
 				  g, &ev->sat);
 }
 
+/*
+ * A free node's rotation track by its memo (struct mot_node_memo): over the
+ * span lo..hi of warped frames it learnt, a held end key (its matrix made
+ * at init), or one key interval, whose t and slerp or squad are
+ * mot_rot_track_eval()'s without its end tests, its search and its choices,
+ * or the track the whole way (a compact one, an end whose matrix was not
+ * made). The memo's how, for a free node: */
+enum {
+	ROT_END = 0,   /* the matrix `end` */
+	ROT_SLERP = 1, /* the interval `arc`, a slerp */
+	ROT_SQUAD = 2, /* the same, a squad */
+	ROT_EASE = 4,  /* with one of those: its ease */
+	ROT_WHOLE = 8, /* mot_rot_track_eval() */
+};
+
+/*
+ * mot_recip_ratio()'s t of an offset x in [0, h) into an interval of width
+ * h (its reciprocal r): x < h < 2^(shift - 30) (mot_recip_init()), so x
+ * moved up by 93 - shift (0 .. 63) stays below 2^63 and the rounding's
+ * shift is then 93: round(x m / 2^shift) is the high word of x' m plus
+ * 2^28 (the half, which no carry from the low word can reach) shifted by
+ * 29, the same bits without a variable 128-bit shift or a saturation test
+ * (t is at most 1 and an LSB).
+ */
+static inline __attribute__((always_inline)) mot_q32 rot_t(int64_t x, const struct mot_recip *r)
+{
+	mot_acc p = mot_acc_mul((int64_t)((uint64_t)x << (93 - r->shift)), r->m);
+
+	return (mot_q32)(mot_acc_hi(p) + ((uint64_t)1 << 28)) >> 29;
+}
+
+/*
+ * The track at g the whole way (out of line), and what the memo knows of it
+ * there, learnt from mot_rot_track_eval()'s way: it holds its first key up
+ * to it (the span's end after it) and its last from it, and between them
+ * evaluates the interval [f(i), f(i+1)) its cursor is left on (strand.h),
+ * the first after f(0). A miss, once an interval; or a span the memo takes
+ * the whole way (ROT_WHOLE), every time.
+ */
+static __attribute__((noinline)) const struct mot_rot_q62 *
+rot_learn(struct mot_quat *q, struct mot_node_memo *m, const struct mot_scene *sc,
+	  struct mot_eval *ev, int32_t rot, mot_q32 g)
+{
+	const struct mot_rot_track *r = &sc->rot[rot];
+	struct mot_cursor *cur = &ev->cursors[sc->ncurves + (uint32_t)rot];
+	const struct mot_rot_q62 *held = mot_rot_track_eval(q, r, cur, g, &ev->sat);
+	const struct mot_rot_key *k = r->keys;
+	const uint32_t n = r->nkeys, i = cur->seg;
+
+	if (m->how == ROT_WHOLE && g >= m->lo && g < m->hi)
+		return held; /* known */
+
+	m->how = held ? ROT_END : ROT_WHOLE;
+	m->end = held;
+	if (n == 1 || g <= k[0].frame) {
+		m->lo = MOT_Q32_MIN;
+		m->hi = n == 1 ? MOT_Q32_MAX : k[0].frame + 1; /* below k[1] */
+	} else if (g >= k[n - 1].frame) {
+		m->lo = k[n - 1].frame;
+		m->hi = MOT_Q32_MAX;
+	} else if (r->compact) {
+		m->lo = k[0].frame + 1;
+		m->hi = k[n - 1].frame;
+	} else {
+		m->lo = i ? k[i].frame : k[0].frame + 1;
+		m->hi = k[i + 1].frame;
+		m->f0 = k[i].frame;
+		m->arc = &r->seg[i];
+		m->how = (r->squad ? ROT_SQUAD : ROT_SLERP) |
+			 (mot_ease_is_identity(&r->seg[i].ease) ? 0 : ROT_EASE);
+	}
+	return held;
+}
+
+/* The memo's rotation at g (held: its matrix, or NULL and q), learnt
+ * where g leaves its span. */
+static inline __attribute__((always_inline)) const struct mot_rot_q62 *
+rot_value(struct mot_quat *q, const struct mot_scene *sc, struct mot_eval *ev,
+	  struct mot_node_memo *m, int32_t rot, mot_q32 g)
+{
+	const struct mot_rot_seg *sg = m->arc;
+	mot_q32 s;
+
+	if (g < m->lo || g >= m->hi || m->how == ROT_WHOLE)
+		return rot_learn(q, m, sc, ev, rot, g);
+	if (m->how == ROT_END)
+		return m->end;
+	/* the rounding of the reciprocal, never more than 1 LSB */
+	s = rot_t(g - m->f0, &sg->inv_h);
+	s = s > MOT_Q32_ONE ? MOT_Q32_ONE : s;
+	if (m->how & ROT_EASE)
+		s = mot_ease_apply(&sg->ease, s, &ev->sat);
+	if (m->how & ROT_SQUAD)
+		mot_squad_eval(q, &sg->arc, &sg->inner, s, &ev->sat);
+	else
+		mot_slerp_eval(q, &sg->arc, s, &ev->sat);
+	return NULL;
+}
+
 /* What free_linear() made: no linear part (the identity, not written), a
  * lower-triangular one (S . H, its zeros written) or any. */
 enum { FREE_LIN_NONE, FREE_LIN_TRI, FREE_LIN_FULL };
@@ -891,7 +993,8 @@ free_channels(mot_q32 v[MOT_FREE_NCHANNELS], const struct mot_curve *curves,
  * has no rotation.
  */
 static unsigned free_linear(struct mot_mat *m, const struct mot_scene *sc, struct mot_eval *ev,
-			    const struct mot_free_strand *fs, unsigned how, mot_q32 frame)
+			    struct mot_node_memo *memo, const struct mot_free_strand *fs,
+			    unsigned how, mot_q32 frame)
 {
 	mot_q32 *const t = m->m[3];
 	struct mot_decomp d;
@@ -941,10 +1044,14 @@ static unsigned free_linear(struct mot_mat *m, const struct mot_scene *sc, struc
 	}
 	/* a held end key's matrix without the call (the track's quaternion
 	 * only where mot_mat_compose_r() takes it, below) */
-	if (fs->rot >= 0)
-		held = mot_rot_track_end(&sc->rot[fs->rot], g);
-	if (!held)
-		held = free_quat(&d.rot, sc, ev, fs, g);
+	if (memo && fs->rot >= 0) {
+		held = rot_value(&d.rot, sc, ev, memo, fs->rot, g);
+	} else {
+		if (fs->rot >= 0)
+			held = mot_rot_track_end(&sc->rot[fs->rot], g);
+		if (!held)
+			held = free_quat(&d.rot, sc, ev, fs, g);
+	}
 	/* scales and shears below 2^8 (every real one): S . H's products
 	 * below 2^48 raw, its rows' sums with R below 2^113 and every entry
 	 * below 2^51, so mot_mat_compose_r()'s tests are known to pass; the
@@ -1056,7 +1163,7 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
 	}
 	fs = &sc->free[n->strand];
 	/* the values tested, not the curves' bounds made (mot_eval_reset()'s) */
-	if (free_linear(out, sc, ev, fs, free_flags(sc, fs, false), frame) == FREE_LIN_NONE) {
+	if (free_linear(out, sc, ev, NULL, fs, free_flags(sc, fs, false), frame) == FREE_LIN_NONE) {
 		/* T(-p) . T(p) . T(t) = T(t), exactly */
 		mot_mat_translate(out, out->m[3]);
 		return;
@@ -1600,7 +1707,8 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 				translate_world(w, *pos, par, n->pivot, zero, small, &ev->sat);
 				break;
 			}
-			switch (free_linear(&local, sc, ev, &sc->free[n->strand], m->free, frame)) {
+			switch (free_linear(&local, sc, ev, m, &sc->free[n->strand], m->free,
+					    frame)) {
 			case FREE_LIN_NONE:
 				translate_world(w, *pos, par, n->pivot, local.m[3], small, &ev->sat);
 				break;

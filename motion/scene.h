@@ -131,6 +131,13 @@ struct mot_node_memo {
 	const struct mot_curve_seg *piece;
 	const struct mot_curve *warp;
 	mot_q32 glo, ghi;
+	/* A free node's rotation track (scene.c's rot memo; its joint fields
+	 * above unused): between the warped frames lo and hi the key interval
+	 * `arc` from its key at f0, or the held end key's matrix `end`, as
+	 * `how` says. */
+	const struct mot_rot_seg *arc;
+	const struct mot_rot_q62 *end;
+	mot_q32 f0;
 	uint64_t lin;   /* bound on |W_lin|'s 2-norm (raw), UINT64_MAX: none */
 	uint64_t bound; /* bound on |W_t| (raw), UINT64_MAX: none */
 };

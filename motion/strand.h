@@ -76,7 +76,9 @@ int mot_rot_track_init_compact(struct mot_rot_track *r, const struct mot_rot_key
 
 /* Rotation at a frame; holds the end keys outside them, and returns there
  * the held key's matrix made at init (NULL elsewhere, or when it was not
- * made): what mot_quat_to_rot_q62(*out) gives. Real-time safe. */
+ * made): what mot_quat_to_rot_q62(*out) gives. Between them it leaves
+ * cur->seg on the key interval [f(i), f(i+1)) of the frame (scene.c's memo
+ * learns it there). Real-time safe. */
 const struct mot_rot_q62 *mot_rot_track_eval(struct mot_quat *out,
 					     const struct mot_rot_track *r,
 					     struct mot_cursor *cur, mot_q32 frame,

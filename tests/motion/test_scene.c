@@ -770,6 +770,131 @@ static void test_scaled_small(void **state)
 	}
 }
 
+/*
+ * A free node's rotation track by scene.c's memo (the key interval it
+ * learnt, or the held end's matrix) against mot_rot_track_eval() at the
+ * same frame with a cursor of its own (the matrix made from its quaternion,
+ * or the end's made at init), and the whole pose against an evaluation
+ * reset before every frame: squad and slerp, eased keys, an interval three
+ * LSB wide and one of a million frames, a compact track, a single key, a
+ * strand-wide ease, a scale too large for the untested sums. Frames on
+ * either side of every key by one LSB and on it, then a dense sweep forward
+ * and in a scrambled order; the memo must hold intervals and ends.
+ */
+#define MEMO_NODES 8
+#define MEMO_SWEEP 601
+
+static void test_rot_memo(void **state)
+{
+	static const struct sd_rot_key keys[] = {
+		{ 0, { 1, 0, 0, 0 }, 0, 0.3 },           { 3.25, { 0.8, 0.5, -0.2, 0.1 }, 0.2, 0 },
+		{ 10, { -0.3, 0.6, 0.7, -0.1 }, 0.1, 0.4 },
+		{ 10 + 3.0 / 4294967296.0, { -0.2, 0.7, 0.6, 0.1 }, 0.5, 0.5 },
+		{ 17.5, { 0.1, -0.2, 0.3, 0.9 }, 0, 0 }, { 24, { 0.5, 0.5, 0.5, 0.5 }, 0.6, 0 },
+	};
+	static const struct sd_rot_key plain[] = {
+		{ -1, { 1, 0, 0, 0 }, 0, 0 },          { 2.5, { 0.6, 0, 0.8, 0 }, 0, 0 },
+		{ 9, { -0.5, 0.5, -0.5, 0.5 }, 0, 0 }, { 20, { 0, 0, 0, 1 }, 0, 0 },
+		{ 1e6, { 0.9, -0.1, 0.1, 0.3 }, 0, 0 },
+	};
+	static const struct sd_key big[] = { { 0, 1, 0, 0, 0, 0, 0 }, { 24, 300, 0, 0, 0, 0, 0 } };
+	struct sd_node n[MEMO_NODES];
+	struct scene_desc d;
+	struct scene_build_err e;
+	struct scene_built b;
+	struct mot_eval warm, cold;
+	struct mot_pose pw, pc;
+	mot_q32 fr[MEMO_SWEEP + 64];
+	uint32_t i, j, k, nf = 0, arcs = 0, ends = 0;
+
+	memset(n, 0, sizeof(n));
+	for (i = 0; i < MEMO_NODES; i++) {
+		static const char *const names[MEMO_NODES] = { "squad",  "slerp", "plain", "far",
+							       "compact", "one",  "warp",  "big" };
+
+		n[i].name = names[i];
+		n[i].parent = -1;
+		n[i].kind = MOT_NODE_FREE;
+		n[i].has_free = true;
+		n[i].free.rot = i == 2 || i == 4 ? plain : keys;
+		n[i].free.nrot = i == 5 ? 1 : i == 2 || i == 4 ? 4 : 6;
+		n[i].free.squad = i != 1 && i != 2 && i != 4;
+	}
+	n[3].free.rot = plain; /* a million frames from 20: the sweep inside */
+	n[3].free.nrot = 5;
+	n[4].free.rot_compact = true;
+	n[6].free.ease_out = 4;
+	n[6].free.ease_in = 6;
+	for (k = MOT_FREE_SX; k <= MOT_FREE_SZ; k++)
+		n[7].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 2, big, 1, 0, 0, 0, false };
+	memset(&d, 0, sizeof(d));
+	d.rate_num = 24;
+	d.rate_den = 1;
+	d.tick_hz = 1000;
+	d.frame_last = 24;
+	d.nnodes = MEMO_NODES;
+	d.nodes = n;
+	assert_int_equal(scene_build(&b, &d, &e), 0);
+	assert_int_equal(scene_eval_new(&warm, &b.sc), 0);
+	assert_int_equal(scene_eval_new(&cold, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&pw, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&pc, &b.sc), 0);
+	/* every key of the first track (the others share most), +-1 LSB */
+	for (k = 0; k < 6; k++)
+		for (j = 0; j < 3; j++)
+			fr[nf++] = b.sc.rot[b.sc.free[b.sc.nodes[0].strand].rot].keys[k].frame +
+				   (mot_q32)j - 1;
+	for (k = 0; k < 5; k++)
+		for (j = 0; j < 3; j++)
+			fr[nf++] = b.sc.rot[b.sc.free[b.sc.nodes[2].strand].rot].keys[k].frame +
+				   (mot_q32)j - 1;
+	for (k = 0; k < MEMO_SWEEP; k++) /* -2 .. 27 frames, not on a grid */
+		fr[nf++] = -2 * MOT_Q32_ONE + (mot_q32)k * (MOT_Q32_ONE / 20 + 12345);
+	for (k = 0; k < 2 * nf; k++) {
+		mot_q32 f = k < nf ? fr[k] : fr[(k * 7919) % nf];
+
+		mot_scene_eval(&b.sc, &warm, f, &pw);
+		assert_int_equal(mot_eval_reset(&cold, &b.sc), MOT_OK);
+		mot_scene_eval(&b.sc, &cold, f, &pc);
+		assert_same_pose(&b.sc, &pw, &pc);
+		for (i = 0; i < 6; i++) { /* no warp, no scale: R rounded from Q2.62 */
+			const struct mot_rot_track *r =
+				&b.sc.rot[b.sc.free[b.sc.nodes[i].strand].rot];
+			struct mot_cursor cur = { 0, 0 };
+			const struct mot_rot_q62 *held;
+			struct mot_rot_q62 own;
+			struct mot_quat q;
+			uint32_t sat = 0;
+
+			held = mot_rot_track_eval(&q, r, &cur, f, &sat);
+			if (!held) {
+				assert_int_equal(mot_quat_to_rot_q62(own.r, &q, &sat), MOT_OK);
+				held = &own;
+			}
+			assert_int_equal(sat, 0);
+			for (j = 0; j < 9; j++) {
+				mot_acc x = mot_acc_from(held->r[j / 3][j % 3], 0);
+
+				assert_int_equal(pw.world[i].m[j / 3][j % 3],
+						 mot_acc_round(x, 30, NULL));
+			}
+			arcs += warm.memo[i].arc != NULL && warm.memo[i].lo <= f &&
+				f < warm.memo[i].hi;
+			ends += warm.memo[i].end != NULL && warm.memo[i].lo <= f &&
+				f < warm.memo[i].hi;
+		}
+	}
+	assert_int_equal(warm.sat, 0);
+	assert_int_equal(cold.sat, 0);
+	assert_true(arcs > nf);
+	assert_true(ends > nf);
+	scene_pose_free(&pw);
+	scene_pose_free(&pc);
+	scene_eval_free(&warm);
+	scene_eval_free(&cold);
+	scene_built_free(&b);
+}
+
 static void test_no_keys(void **state)
 {
 	struct mot_rot_track rt;
@@ -791,6 +916,7 @@ int main(void)
 		cmocka_unit_test(test_camera_pan),  cmocka_unit_test(test_bad_input),
 		cmocka_unit_test(test_no_keys),     cmocka_unit_test(test_wide_sums),
 		cmocka_unit_test(test_shortcuts),   cmocka_unit_test(test_scaled_small),
+		cmocka_unit_test(test_rot_memo),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
