@@ -45,16 +45,28 @@ static inline int64_t mot_quat_half_fits(mot_acc x)
 #endif
 }
 
+/* floor(x / 2), for a value known to fit int64: round(y / 2) of y = x - 1
+ * (the low word shifted, and the high word's low bit) */
+static inline int64_t mot_quat_half_floor(mot_acc x)
+{
+#if MOT_HAVE_INT128
+	return (int64_t)(uint64_t)((mot_uacc)x >> 1);
+#else
+	return (int64_t)((mot_acc_lo(x) >> 1) | (mot_acc_hi(x) << 63));
+#endif
+}
+
 /* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62,
- * known to fit */
+ * known to fit: floor((a b + 1 +- c d) / 2), the rounding's 1 added once
+ * for both */
 static inline __attribute__((always_inline)) void mot_quat_rot_pair(int64_t *plus,
 								    int64_t *minus, mot_q32 a,
 								    mot_q32 b, mot_q32 c, mot_q32 d)
 {
-	mot_acc p = mot_acc_mul(a, b), q = mot_acc_mul(c, d);
+	mot_acc p = mot_acc_add(mot_acc_mul(a, b), mot_acc_from(1, 0)), q = mot_acc_mul(c, d);
 
-	*plus = mot_quat_half_fits(mot_acc_add(p, q));
-	*minus = mot_quat_half_fits(mot_acc_sub(p, q));
+	*plus = mot_quat_half_floor(mot_acc_add(p, q));
+	*minus = mot_quat_half_floor(mot_acc_sub(p, q));
 }
 
 /*
@@ -72,16 +84,16 @@ static inline __attribute__((always_inline)) void mot_quat_rot_q62_unit(int64_t 
 									 const struct mot_quat *q)
 {
 	const mot_q32 w = q->w, x = q->x, y = q->y, z = q->z;
-	const mot_acc h = mot_acc_from(1, 63);
+	const mot_acc h = mot_acc_make(0, ((uint64_t)1 << 63) + 1); /* 2^63 and the rounding's 1 */
 	mot_acc a = mot_acc_mul(x, x), b = mot_acc_mul(y, y), c = mot_acc_mul(z, z);
 
 	mot_quat_rot_pair(&r[0][1], &r[1][0], x, y, w, z);
 	mot_quat_rot_pair(&r[2][0], &r[0][2], x, z, w, y);
 	mot_quat_rot_pair(&r[1][2], &r[2][1], y, z, w, x);
-	r[2][2] = mot_quat_half_fits(mot_acc_sub(mot_acc_sub(h, a), b));
+	r[2][2] = mot_quat_half_floor(mot_acc_sub(mot_acc_sub(h, a), b));
 	c = mot_acc_sub(h, c);
-	r[1][1] = mot_quat_half_fits(mot_acc_sub(c, a));
-	r[0][0] = mot_quat_half_fits(mot_acc_sub(c, b));
+	r[1][1] = mot_quat_half_floor(mot_acc_sub(c, a));
+	r[0][0] = mot_quat_half_floor(mot_acc_sub(c, b));
 }
 
 /* The same after the tests: other quaternions take
