@@ -814,22 +814,6 @@ enum {
 };
 
 /*
- * mot_recip_ratio()'s t of an offset x in [0, h) into an interval of width
- * h (its reciprocal r): x < h < 2^(shift - 30) (mot_recip_init()), so x
- * moved up by 93 - shift (0 .. 63) stays below 2^63 and the rounding's
- * shift is then 93: round(x m / 2^shift) is the high word of x' m plus
- * 2^28 (the half, which no carry from the low word can reach) shifted by
- * 29, the same bits without a variable 128-bit shift or a saturation test
- * (t is at most 1 and an LSB).
- */
-static inline __attribute__((always_inline)) mot_q32 rot_t(int64_t x, const struct mot_recip *r)
-{
-	mot_acc p = mot_acc_mul((int64_t)((uint64_t)x << (93 - r->shift)), r->m);
-
-	return (mot_q32)(mot_acc_hi(p) + ((uint64_t)1 << 28)) >> 29;
-}
-
-/*
  * The track at g the whole way (out of line), and what the memo knows of it
  * there, learnt from mot_rot_track_eval()'s way: it holds its first key up
  * to it (the span's end after it) and its last from it, and between them
@@ -885,9 +869,7 @@ rot_value(struct mot_quat *q, const struct mot_scene *sc, struct mot_eval *ev,
 		return rot_learn(q, m, sc, ev, rot, g);
 	if (m->how == ROT_END)
 		return m->end;
-	/* the rounding of the reciprocal, never more than 1 LSB */
-	s = rot_t(g - m->f0, &sg->inv_h);
-	s = s > MOT_Q32_ONE ? MOT_Q32_ONE : s;
+	s = mot_rot_seg_t(sg, g - m->f0);
 	if (m->how & ROT_EASE)
 		s = mot_ease_apply(&sg->ease, s, &ev->sat);
 	if (m->how & ROT_SQUAD)

@@ -190,9 +190,7 @@ const struct mot_rot_q62 *mot_rot_track_eval(struct mot_quat *out,
 		return NULL;
 	}
 	sg = &r->seg[i];
-	s = mot_recip_ratio(frame - r->keys[i].frame, &sg->inv_h, sat);
-	if (s > MOT_Q32_ONE) /* rounding of the reciprocal, never more than 1 LSB */
-		s = MOT_Q32_ONE;
+	s = mot_rot_seg_t(sg, frame - r->keys[i].frame);
 	if (!mot_ease_is_identity(&sg->ease))
 		s = mot_ease_apply(&sg->ease, s, sat);
 	if (r->squad)

@@ -60,6 +60,25 @@ struct mot_rot_track {
 	struct mot_rot_q62 end[2]; /* before the first key, after the last */
 };
 
+/*
+ * The parameter t of an offset x in [0, h) into a key interval of width h,
+ * before its ease: mot_recip_ratio()'s round(x 2^32 / h) through the
+ * interval's reciprocal m / 2^shift, at most 1 (its rounding reaches 1 and
+ * an LSB). x < h < 2^(shift - 30) (mot_recip_init()), so x moved up by
+ * 93 - shift (0 .. 63) stays below 2^63 and the rounding's shift is then
+ * 93: the high word of x' m plus 2^28 (the half, which no carry from the
+ * low word can reach) shifted by 29, the same bits without a variable
+ * 128-bit shift or a saturation test.
+ */
+static inline mot_q32 mot_rot_seg_t(const struct mot_rot_seg *sg, int64_t x)
+{
+	const struct mot_recip *r = &sg->inv_h;
+	mot_acc p = mot_acc_mul((int64_t)((uint64_t)x << (93 - r->shift)), r->m);
+	mot_q32 s = (mot_q32)(mot_acc_hi(p) + ((uint64_t)1 << 28)) >> 29;
+
+	return s > MOT_Q32_ONE ? MOT_Q32_ONE : s;
+}
+
 /* Validate (MOT_E_NOKEYS, MOT_E_ORDER, MOT_E_INVAL for ease fractions,
  * MOT_E_CAPACITY when nseg < nkeys - 1) and prepare. Init only. */
 int mot_rot_track_init(struct mot_rot_track *r, const struct mot_rot_key *keys, uint32_t nkeys,

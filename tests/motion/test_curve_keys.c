@@ -484,13 +484,49 @@ static void test_quat_curves(void **state)
 	tu_bound("rot_quat_curves", &w, 1e-8, "");
 }
 
+/* A key interval's t (mot_rot_seg_t(), strand.h) is mot_recip_ratio()'s
+ * clamped to 1, bit for bit, for every offset in [0, h): widths of 1 to 3
+ * LSB, powers of two and their neighbours, random ones up to 2^62, each at
+ * its first and last offsets, its middle and random ones. */
+static void test_rot_seg_t(void **state)
+{
+	struct tu_rng r;
+	long n = 0;
+	int trial, j;
+
+	(void)state;
+	tu_seed(&r, 29);
+	for (trial = 0; trial < 3000; trial++) {
+		struct mot_rot_seg sg;
+		int64_t h;
+
+		if (trial < 3)
+			h = trial + 1;
+		else if (trial < 3 + 3 * 62)
+			h = ((int64_t)1 << ((trial - 3) / 3 + 1)) + (trial - 3) % 3 - 1;
+		else
+			h = 1 + (int64_t)(tu_u64(&r) >> (2 + tu_u64(&r) % 62));
+		assert_int_equal(mot_recip_init(&sg.inv_h, h), MOT_OK);
+		for (j = 0; j < 40; j++) {
+			int64_t x = j == 0 ? 0 : j == 1 ? h - 1 : j == 2 ? h / 2 :
+				    (int64_t)(tu_u64(&r) % (uint64_t)h);
+			mot_q32 want = mot_recip_ratio(x, &sg.inv_h, NULL);
+
+			want = want > MOT_Q32_ONE ? MOT_Q32_ONE : want;
+			assert_int_equal(mot_rot_seg_t(&sg, x), want);
+			n++;
+		}
+	}
+	printf("rot_seg_t: %ld offsets, all mot_recip_ratio()'s\n", n);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_tangents),	cmocka_unit_test(test_tangent_errors),
 		cmocka_unit_test(test_compact),		cmocka_unit_test(test_compact_errors),
 		cmocka_unit_test(test_rot_compact),	cmocka_unit_test(test_quat_curves),
-		cmocka_unit_test(test_rot_ends),
+		cmocka_unit_test(test_rot_ends),	cmocka_unit_test(test_rot_seg_t),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
