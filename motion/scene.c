@@ -1024,16 +1024,12 @@ static unsigned free_linear(struct mot_mat *m, const struct mot_scene *sc, struc
 		m->m[0][1] = m->m[0][2] = m->m[1][2] = 0;
 		return FREE_LIN_TRI;
 	}
-	/* a held end key's matrix without the call (the track's quaternion
-	 * only where mot_mat_compose_r() takes it, below) */
-	if (memo && fs->rot >= 0) {
+	/* a track's by the memo, a held end key's matrix without the call
+	 * (its quaternion only where mot_mat_compose_r() takes it, below) */
+	if (fs->rot >= 0)
 		held = rot_value(&d.rot, sc, ev, memo, fs->rot, g);
-	} else {
-		if (fs->rot >= 0)
-			held = mot_rot_track_end(&sc->rot[fs->rot], g);
-		if (!held)
-			held = free_quat(&d.rot, sc, ev, fs, g);
-	}
+	else
+		held = free_quat(&d.rot, sc, ev, fs, g);
 	/* scales and shears below 2^8 (every real one): S . H's products
 	 * below 2^48 raw, its rows' sums with R below 2^113 and every entry
 	 * below 2^51, so mot_mat_compose_r()'s tests are known to pass; the
@@ -1138,14 +1134,16 @@ static void free_local(struct mot_mat *out, const struct mot_scene *sc, struct m
 		       const struct mot_node *n, mot_q32 frame)
 {
 	const struct mot_free_strand *fs;
+	struct mot_node_memo m; /* a rotation track's: learnt, not kept */
 
 	if (n->strand < 0) {
 		mot_mat_identity(out);
 		return;
 	}
 	fs = &sc->free[n->strand];
+	piece_forget(&m);
 	/* the values tested, not the curves' bounds made (mot_eval_reset()'s) */
-	if (free_linear(out, sc, ev, NULL, fs, free_flags(sc, fs, false), frame) == FREE_LIN_NONE) {
+	if (free_linear(out, sc, ev, &m, fs, free_flags(sc, fs, false), frame) == FREE_LIN_NONE) {
 		/* T(-p) . T(p) . T(t) = T(t), exactly */
 		mot_mat_translate(out, out->m[3]);
 		return;

@@ -103,19 +103,6 @@ const struct mot_rot_q62 *mot_rot_track_eval(struct mot_quat *out,
 					     struct mot_cursor *cur, mot_q32 frame,
 					     uint32_t *sat);
 
-/* The held end key's matrix mot_rot_track_eval() returns at a frame
- * outside the keys, without the quaternion; NULL elsewhere, or when it was
- * not made. */
-static inline const struct mot_rot_q62 *mot_rot_track_end(const struct mot_rot_track *r,
-							  mot_q32 frame)
-{
-	if (!r->ends_ok)
-		return NULL;
-	if (r->nkeys == 1 || frame <= r->keys[0].frame)
-		return &r->end[0];
-	return frame >= r->keys[r->nkeys - 1].frame ? &r->end[1] : NULL;
-}
-
 /* ---- strand-wide time warp -------------------------------------------------- */
 
 /* The slow-in/slow-out of a whole strand (FORMULAS section 7), a remap of

@@ -774,8 +774,9 @@ static void test_scaled_small(void **state)
  * A free node's rotation track by scene.c's memo (the key interval it
  * learnt, or the held end's matrix) against mot_rot_track_eval() at the
  * same frame with a cursor of its own (the matrix made from its quaternion,
- * or the end's made at init), and the whole pose against an evaluation
- * reset before every frame: squad and slerp, eased keys, an interval three
+ * or the end's made at init) and mot_node_local()'s (a memo of its own,
+ * learnt every call), and the whole pose against an evaluation reset
+ * before every frame: squad and slerp, eased keys, an interval three
  * LSB wide and one of a million frames, a compact track, a single key, a
  * strand-wide ease, a scale too large for the untested sums. Frames on
  * either side of every key by one LSB and on it, then a dense sweep forward
@@ -805,6 +806,7 @@ static void test_rot_memo(void **state)
 	struct mot_eval warm, cold;
 	struct mot_pose pw, pc;
 	mot_q32 fr[MEMO_SWEEP + 64];
+	struct mot_mat loc;
 	uint32_t i, j, k, nf = 0, arcs = 0, ends = 0;
 
 	memset(n, 0, sizeof(n));
@@ -878,6 +880,9 @@ static void test_rot_memo(void **state)
 				assert_int_equal(pw.world[i].m[j / 3][j % 3],
 						 mot_acc_round(x, 30, NULL));
 			}
+			/* a root's local matrix, pivot 0: its world one */
+			mot_node_local(&loc, &b.sc, &cold, i, f, NULL, NULL);
+			assert_memory_equal(&loc, &pw.world[i], sizeof(loc));
 			arcs += warm.memo[i].arc != NULL && warm.memo[i].lo <= f &&
 				f < warm.memo[i].hi;
 			ends += warm.memo[i].end != NULL && warm.memo[i].lo <= f &&
