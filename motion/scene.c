@@ -865,10 +865,12 @@ rot_value(struct mot_quat *q, const struct mot_scene *sc, struct mot_eval *ev,
 	const struct mot_rot_seg *sg = m->arc;
 	mot_q32 s;
 
-	if (g < m->lo || g >= m->hi || m->how == ROT_WHOLE)
+	if (g < m->lo || g >= m->hi)
 		return rot_learn(q, m, sc, ev, rot, g);
-	if (m->how == ROT_END)
+	if (m->how == ROT_END) /* most, in a random scene: tested first */
 		return m->end;
+	if (m->how == ROT_WHOLE)
+		return rot_learn(q, m, sc, ev, rot, g);
 	s = mot_rot_seg_t(sg, g - m->f0);
 	if (m->how & ROT_EASE)
 		s = mot_ease_apply(&sg->ease, s, &ev->sat);
