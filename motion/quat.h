@@ -35,18 +35,8 @@ void mot_quat_to_mat(struct mot_mat *out, const struct mot_quat *q, uint32_t *sa
 /* mot_quat_to_rot_q62() where an entry may not fit: saturating (quat.c). */
 void mot_quat_to_rot_q62_sat(int64_t r[3][3], const struct mot_quat *q, uint32_t *sat);
 
-/* round(x / 2), for a value known to fit int64 */
-static inline int64_t mot_quat_half_fits(mot_acc x)
-{
-#if MOT_HAVE_INT128
-	return (int64_t)(uint64_t)(((mot_uacc)x + 1) >> 1);
-#else
-	return mot_acc_round(x, 1, NULL);
-#endif
-}
-
-/* floor(x / 2), for a value known to fit int64: round(y / 2) of y = x - 1
- * (the low word shifted, and the high word's low bit) */
+/* floor(x / 2), for a value known to fit int64 (the low word shifted, and
+ * the high word's low bit): round(y / 2) for y = x - 1 */
 static inline int64_t mot_quat_half_floor(mot_acc x)
 {
 #if MOT_HAVE_INT128

@@ -64,7 +64,7 @@ struct mot_rot_track {
  * The parameter t of an offset x in [0, h) into a key interval of width h,
  * before its ease: mot_recip_ratio()'s round(x 2^32 / h) through the
  * interval's reciprocal m / 2^shift, at most 1 (its rounding reaches 1 and
- * an LSB). x < h < 2^(shift - 30) (mot_recip_init()), so x moved up by
+ * an LSB). x < h <= 2^(shift - 30) (mot_recip_init()), so x moved up by
  * 93 - shift (0 .. 63) stays below 2^63 and the rounding's shift is then
  * 93: the high word of x' m plus 2^28 (the half, which no carry from the
  * low word can reach) shifted by 29, the same bits without a variable
