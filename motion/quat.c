@@ -429,31 +429,47 @@ static inline int64_t slerp_sum2(mot_q32 a, mot_q32 cs, mot_q32 c, mot_q32 sn)
 	return round_fits(mot_acc_mac(mot_acc_mul(a, cs), c, sn), MOT_Q32_FRAC);
 }
 
+/* slerp_mid_q()'s arcs not plain: nlerp, or saturating sums for keys far
+ * from unit (out of the way, so that the caller's in-between stays in
+ * registers) */
+static __attribute__((noinline)) struct mot_quat slerp_mid_cold(const struct mot_slerp *s,
+								mot_q32 t, uint32_t *sat)
+{
+	struct mot_quat q;
+	struct mot_sc sc;
+
+	if (s->nlerp) {
+		quat_lerp(&q, &s->a, &s->b, t, sat);
+		return q;
+	}
+	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
+	slerp_sum_sat(&q, s, sc.c, sc.s, sat);
+	return q;
+}
+
 /* mot_slerp_eval() for t in (0, 1) */
-static inline HOT void slerp_mid(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
-				 uint32_t *sat)
+static inline HOT struct mot_quat slerp_mid_q(const struct mot_slerp *s, mot_q32 t,
+					      uint32_t *sat)
 {
 	struct mot_sc sc;
 	mot_q32 sn, cs;
 
-	if (!s->plain) {
-		if (s->nlerp) {
-			quat_lerp(out, &s->a, &s->b, t, sat);
-			return;
-		}
-		/* keys far from unit: saturating sums */
-		sc = sincos_fine_in(mot_acc_mul(t, s->theta));
-		slerp_sum_sat(out, s, sc.c, sc.s, sat);
-		return;
-	}
+	if (!s->plain)
+		return slerp_mid_cold(s, t, sat);
 	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
 	sn = sc.s;
 	cs = sc.c;
 	/* a, c within +-1: every sum below 2, mot_sum_prod()'s bits untested */
-	*out = (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
+	return (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
 				  slerp_sum2(s->a.x, cs, s->c.x, sn),
 				  slerp_sum2(s->a.y, cs, s->c.y, sn),
 				  slerp_sum2(s->a.z, cs, s->c.z, sn) };
+}
+
+static inline HOT void slerp_mid(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
+				 uint32_t *sat)
+{
+	*out = slerp_mid_q(s, t, sat);
 }
 
 static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
@@ -570,14 +586,17 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 	return true;
 }
 
-/* slerp_near()'s nearly equal in-betweens: nlerp, as slerp_once() */
-static __attribute__((noinline)) void slerp_near_lerp(struct mot_quat *out,
-						      const struct mot_quat *a, const mot_q32 bv[4],
-						      mot_q32 t, uint32_t *sat)
+/* slerp_near()'s nearly equal in-betweens: nlerp, as slerp_once(), with
+ * b negated when sg is -1 (a and b by value: the caller's stay in
+ * registers) */
+static __attribute__((noinline)) void slerp_near_lerp(struct mot_quat *out, struct mot_quat a,
+						      struct mot_quat b, int64_t sg, mot_q32 t,
+						      uint32_t *sat)
 {
-	const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
+	const struct mot_quat bb = { (b.w ^ sg) - sg, (b.x ^ sg) - sg, (b.y ^ sg) - sg,
+				     (b.z ^ sg) - sg };
 
-	quat_lerp(out, a, &bb, t, sat);
+	quat_lerp(out, &a, &bb, t, sat);
 }
 
 /* |q|^2 (Q64.64) in [3/4 - 2^-20, 5/4 + 2^-20]: every in-between of a
@@ -668,7 +687,7 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 	}
 	/* |u| below 2^-10 (len below SLERP_NLERP_SIN): nlerp */
 	if (mot_acc_hi(n) == 0 && mot_acc_lo(n) < (uint64_t)1 << 44) {
-		slerp_near_lerp(out, a, bv, t, sat);
+		slerp_near_lerp(out, *a, *b, sg, t, sat);
 		return true;
 	}
 	len = (mot_q32)isqrt_inv_unit(n, &inv, &sh); /* |u|, within 0.51 LSB */
@@ -703,6 +722,19 @@ void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct
 		slerp_long(out, a, b, t, sat);
 }
 
+/* mot_squad_eval()'s outer slerp but for unit arcs: slerp_near() after its
+ * test, else slerp_once() (qa and qb by value: the caller's stay in
+ * registers) */
+static __attribute__((noinline)) void squad_outer(struct mot_quat *out, struct mot_quat qa,
+						  struct mot_quat qb, mot_q32 h, bool small,
+						  uint32_t *sat)
+{
+	if (small && slerp_near(out, &qa, &qb, h, false, sat))
+		return;
+	if (!slerp_once(out, &qa, &qb, h, small, sat))
+		slerp_long(out, &qa, &qb, h, sat);
+}
+
 void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		    const struct mot_slerp *inner, mot_q32 t, uint32_t *sat)
 {
@@ -716,8 +748,8 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		*out = t <= 0 ? arc->a : arc->b;
 		return;
 	}
-	slerp_mid(&qa, arc, t, sat);
-	slerp_mid(&qb, inner, t, sat);
+	qa = slerp_mid_q(arc, t, sat);
+	qb = slerp_mid_q(inner, t, sat);
 	h = 2 * round_fits(mot_acc_mul(t, ONE - t), MOT_Q32_FRAC); /* 2 t (1 - t), (0, 1/2] */
 	/* in-betweens of arcs within +-1 are below sqrt 2 (slerp_near()'s
 	 * components below 2), those of unit arcs pass its test (only where
@@ -728,10 +760,7 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		return;
 	}
 #endif
-	if (arc->small && inner->small && slerp_near(out, &qa, &qb, h, false, sat))
-		return;
-	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, sat))
-		slerp_long(out, &qa, &qb, h, sat);
+	squad_outer(out, qa, qb, h, arc->small && inner->small, sat);
 }
 
 /* ---- squad -------------------------------------------------------------------- */
