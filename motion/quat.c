@@ -586,17 +586,14 @@ static inline HOT bool slerp_once(struct mot_quat *out, const struct mot_quat *a
 	return true;
 }
 
-/* slerp_near()'s nearly equal in-betweens: nlerp, as slerp_once(), with
- * b negated when sg is -1 (a and b by value: the caller's stay in
- * registers) */
-static __attribute__((noinline)) void slerp_near_lerp(struct mot_quat *out, struct mot_quat a,
-						      struct mot_quat b, int64_t sg, mot_q32 t,
-						      uint32_t *sat)
+/* slerp_near()'s nearly equal in-betweens: nlerp, as slerp_once() */
+static __attribute__((noinline)) void slerp_near_lerp(struct mot_quat *out,
+						      const struct mot_quat *a, const mot_q32 bv[4],
+						      mot_q32 t, uint32_t *sat)
 {
-	const struct mot_quat bb = { (b.w ^ sg) - sg, (b.x ^ sg) - sg, (b.y ^ sg) - sg,
-				     (b.z ^ sg) - sg };
+	const struct mot_quat bb = { bv[0], bv[1], bv[2], bv[3] };
 
-	quat_lerp(out, &a, &bb, t, sat);
+	quat_lerp(out, a, &bb, t, sat);
 }
 
 /* |q|^2 (Q64.64) in [3/4 - 2^-20, 5/4 + 2^-20]: every in-between of a
@@ -651,7 +648,8 @@ static inline HOT uint64_t isqrt_inv_unit(mot_acc x, int64_t *inv, unsigned *sh)
  * k62 fits untested. The sums a cos / |a| + u k are below 1.3 + 1.9.
  */
 static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a,
-				  const struct mot_quat *b, mot_q32 t, bool unit, uint32_t *sat)
+				  const struct mot_quat *b, mot_q32 t, bool unit, bool lerp,
+				  uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
 	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], len, cs;
@@ -687,7 +685,9 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 	}
 	/* |u| below 2^-10 (len below SLERP_NLERP_SIN): nlerp */
 	if (mot_acc_hi(n) == 0 && mot_acc_lo(n) < (uint64_t)1 << 44) {
-		slerp_near_lerp(out, *a, *b, sg, t, sat);
+		if (!lerp)
+			return false;
+		slerp_near_lerp(out, a, bv, t, sat);
 		return true;
 	}
 	len = (mot_q32)isqrt_inv_unit(n, &inv, &sh); /* |u|, within 0.51 LSB */
@@ -722,14 +722,21 @@ void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct
 		slerp_long(out, a, b, t, sat);
 }
 
-/* mot_squad_eval()'s outer slerp but for unit arcs: slerp_near() after its
- * test, else slerp_once() (qa and qb by value: the caller's stay in
- * registers) */
-static __attribute__((noinline)) void squad_outer(struct mot_quat *out, struct mot_quat qa,
-						  struct mot_quat qb, mot_q32 h, bool small,
-						  uint32_t *sat)
+/* mot_squad_eval() but for unit arcs away from nlerp: its in-betweens
+ * again (the same bits), then slerp_near() after its test, else
+ * slerp_once(). Out of the way, so that the usual in-betweens stay in
+ * registers. */
+static __attribute__((noinline)) void squad_cold(struct mot_quat *out,
+						 const struct mot_slerp *arc,
+						 const struct mot_slerp *inner, mot_q32 t, mot_q32 h,
+						 uint32_t *sat)
 {
-	if (small && slerp_near(out, &qa, &qb, h, false, sat))
+	const bool small = arc->small && inner->small;
+	struct mot_quat qa, qb;
+
+	slerp_mid(&qa, arc, t, sat);
+	slerp_mid(&qb, inner, t, sat);
+	if (small && slerp_near(out, &qa, &qb, h, false, true, sat))
 		return;
 	if (!slerp_once(out, &qa, &qb, h, small, sat))
 		slerp_long(out, &qa, &qb, h, sat);
@@ -738,7 +745,6 @@ static __attribute__((noinline)) void squad_outer(struct mot_quat *out, struct m
 void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		    const struct mot_slerp *inner, mot_q32 t, uint32_t *sat)
 {
-	struct mot_quat qa, qb;
 	mot_q32 h;
 
 	/* squad(0) = q(i), squad(1) = q(i+1): the ends of arc */
@@ -748,19 +754,19 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		*out = t <= 0 ? arc->a : arc->b;
 		return;
 	}
-	qa = slerp_mid_q(arc, t, sat);
-	qb = slerp_mid_q(inner, t, sat);
 	h = 2 * round_fits(mot_acc_mul(t, ONE - t), MOT_Q32_FRAC); /* 2 t (1 - t), (0, 1/2] */
 	/* in-betweens of arcs within +-1 are below sqrt 2 (slerp_near()'s
 	 * components below 2), those of unit arcs pass its test (only where
 	 * 128-bit integers are native: the same bits) */
 #if MOT_HAVE_INT128
 	if (arc->unit && inner->unit) {
-		slerp_near(out, &qa, &qb, h, true, sat);
-		return;
+		const struct mot_quat qa = slerp_mid_q(arc, t, sat), qb = slerp_mid_q(inner, t, sat);
+
+		if (slerp_near(out, &qa, &qb, h, true, false, sat))
+			return;
 	}
 #endif
-	squad_outer(out, qa, qb, h, arc->small && inner->small, sat);
+	squad_cold(out, arc, inner, t, h, sat);
 }
 
 /* ---- squad -------------------------------------------------------------------- */
