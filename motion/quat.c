@@ -469,6 +469,10 @@ static inline HOT struct mot_quat slerp_mid_q(const struct mot_slerp *s, mot_q32
 static inline HOT void slerp_mid(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
 				 uint32_t *sat)
 {
+	if (!s->plain) {
+		*out = slerp_mid_cold(s, t, sat);
+		return;
+	}
 	*out = slerp_mid_q(s, t, sat);
 }
 
