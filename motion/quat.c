@@ -611,14 +611,15 @@ static inline bool near_norm(mot_acc n)
 	return mot_acc_hi(n) == 0 && mot_acc_lo(n) <= ((uint64_t)1 << 63) + ((uint64_t)1 << 45);
 }
 
-/* mot_isqrt_acc_inv_near() for x in [2^44, 2^66): inline where 128-bit
- * integers are native (mot_isqrt_inv_unit_in(), the same bits) */
-static inline HOT uint64_t isqrt_inv_unit(mot_acc x, int64_t *inv, unsigned *sh)
+/* mot_isqrt_acc_inv_near() of 4 x62 (Q64.64) for x62 in [2^42, 2^63):
+ * inline where 128-bit integers are native (mot_isqrt_inv_unit_in(), the
+ * same bits) */
+static inline HOT uint64_t isqrt_inv_unit(int64_t x62, int64_t *inv, unsigned *sh)
 {
 #if MOT_HAVE_INT128
-	return mot_isqrt_inv_unit_in(x, inv, sh);
+	return mot_isqrt_inv_unit_in(x62, inv, sh);
 #else
-	return mot_isqrt_acc_inv_near(x, inv, sh);
+	return mot_isqrt_acc_inv_near(mot_acc_from(x62, 2), inv, sh);
 #endif
 }
 
@@ -656,10 +657,10 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 				  uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
-	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], len, cs;
+	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, len, cs, al;
 	uint64_t ov = 0; /* ov: t theta fits, never set */
 	mot_acc n = mot_acc_zero(), na = mot_acc_zero(), nb = mot_acc_zero();
-	int64_t na62, d62, sg, k62, inv, theta;
+	int64_t na62, ab62, d62, w62, u2, sg, k62, inv, theta;
 	struct mot_sc sc;
 	unsigned sh;
 	int i;
@@ -668,42 +669,46 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 	for (i = 0; i < 4; i++) {
 		n = mot_acc_mac(n, av[i], bv[i]);
 		na = mot_acc_mac(na, av[i], av[i]);
-		if (!unit)
-			nb = mot_acc_mac(nb, bv[i], bv[i]);
+		nb = mot_acc_mac(nb, bv[i], bv[i]);
 	}
 	if (!unit && (!near_norm(na) || !near_norm(nb)))
 		return false;
 	na62 = round_fits(na, 2);
-	d62 = round_fits(mot_acc_mul(round_fits(n, 2), (int64_t)(((uint64_t)1 << 63) - (uint64_t)na62)),
-			 62);
-	/* the shorter arc: b and d negated when d < 0, by masks (the sign of
-	 * d, about even in a scene, would mispredict) */
+	ab62 = round_fits(n, 2);
+	d62 = round_fits(mot_acc_mul(ab62, (int64_t)(((uint64_t)1 << 63) - (uint64_t)na62)), 62);
+	/* the shorter arc: b, a.b and d negated when d < 0, by masks (the sign
+	 * of d, about even in a scene, would mispredict); b by the sign of k */
 	sg = d62 >> 63;
 	d62 = (d62 ^ sg) - sg;
-	n = mot_acc_zero();
-	UNROLL4
-	for (i = 0; i < 4; i++) {
-		bv[i] = (bv[i] ^ sg) - sg;
-		u[i] = bv[i] - round_fits(mot_acc_mul(av[i], d62), 62);
-		n = mot_acc_mac(n, u[i], u[i]);
-	}
+	ab62 = (ab62 ^ sg) - sg;
+	/* |u|^2 = |b|^2 - d (2 a.b - d |a|^2), Q62 */
+	w62 = ab62 + (ab62 - round_fits(mot_acc_mul(d62, na62), 62));
+	u2 = round_fits(nb, 2) - round_fits(mot_acc_mul(d62, w62), 62);
 	/* |u| below 2^-10 (len below SLERP_NLERP_SIN): nlerp */
-	if (mot_acc_hi(n) == 0 && mot_acc_lo(n) < (uint64_t)1 << 44) {
+	if (u2 < (int64_t)1 << 42) {
 		if (!lerp)
 			return false;
+		UNROLL4
+		for (i = 0; i < 4; i++)
+			bv[i] = (bv[i] ^ sg) - sg;
 		slerp_near_lerp(out, a, bv, t, sat);
 		return true;
 	}
-	len = (mot_q32)isqrt_inv_unit(n, &inv, &sh); /* |u|, within 0.51 LSB */
+	len = (mot_q32)isqrt_inv_unit(u2, &inv, &sh); /* |u|, within 0.52 LSB */
 	theta = mot_atan2_unit_q62(len, round_fits(mot_acc_from(d62, 0), 30));
 	sc = sincos_fine_in(mot_acc_from(mot_acc_floor_ov(mot_acc_mul(t, theta), 30, &ov), 0));
 	/* cos / |a| to first order, Q2.62 */
 	cs = round_fits(mot_acc_mul(sc.c, (int64_t)((3 * ((uint64_t)1 << 62) - (uint64_t)na62) >> 1)),
 			32);
-	k62 = round_fits(mot_acc_mul(sc.s, inv), sh - 62);
+	/* sin / |u| = sin inv 2^(62 - sh), sh in [84, 94]: inv floored to
+	 * 2^(sh - 84), at least 2^51, so that one fixed shift rounds */
+	k62 = round_fits(mot_acc_mul(sc.s, inv >> (sh - 84)), 22);
+	/* a cs + (b - d a) k = a (cs - d k) + b k */
+	al = cs - round_fits(mot_acc_mul(d62, k62), 62);
+	k62 = (k62 ^ sg) - sg;
 	UNROLL4
 	for (i = 0; i < 4; i++)
-		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], cs), u[i], k62), 62);
+		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], al), bv[i], k62), 62);
 	*out = (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
 	return true;
 }
