@@ -628,29 +628,39 @@ static inline HOT uint64_t isqrt_inv_unit(int64_t x62, int64_t *inv, unsigned *s
  * (0, 1/2], when both have |q|^2 within 1/4 of 1 (near_norm(), tested
  * unless unit says so; false otherwise, nothing written: the caller takes
  * slerp_once()) and components below 2 (both arcs small).
- * slerp_once()'s a cos(t theta) + u sin(t theta) / |u|, with one pass of
- * Gram-Schmidt where it takes two: d = a.b / |a|^2 to first order,
- * a.b (2 - |a|^2) (relative error (|a|^2 - 1)^2, some 2^-60 for
- * in-betweens unit within a few LSB), kept in Q62, so that a.u = a.b -
- * d |a|^2 - a.r (r the roundings of a d, |r| <= 1 LSB) is what the second
- * pass left: an LSB, not d (|a|^2 - 1). The second pass and its dot product
- * leave the dependent chain. And cos(t theta) / |a| multiplies a, to first
- * order cos (3 - |a|^2) / 2: a's norm error (a few LSB, the arc's slerp)
- * no longer passes to the result, whose own is then the roundings of the
- * sine, cosine and sums (tests/test_quat.c: 1.5 LSB where slerp_once()
+ * slerp_once()'s a cos(t theta) + u sin(t theta) / |u| with u = b - d a,
+ * d = a.b / |a|^2 to first order, a.b (2 - |a|^2) (relative error
+ * (|a|^2 - 1)^2, some 2^-60 for in-betweens unit within a few LSB), kept
+ * in Q62; but u is never formed. Its square comes from the dot products,
+ *     |u|^2 = |b|^2 - d (2 a.b - d |a|^2),
+ * and the result is a (cos - d k) + b k, k = sin / |u|: u is exactly
+ * b - d a for the d used (a.u = a.b - d |a|^2, some 2^-60, where u's
+ * rounded components left an LSB), its components' roundings (k times
+ * half an LSB each) are gone, and the shorter arc's sign goes on k and a.b
+ * instead of b. And cos(t theta) / |a| multiplies a, to first order
+ * cos (3 - |a|^2) / 2: a's norm error (a few LSB, the arc's slerp) no
+ * longer passes to the result, whose own is then the roundings of the
+ * sine, cosine and sums (tests/test_quat.c: 1.33 LSB where slerp_once()
  * gave 3.4).
  *
  * Bounds, with |a|^2, |b|^2 in [3/4, 5/4] (the 2^-20 more of near_norm()
  * changes none): |a.b| <= 5/4, 2 - |a|^2 in [3/4, 5/4], (3 - |a|^2) / 2 in
  * [7/8, 9/8], d <= 25/16, each in Q62 below 2^63. With p = a.b / |a|^2,
  * b = p a + w (w orthogonal to a), d = p + e, e = -p (|a|^2 - 1)^2 / |a|^2
- * (|e| <= |p| / 12, 5/48): u = w - e a, |u| <= |b| + 5/48 |a| < 1.24, its
- * square below 2^65 in Q64.64 (the range of isqrt_inv_unit()), its root
- * below 2^33. k = sin(t theta) / |u| with tan theta = |u| / d, theta <= 1/4
- * turn: k = (sin(t theta) / sin theta) / sqrt(|u|^2 + d^2) <= (1 / sqrt 2) /
- * sqrt(|w|^2 + (p + e)^2), and |w|^2 + p^2 |a|^2 = |b|^2 >= 3/4 gives
- * |w|^2 >= 3/8 or p^2 >= 3/10, (p + e)^2 >= (11/12)^2 3/10: k below 1.5,
- * k62 fits untested. The sums a cos / |a| + u k are below 1.3 + 1.9.
+ * (|e| <= |p| / 12): d |a|^2 = a.b + e |a|^2 and 2 a.b - d |a|^2 differ
+ * from a.b by |e| |a|^2 <= 5/48, and d (2 a.b - d |a|^2) = |a|^2 (p^2 - e^2)
+ * is in [0, |a|^2 p^2], at most (a.b)^2 / |a|^2 <= |b|^2: each below 2 in
+ * Q62, and |u|^2 = |w|^2 + e^2 |a|^2 in [0, 5/4]. Its roundings (|b|^2,
+ * a.b twice d, d |a|^2 and |a|^2 in it, the product: 4.6 units of 2^-62)
+ * are below 2^-39.7 of |u|^2 >= 2^-20 (nlerp below): 2^-40.7 of |u| and
+ * of 1/|u|, 2^-8.5 LSB of the result. The root's input below 2^63 (the
+ * range of isqrt_inv_unit()). k = sin(t theta) / |u| with tan theta =
+ * |u| / d, theta <= 1/4 turn: k = (sin(t theta) / sin theta) /
+ * sqrt(|u|^2 + d^2) <= (1 / sqrt 2) / sqrt(|w|^2 + (p + e)^2), and
+ * |w|^2 + p^2 |a|^2 = |b|^2 >= 3/4 gives |w|^2 >= 3/8 or p^2 >= 3/10,
+ * (p + e)^2 >= (11/12)^2 3/10: k below 1.5, k62 fits untested. d k =
+ * cos theta sin(t theta) / sin theta <= t <= 1/2, so cos / |a| - d k is in
+ * [-1/2, 9/8]; the sums a (cos / |a| - d k) + b k are below 1.3 + 1.7.
  */
 static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a,
 				  const struct mot_quat *b, mot_q32 t, bool unit, bool lerp,
