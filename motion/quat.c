@@ -707,9 +707,10 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 	len = (mot_q32)isqrt_inv_unit(u2, &inv, &sh); /* |u|, within 0.52 LSB */
 	theta = mot_atan2_unit_q62(len, round_fits(mot_acc_from(d62, 0), 30));
 	sc = sincos_fine_in(mot_acc_from(mot_acc_floor_ov(mot_acc_mul(t, theta), 30, &ov), 0));
-	/* cos / |a| to first order, Q2.62 */
-	cs = round_fits(mot_acc_mul(sc.c, (int64_t)((3 * ((uint64_t)1 << 62) - (uint64_t)na62) >> 1)),
-			32);
+	/* cos / |a| to first order, Q2.62: floor((3 - |a|^2) / 2) as a signed
+	 * difference (a factor known non-negative costs a widening unsigned
+	 * multiply and its sign fix) */
+	cs = round_fits(mot_acc_mul(sc.c, ((int64_t)3 << 61) - ((na62 + 1) >> 1)), 32);
 	/* sin / |u| = sin inv 2^(62 - sh), sh in [84, 94]: inv floored to
 	 * 2^(sh - 84), at least 2^51, so that one fixed shift rounds */
 	k62 = round_fits(mot_acc_mul(sc.s, inv >> (sh - 84)), 22);
