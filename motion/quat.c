@@ -447,15 +447,21 @@ static __attribute__((noinline)) struct mot_quat slerp_mid_cold(const struct mot
 	return q;
 }
 
-/* mot_slerp_eval() for t in (0, 1) */
-static inline HOT struct mot_quat slerp_mid_q(const struct mot_slerp *s, mot_q32 t,
-					      uint32_t *sat)
+/* the same through a pointer (mot_slerp_eval()'s frame without the
+ * returned quaternion's) */
+static __attribute__((noinline)) void slerp_mid_cold_to(struct mot_quat *out,
+							const struct mot_slerp *s, mot_q32 t,
+							uint32_t *sat)
+{
+	*out = slerp_mid_cold(s, t, sat);
+}
+
+/* mot_slerp_eval() for t in (0, 1) of a plain arc */
+static inline HOT struct mot_quat slerp_mid_plain(const struct mot_slerp *s, mot_q32 t)
 {
 	struct mot_sc sc;
 	mot_q32 sn, cs;
 
-	if (!s->plain)
-		return slerp_mid_cold(s, t, sat);
 	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
 	sn = sc.s;
 	cs = sc.c;
@@ -466,14 +472,21 @@ static inline HOT struct mot_quat slerp_mid_q(const struct mot_slerp *s, mot_q32
 				  slerp_sum2(s->a.z, cs, s->c.z, sn) };
 }
 
+/* mot_slerp_eval() for t in (0, 1) */
+static inline HOT struct mot_quat slerp_mid_q(const struct mot_slerp *s, mot_q32 t,
+					      uint32_t *sat)
+{
+	return s->plain ? slerp_mid_plain(s, t) : slerp_mid_cold(s, t, sat);
+}
+
 static inline HOT void slerp_mid(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
 				 uint32_t *sat)
 {
 	if (!s->plain) {
-		*out = slerp_mid_cold(s, t, sat);
+		slerp_mid_cold_to(out, s, t, sat);
 		return;
 	}
-	*out = slerp_mid_q(s, t, sat);
+	*out = slerp_mid_plain(s, t);
 }
 
 static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
