@@ -718,7 +718,8 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 		return true;
 	}
 	len = (mot_q32)isqrt_inv_unit(u2, &inv, &sh); /* |u|, within 0.52 LSB */
-	theta = mot_atan2_unit_q62(len, round_fits(mot_acc_from(d62, 0), 30));
+	/* d in Q32.32, rounded in 64 bits (d62 <= 25/16 2^62: no carry out) */
+	theta = mot_atan2_unit_q62(len, (d62 + ((int64_t)1 << 29)) >> 30);
 	sc = sincos_fine_in(mot_acc_from(mot_acc_floor_ov(mot_acc_mul(t, theta), 30, &ov), 0));
 	/* cos / |a| to first order, Q2.62: floor((3 - |a|^2) / 2) as a signed
 	 * difference (a factor known non-negative costs a widening unsigned
