@@ -429,31 +429,64 @@ static inline int64_t slerp_sum2(mot_q32 a, mot_q32 cs, mot_q32 c, mot_q32 sn)
 	return round_fits(mot_acc_mac(mot_acc_mul(a, cs), c, sn), MOT_Q32_FRAC);
 }
 
-/* mot_slerp_eval() for t in (0, 1) */
-static inline HOT void slerp_mid(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
-				 uint32_t *sat)
+/* slerp_mid_q()'s arcs not plain: nlerp, or saturating sums for keys far
+ * from unit (out of the way, so that the caller's in-between stays in
+ * registers) */
+static __attribute__((noinline)) struct mot_quat slerp_mid_cold(const struct mot_slerp *s,
+								mot_q32 t, uint32_t *sat)
+{
+	struct mot_quat q;
+	struct mot_sc sc;
+
+	if (s->nlerp) {
+		quat_lerp(&q, &s->a, &s->b, t, sat);
+		return q;
+	}
+	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
+	slerp_sum_sat(&q, s, sc.c, sc.s, sat);
+	return q;
+}
+
+/* the same through a pointer (mot_slerp_eval()'s frame without the
+ * returned quaternion's) */
+static __attribute__((noinline)) void slerp_mid_cold_to(struct mot_quat *out,
+							const struct mot_slerp *s, mot_q32 t,
+							uint32_t *sat)
+{
+	*out = slerp_mid_cold(s, t, sat);
+}
+
+/* mot_slerp_eval() for t in (0, 1) of a plain arc */
+static inline HOT struct mot_quat slerp_mid_plain(const struct mot_slerp *s, mot_q32 t)
 {
 	struct mot_sc sc;
 	mot_q32 sn, cs;
 
-	if (!s->plain) {
-		if (s->nlerp) {
-			quat_lerp(out, &s->a, &s->b, t, sat);
-			return;
-		}
-		/* keys far from unit: saturating sums */
-		sc = sincos_fine_in(mot_acc_mul(t, s->theta));
-		slerp_sum_sat(out, s, sc.c, sc.s, sat);
-		return;
-	}
 	sc = sincos_fine_in(mot_acc_mul(t, s->theta));
 	sn = sc.s;
 	cs = sc.c;
 	/* a, c within +-1: every sum below 2, mot_sum_prod()'s bits untested */
-	*out = (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
+	return (struct mot_quat){ slerp_sum2(s->a.w, cs, s->c.w, sn),
 				  slerp_sum2(s->a.x, cs, s->c.x, sn),
 				  slerp_sum2(s->a.y, cs, s->c.y, sn),
 				  slerp_sum2(s->a.z, cs, s->c.z, sn) };
+}
+
+/* mot_slerp_eval() for t in (0, 1) */
+static inline HOT struct mot_quat slerp_mid_q(const struct mot_slerp *s, mot_q32 t,
+					      uint32_t *sat)
+{
+	return s->plain ? slerp_mid_plain(s, t) : slerp_mid_cold(s, t, sat);
+}
+
+static inline HOT void slerp_mid(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
+				 uint32_t *sat)
+{
+	if (!s->plain) {
+		slerp_mid_cold_to(out, s, t, sat);
+		return;
+	}
+	*out = slerp_mid_plain(s, t);
 }
 
 static inline HOT void slerp_eval_in(struct mot_quat *out, const struct mot_slerp *s, mot_q32 t,
@@ -591,14 +624,15 @@ static inline bool near_norm(mot_acc n)
 	return mot_acc_hi(n) == 0 && mot_acc_lo(n) <= ((uint64_t)1 << 63) + ((uint64_t)1 << 45);
 }
 
-/* mot_isqrt_acc_inv_near() for x in [2^44, 2^66): inline where 128-bit
- * integers are native (mot_isqrt_inv_unit_in(), the same bits) */
-static inline HOT uint64_t isqrt_inv_unit(mot_acc x, int64_t *inv, unsigned *sh)
+/* mot_isqrt_acc_inv_near() of 4 x62 (Q64.64) for x62 in [2^42, 2^63):
+ * inline where 128-bit integers are native (mot_isqrt_inv_unit_in(), the
+ * same bits) */
+static inline HOT uint64_t isqrt_inv_unit(int64_t x62, int64_t *inv, unsigned *sh)
 {
 #if MOT_HAVE_INT128
-	return mot_isqrt_inv_unit_in(x, inv, sh);
+	return mot_isqrt_inv_unit_in(x62, inv, sh);
 #else
-	return mot_isqrt_acc_inv_near(x, inv, sh);
+	return mot_isqrt_acc_inv_near(mot_acc_from(x62, 2), inv, sh);
 #endif
 }
 
@@ -607,38 +641,49 @@ static inline HOT uint64_t isqrt_inv_unit(mot_acc x, int64_t *inv, unsigned *sh)
  * (0, 1/2], when both have |q|^2 within 1/4 of 1 (near_norm(), tested
  * unless unit says so; false otherwise, nothing written: the caller takes
  * slerp_once()) and components below 2 (both arcs small).
- * slerp_once()'s a cos(t theta) + u sin(t theta) / |u|, with one pass of
- * Gram-Schmidt where it takes two: d = a.b / |a|^2 to first order,
- * a.b (2 - |a|^2) (relative error (|a|^2 - 1)^2, some 2^-60 for
- * in-betweens unit within a few LSB), kept in Q62, so that a.u = a.b -
- * d |a|^2 - a.r (r the roundings of a d, |r| <= 1 LSB) is what the second
- * pass left: an LSB, not d (|a|^2 - 1). The second pass and its dot product
- * leave the dependent chain. And cos(t theta) / |a| multiplies a, to first
- * order cos (3 - |a|^2) / 2: a's norm error (a few LSB, the arc's slerp)
- * no longer passes to the result, whose own is then the roundings of the
- * sine, cosine and sums (tests/test_quat.c: 1.5 LSB where slerp_once()
+ * slerp_once()'s a cos(t theta) + u sin(t theta) / |u| with u = b - d a,
+ * d = a.b / |a|^2 to first order, a.b (2 - |a|^2) (relative error
+ * (|a|^2 - 1)^2, some 2^-60 for in-betweens unit within a few LSB), kept
+ * in Q62; but u is never formed. Its square comes from the dot products,
+ *     |u|^2 = |b|^2 - d (2 a.b - d |a|^2),
+ * and the result is a (cos - d k) + b k, k = sin / |u|: u is exactly
+ * b - d a for the d used (a.u = a.b - d |a|^2, some 2^-60, where u's
+ * rounded components left an LSB), its components' roundings (k times
+ * half an LSB each) are gone, and the shorter arc's sign goes on k and a.b
+ * instead of b. And cos(t theta) / |a| multiplies a, to first order
+ * cos (3 - |a|^2) / 2: a's norm error (a few LSB, the arc's slerp) no
+ * longer passes to the result, whose own is then the roundings of the
+ * sine, cosine and sums (tests/test_quat.c: 1.33 LSB where slerp_once()
  * gave 3.4).
  *
  * Bounds, with |a|^2, |b|^2 in [3/4, 5/4] (the 2^-20 more of near_norm()
  * changes none): |a.b| <= 5/4, 2 - |a|^2 in [3/4, 5/4], (3 - |a|^2) / 2 in
  * [7/8, 9/8], d <= 25/16, each in Q62 below 2^63. With p = a.b / |a|^2,
  * b = p a + w (w orthogonal to a), d = p + e, e = -p (|a|^2 - 1)^2 / |a|^2
- * (|e| <= |p| / 12, 5/48): u = w - e a, |u| <= |b| + 5/48 |a| < 1.24, its
- * square below 2^65 in Q64.64 (the range of isqrt_inv_unit()), its root
- * below 2^33. k = sin(t theta) / |u| with tan theta = |u| / d, theta <= 1/4
- * turn: k = (sin(t theta) / sin theta) / sqrt(|u|^2 + d^2) <= (1 / sqrt 2) /
- * sqrt(|w|^2 + (p + e)^2), and |w|^2 + p^2 |a|^2 = |b|^2 >= 3/4 gives
- * |w|^2 >= 3/8 or p^2 >= 3/10, (p + e)^2 >= (11/12)^2 3/10: k below 1.5,
- * k62 fits untested. The sums a cos / |a| + u k are below 1.3 + 1.9.
+ * (|e| <= |p| / 12): d |a|^2 = a.b + e |a|^2 and 2 a.b - d |a|^2 differ
+ * from a.b by |e| |a|^2 <= 5/48, and d (2 a.b - d |a|^2) = |a|^2 (p^2 - e^2)
+ * is in [0, |a|^2 p^2], at most (a.b)^2 / |a|^2 <= |b|^2: each below 2 in
+ * Q62, and |u|^2 = |w|^2 + e^2 |a|^2 in [0, 5/4]. Its roundings (|b|^2,
+ * a.b twice d, d |a|^2 and |a|^2 in it, the product: 4.6 units of 2^-62)
+ * are below 2^-39.7 of |u|^2 >= 2^-20 (nlerp below): 2^-40.7 of |u| and
+ * of 1/|u|, 2^-8.5 LSB of the result. The root's input below 2^63 (the
+ * range of isqrt_inv_unit()). k = sin(t theta) / |u| with tan theta =
+ * |u| / d, theta <= 1/4 turn: k = (sin(t theta) / sin theta) /
+ * sqrt(|u|^2 + d^2) <= (1 / sqrt 2) / sqrt(|w|^2 + (p + e)^2), and
+ * |w|^2 + p^2 |a|^2 = |b|^2 >= 3/4 gives |w|^2 >= 3/8 or p^2 >= 3/10,
+ * (p + e)^2 >= (11/12)^2 3/10: k below 1.5, k62 fits untested. d k =
+ * cos theta sin(t theta) / sin theta <= t <= 1/2, so cos / |a| - d k is in
+ * [-1/2, 9/8]; the sums a (cos / |a| - d k) + b k are below 1.3 + 1.7.
  */
 static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a,
-				  const struct mot_quat *b, mot_q32 t, bool unit, uint32_t *sat)
+				  const struct mot_quat *b, mot_q32 t, bool unit, bool lerp,
+				  uint32_t *sat)
 {
 	const mot_q32 av[4] = { a->w, a->x, a->y, a->z };
-	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, u[4], len, cs;
+	mot_q32 bv[4] = { b->w, b->x, b->y, b->z }, len, cs, al;
 	uint64_t ov = 0; /* ov: t theta fits, never set */
 	mot_acc n = mot_acc_zero(), na = mot_acc_zero(), nb = mot_acc_zero();
-	int64_t na62, d62, sg, k62, inv, theta;
+	int64_t na62, ab62, d62, w62, u2, sg, k62, inv, theta;
 	struct mot_sc sc;
 	unsigned sh;
 	int i;
@@ -647,40 +692,48 @@ static inline HOT bool slerp_near(struct mot_quat *out, const struct mot_quat *a
 	for (i = 0; i < 4; i++) {
 		n = mot_acc_mac(n, av[i], bv[i]);
 		na = mot_acc_mac(na, av[i], av[i]);
-		if (!unit)
-			nb = mot_acc_mac(nb, bv[i], bv[i]);
+		nb = mot_acc_mac(nb, bv[i], bv[i]);
 	}
 	if (!unit && (!near_norm(na) || !near_norm(nb)))
 		return false;
 	na62 = round_fits(na, 2);
-	d62 = round_fits(mot_acc_mul(round_fits(n, 2), (int64_t)(((uint64_t)1 << 63) - (uint64_t)na62)),
-			 62);
-	/* the shorter arc: b and d negated when d < 0, by masks (the sign of
-	 * d, about even in a scene, would mispredict) */
+	ab62 = round_fits(n, 2);
+	d62 = round_fits(mot_acc_mul(ab62, (int64_t)(((uint64_t)1 << 63) - (uint64_t)na62)), 62);
+	/* the shorter arc: b, a.b and d negated when d < 0, by masks (the sign
+	 * of d, about even in a scene, would mispredict); b by the sign of k */
 	sg = d62 >> 63;
 	d62 = (d62 ^ sg) - sg;
-	n = mot_acc_zero();
-	UNROLL4
-	for (i = 0; i < 4; i++) {
-		bv[i] = (bv[i] ^ sg) - sg;
-		u[i] = bv[i] - round_fits(mot_acc_mul(av[i], d62), 62);
-		n = mot_acc_mac(n, u[i], u[i]);
-	}
+	ab62 = (ab62 ^ sg) - sg;
+	/* |u|^2 = |b|^2 - d (2 a.b - d |a|^2), Q62 */
+	w62 = ab62 + (ab62 - round_fits(mot_acc_mul(d62, na62), 62));
+	u2 = round_fits(nb, 2) - round_fits(mot_acc_mul(d62, w62), 62);
 	/* |u| below 2^-10 (len below SLERP_NLERP_SIN): nlerp */
-	if (mot_acc_hi(n) == 0 && mot_acc_lo(n) < (uint64_t)1 << 44) {
+	if (u2 < (int64_t)1 << 42) {
+		if (!lerp)
+			return false;
+		UNROLL4
+		for (i = 0; i < 4; i++)
+			bv[i] = (bv[i] ^ sg) - sg;
 		slerp_near_lerp(out, a, bv, t, sat);
 		return true;
 	}
-	len = (mot_q32)isqrt_inv_unit(n, &inv, &sh); /* |u|, within 0.51 LSB */
-	theta = mot_atan2_unit_q62(len, round_fits(mot_acc_from(d62, 0), 30));
+	len = (mot_q32)isqrt_inv_unit(u2, &inv, &sh); /* |u|, within 0.52 LSB */
+	/* d in Q32.32, rounded in 64 bits (d62 <= 25/16 2^62: no carry out) */
+	theta = mot_atan2_unit_q62(len, (d62 + ((int64_t)1 << 29)) >> 30);
 	sc = sincos_fine_in(mot_acc_from(mot_acc_floor_ov(mot_acc_mul(t, theta), 30, &ov), 0));
-	/* cos / |a| to first order, Q2.62 */
-	cs = round_fits(mot_acc_mul(sc.c, (int64_t)((3 * ((uint64_t)1 << 62) - (uint64_t)na62) >> 1)),
-			32);
-	k62 = round_fits(mot_acc_mul(sc.s, inv), sh - 62);
+	/* cos / |a| to first order, Q2.62: floor((3 - |a|^2) / 2) as a signed
+	 * difference (a factor known non-negative costs a widening unsigned
+	 * multiply and its sign fix) */
+	cs = round_fits(mot_acc_mul(sc.c, ((int64_t)3 << 61) - ((na62 + 1) >> 1)), 32);
+	/* sin / |u| = sin inv 2^(62 - sh), sh in [84, 94]: inv floored to
+	 * 2^(sh - 84), at least 2^51, so that one fixed shift rounds */
+	k62 = round_fits(mot_acc_mul(sc.s, inv >> (sh - 84)), 22);
+	/* a cs + (b - d a) k = a (cs - d k) + b k */
+	al = cs - round_fits(mot_acc_mul(d62, k62), 62);
+	k62 = (k62 ^ sg) - sg;
 	UNROLL4
 	for (i = 0; i < 4; i++)
-		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], cs), u[i], k62), 62);
+		bv[i] = round_fits(mot_acc_mac(mot_acc_mul(av[i], al), bv[i], k62), 62);
 	*out = (struct mot_quat){ bv[0], bv[1], bv[2], bv[3] };
 	return true;
 }
@@ -703,10 +756,29 @@ void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct
 		slerp_long(out, a, b, t, sat);
 }
 
+/* mot_squad_eval() but for unit arcs away from nlerp: its in-betweens
+ * again (the same bits), then slerp_near() after its test, else
+ * slerp_once(). Out of the way, so that the usual in-betweens stay in
+ * registers. */
+static __attribute__((noinline)) void squad_cold(struct mot_quat *out,
+						 const struct mot_slerp *arc,
+						 const struct mot_slerp *inner, mot_q32 t, mot_q32 h,
+						 uint32_t *sat)
+{
+	const bool small = arc->small && inner->small;
+	struct mot_quat qa, qb;
+
+	slerp_mid(&qa, arc, t, sat);
+	slerp_mid(&qb, inner, t, sat);
+	if (small && slerp_near(out, &qa, &qb, h, false, true, sat))
+		return;
+	if (!slerp_once(out, &qa, &qb, h, small, sat))
+		slerp_long(out, &qa, &qb, h, sat);
+}
+
 void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		    const struct mot_slerp *inner, mot_q32 t, uint32_t *sat)
 {
-	struct mot_quat qa, qb;
 	mot_q32 h;
 
 	/* squad(0) = q(i), squad(1) = q(i+1): the ends of arc */
@@ -716,22 +788,19 @@ void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		*out = t <= 0 ? arc->a : arc->b;
 		return;
 	}
-	slerp_mid(&qa, arc, t, sat);
-	slerp_mid(&qb, inner, t, sat);
 	h = 2 * round_fits(mot_acc_mul(t, ONE - t), MOT_Q32_FRAC); /* 2 t (1 - t), (0, 1/2] */
 	/* in-betweens of arcs within +-1 are below sqrt 2 (slerp_near()'s
 	 * components below 2), those of unit arcs pass its test (only where
 	 * 128-bit integers are native: the same bits) */
 #if MOT_HAVE_INT128
 	if (arc->unit && inner->unit) {
-		slerp_near(out, &qa, &qb, h, true, sat);
-		return;
+		const struct mot_quat qa = slerp_mid_q(arc, t, sat), qb = slerp_mid_q(inner, t, sat);
+
+		if (slerp_near(out, &qa, &qb, h, true, false, sat))
+			return;
 	}
 #endif
-	if (arc->small && inner->small && slerp_near(out, &qa, &qb, h, false, sat))
-		return;
-	if (!slerp_once(out, &qa, &qb, h, arc->small && inner->small, sat))
-		slerp_long(out, &qa, &qb, h, sat);
+	squad_cold(out, arc, inner, t, h, sat);
 }
 
 /* ---- squad -------------------------------------------------------------------- */

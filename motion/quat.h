@@ -187,9 +187,10 @@ void mot_quat_slerp(struct mot_quat *out, const struct mot_quat *a, const struct
  */
 /* squad(t) of a segment whose two arcs are prepared (q(i) to q(i+1) and
  * s(i) to s(i+1)): their slerps at t, then the one-shot slerp between
- * them at 2t(1-t), in one call; for near-unit in-betweens one pass of
- * Gram-Schmidt and a cosine scaled by 1/|qa| (quat.c's slerp_near()):
- * unit within 1.5 LSB, 2.6e-9 rad of the double squad (tests/test_quat.c). */
+ * them at 2t(1-t), in one call; for near-unit in-betweens the arc from
+ * their dot products alone and a cosine scaled by 1/|qa| (quat.c's
+ * slerp_near()): unit within 1.33 LSB, 2.6e-9 rad of the double squad
+ * (tests/test_quat.c). */
 void mot_squad_eval(struct mot_quat *out, const struct mot_slerp *arc,
 		    const struct mot_slerp *inner, mot_q32 t, uint32_t *sat);
 void mot_squad_inner(struct mot_quat *out, const struct mot_quat *prev,

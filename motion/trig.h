@@ -109,7 +109,12 @@ static inline int64_t mot_trig_mulsh(int64_t a, int64_t b, unsigned shift)
 {
 	mot_acc p = mot_acc_mul(a, b);
 
+#if MOT_HAVE_INT128
+	/* one double-word shift where the two-word form takes three */
+	return (int64_t)(uint64_t)((mot_uacc)p >> shift);
+#else
 	return (int64_t)((mot_acc_lo(p) >> shift) | (mot_acc_hi(p) << (64 - shift)));
+#endif
 }
 
 /*
@@ -163,22 +168,22 @@ static inline __attribute__((always_inline)) struct mot_sc mot_sincos_in(mot_q32
 }
 
 /*
- * mot_isqrt_acc_inv_near() inline for x in [2^44, 2^66) (the square of
- * the part of a near-unit quaternion orthogonal to another, Q64.64, its
- * root 2^-10 or more): the root within 1/2 + 2^-8 and 1/sqrt(x) = *inv
- * 2^-*sh, *sh in [84, 94], with the relative error of mot_sqrt_core(),
- * without the general scaling and its tests.
+ * mot_isqrt_acc_inv_near() inline for x = 4 x62, x62 in [2^42, 2^63) (the
+ * square of the part of a near-unit quaternion orthogonal to another, Q62,
+ * its root 2^-10 or more; x in Q64.64): the root within 1/2 + 2^-8 and
+ * 1/sqrt(x) = *inv 2^-*sh, *sh in [84, 94], with the relative error of
+ * mot_sqrt_core(), without the general scaling and its tests.
  */
-static inline __attribute__((always_inline)) uint64_t mot_isqrt_inv_unit_in(mot_acc x,
+static inline __attribute__((always_inline)) uint64_t mot_isqrt_inv_unit_in(int64_t x62,
 									    int64_t *inv,
 									    unsigned *sh)
 {
-	uint64_t v = (mot_acc_lo(x) >> 4) | (mot_acc_hi(x) << 60); /* below 2^62 */
+	uint64_t v = (uint64_t)x62 >> 2; /* x / 16, in [2^40, 2^61) */
 	unsigned s = (mot_clz64(v) - 2) & ~1u; /* v << s: 61 or 62 bits */
 	int64_t g, h;
 
-	/* x 2^(s - 4), its bits below 2^-58 of it dropped */
-	mot_sqrt_core((uint64_t)(((mot_uacc)x << s) >> 4), mot_trig_turn.rsqrt, &g, &h);
+	/* floor(x 2^(s - 4)), below 2^62 as v 2^s */
+	mot_sqrt_core(((uint64_t)x62 << s) >> 2, mot_trig_turn.rsqrt, &g, &h);
 	/* sqrt(x) = 4 sqrt(v 2^s) 2^(-s/2) = g 2^(-29 - s/2), 1/sqrt(x) =
 	 * h 2^(s/2 - 94) */
 	*inv = h;
