@@ -356,6 +356,20 @@ static void test_shortcuts(void **state)
 	}
 }
 
+/* A scene of `n` nodes at 24 frames a second and 1 kHz, frames 0 to
+ * frame_last: what the small scenes of these tests share. */
+static void desc_small(struct scene_desc *d, const struct sd_node *nodes, uint32_t n,
+		       double frame_last)
+{
+	memset(d, 0, sizeof(*d));
+	d->rate_num = 24;
+	d->rate_den = 1;
+	d->tick_hz = 1000;
+	d->frame_last = frame_last;
+	d->nnodes = n;
+	d->nodes = nodes;
+}
+
 /* A propeller spun up to 1200 rpm over 48 frames and held for a day: the
  * angle is the exact value for the tick's Q32.32 frame time, rounded once,
  * to the last bit; nothing accumulates. */
@@ -380,13 +394,7 @@ static void test_spin_day(void **state)
 	n.spin.interp = MOT_INTERP_LINEAR;
 	n.spin.nkeys = 2;
 	n.spin.keys = rpm;
-	memset(&d, 0, sizeof(d));
-	d.rate_num = 24;
-	d.rate_den = 1;
-	d.tick_hz = 1000;
-	d.frame_last = 48;
-	d.nnodes = 1;
-	d.nodes = &n;
+	desc_small(&d, &n, 1, 48);
 	assert_int_equal(scene_build(&b, &d, &e), 0);
 	assert_int_equal(scene_eval_new(&ev, &b.sc), 0);
 	assert_int_equal(scene_pose_new(&p, &b.sc), 0);
@@ -586,13 +594,7 @@ static void eval_once(struct scene_built *b, struct mot_eval *ev, struct mot_pos
 	struct scene_desc d;
 	struct scene_build_err e;
 
-	memset(&d, 0, sizeof(d));
-	d.rate_num = 24;
-	d.rate_den = 1;
-	d.tick_hz = 1000;
-	d.frame_last = 1;
-	d.nnodes = n;
-	d.nodes = nodes;
+	desc_small(&d, nodes, n, 1);
 	assert_int_equal(scene_build(b, &d, &e), 0);
 	patch((struct mot_node *)b->sc.nodes);
 	assert_int_equal(scene_eval_new(ev, &b->sc), 0);
@@ -731,13 +733,7 @@ static void test_scaled_small(void **state)
 								false };
 			}
 		}
-		memset(&d, 0, sizeof(d));
-		d.rate_num = 24;
-		d.rate_den = 1;
-		d.tick_hz = 1000;
-		d.frame_last = 24;
-		d.nnodes = s ? SCALED_LEVELS : 2 * SCALED_LEVELS;
-		d.nodes = n;
+		desc_small(&d, n, s ? SCALED_LEVELS : 2 * SCALED_LEVELS, 24);
 		assert_int_equal(scene_build(&b, &d, &e), 0);
 		assert_int_equal(scene_eval_new(&warm, &b.sc), 0);
 		assert_int_equal(scene_eval_new(&cold, &b.sc), 0);
@@ -829,13 +825,7 @@ static void test_rot_memo(void **state)
 	n[6].free.ease_in = 6;
 	for (k = MOT_FREE_SX; k <= MOT_FREE_SZ; k++)
 		n[7].free.ch[k] = (struct sd_curve){ MOT_INTERP_LINEAR, 2, big, 1, 0, 0, 0, false };
-	memset(&d, 0, sizeof(d));
-	d.rate_num = 24;
-	d.rate_den = 1;
-	d.tick_hz = 1000;
-	d.frame_last = 24;
-	d.nnodes = MEMO_NODES;
-	d.nodes = n;
+	desc_small(&d, n, MEMO_NODES, 24);
 	assert_int_equal(scene_build(&b, &d, &e), 0);
 	assert_int_equal(scene_eval_new(&warm, &b.sc), 0);
 	assert_int_equal(scene_eval_new(&cold, &b.sc), 0);
