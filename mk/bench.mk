@@ -10,8 +10,10 @@
 #   make bench-play      the play loop against cyclictest, CPU per tick (mk/bench-play.sh)
 #   make bench-count     instructions per node per tick of every scene, core
 #                        and twin, counted by callgrind (bench/scene_count.c)
+#   make bench-time      the issue's scenes, core and twin, by the clock from
+#                        fresh copies of scene_count, medians (mk/bench-time.sh)
 
-.PHONY: bench-fixmath bench-motion bench-play bench-count bench-systems
+.PHONY: bench-fixmath bench-motion bench-play bench-count bench-systems bench-time
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench $(BUILD)/bench/sys_bench
 # What the timed programs run under. On a shared machine
@@ -25,6 +27,8 @@ bench: $(BENCH_PROGS) $(BUILD)/bench/scene_count $(BUILD)/strand $(BUILD)/bench/
 		$(BUILD)/.deps-bench-play $(BUILD)/.deps-bench-count
 	$(Q)for p in $(BENCH_PROGS); do $(BENCH_PREFIX) $$p || exit 1; done
 	$(Q)sh mk/bench-count.sh $(BUILD)/bench/scene_count $(COUNT_SCENES)
+	$(Q)BENCH_PREFIX='$(BENCH_PREFIX)' sh mk/bench-time.sh $(TIME_ROUNDS) 40 "$(TIME_SCENES)" \
+		-- $(BUILD)/bench/scene_count
 	$(Q)sh mk/bench-play.sh $(BUILD)/strand $(RUN_SCENE) $(BUILD)/bench-play \
 		$(BUILD)/bench/sleep_tick
 
@@ -114,3 +118,16 @@ $(BUILD)/.deps-bench-count: mk/deps.sh mk/bench.mk $(BUILD)/.deps-build
 
 bench-count: $(BUILD)/bench/scene_count | $(BUILD)/.deps-bench-count
 	$(Q)sh mk/bench-count.sh $< $(COUNT_SCENES)
+
+# ---- the clock, from fresh copies ---------------------------------------------------
+# The issue's scenes timed by scene_count itself (the fastest of 40 plays a
+# run), core and twin from the same copy, TIME_ROUNDS rounds each from a
+# fresh copy, medians (mk/bench-time.sh). TIME_OTHER: other builds'
+# scene_count to run side by side, interleaved (an A/B of two commits:
+# make BUILD=/tmp/a build of the one, then TIME_OTHER=/tmp/a/bench/scene_count).
+TIME_SCENES ?= arm joints1000 random1000
+TIME_ROUNDS ?= 9
+TIME_OTHER ?=
+bench-time: $(BUILD)/bench/scene_count
+	$(Q)BENCH_PREFIX='$(BENCH_PREFIX)' sh mk/bench-time.sh $(TIME_ROUNDS) 40 "$(TIME_SCENES)" \
+		-- $< $(TIME_OTHER)
