@@ -547,6 +547,26 @@ static inline __attribute__((always_inline)) void piece_prefetch(const struct mo
 	__builtin_prefetch((const void *)((uintptr_t)s + 64));
 }
 
+/*
+ * The piece a joint will read: the memo's, or where the memo has none for
+ * the whole span (an approximating, compact or eased curve, joint_slow()'s
+ * way: 30% of the random nodes' evaluations), its cursor's piece, which
+ * is the one the solve starts from. The address in integers: a curve
+ * without pieces must not make pointer arithmetic on NULL.
+ */
+static inline __attribute__((always_inline)) void joint_prefetch(const struct mot_scene *sc,
+								 const struct mot_eval *ev,
+								 const struct mot_node *n,
+								 const struct mot_node_memo *m)
+{
+	if (m->how >= PIECE_WHOLE && n->curve >= 0)
+		piece_prefetch((const struct mot_curve_seg *)(
+			(uintptr_t)sc->curves[n->curve].seg +
+			(uintptr_t)ev->cursors[n->curve].seg * sizeof(struct mot_curve_seg)));
+	else
+		piece_prefetch(m->piece);
+}
+
 /* A frame outside the memo's span: learn the piece there, and the value
  * the whole way (out of line: joint_slow() then saves no register). */
 static __attribute__((noinline)) mot_q32 curve_learn(const struct mot_curve *c,
@@ -1652,7 +1672,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		 * stack, stored and loaded again every turn */
 		*rpm = 0;
 		if (small_kernels && n + PIECE_AHEAD < end)
-			piece_prefetch(m[PIECE_AHEAD].piece);
+			joint_prefetch(sc, ev, &n[PIECE_AHEAD], &m[PIECE_AHEAD]);
 		if (n->kind != MOT_NODE_FREE) {
 			if (!small_kernels || frame < m->lo || frame >= m->hi || !piece_fast(m, frame, &v))
 				v = joint_slow(sc, ev, n, m, frame, rpm);
