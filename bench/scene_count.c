@@ -14,8 +14,8 @@
  * With a third argument, REPS, it times the same play REPS times instead
  * and prints the fastest, in ns per node per tick (TIME lines): the
  * least-disturbed run of one process, for mk/bench-time.sh, which starts
- * each run from a fresh copy of the program (where a file's pages sit in
- * memory moved one build's time by 5% from run to run of the same copy).
+ * each run from a fresh copy of the program (one copy once ran 5% slower
+ * than a byte-identical one, run after run: see there).
  */
 #include <stdio.h>
 #include <stdlib.h>

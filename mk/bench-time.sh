@@ -6,8 +6,9 @@
 # medians over the rounds of both sides and of their ratio (TIME lines).
 #
 # Why fresh copies: on this project's VM one copy of a program ran 5% slower than a byte-identical
-# copy, run after run, interleaved with it; a new copy lands its pages elsewhere in memory. The
-# ratio is taken within one copy (both sides share its placement), the median across copies.
+# copy, run after run, interleaved with it, in two sets (a later set of six copies had no such
+# copy); presumably where its pages sit in memory. A fresh copy each round spreads that luck over
+# the rounds. The ratio is taken within one copy (both sides share it), the median across copies.
 #
 #   sh mk/bench-time.sh 9 40 "joints1000 random1000" -- build/bench/scene_count /tmp/old/scene_count
 set -eu
