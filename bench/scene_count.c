@@ -24,11 +24,7 @@
 
 #include "dbl_scene.h"
 #include "scene/scene_desc.h"
-#include "tests/synth.h"
-
-#define NODES 1000
-#define FRAMES_1000 96
-#define TICK_STRIDE 16 /* as scene_bench.c */
+#include "scene_pick.h"
 
 /* The timed loop of scene_bench.c's play_fixed / play_double; not inlined,
  * so that callgrind can collect exactly it. */
@@ -76,8 +72,6 @@ static double fastest(const struct scene_built *b, struct mot_eval *ev, struct m
 
 int main(int argc, char **argv)
 {
-	static const char *const kind[] = { "step", "linear", "hermite", "bspline", "beta",
-					    "bezier" };
 	struct synth sy;
 	struct scene_built b;
 	struct scene_build_err e;
@@ -86,40 +80,21 @@ int main(int argc, char **argv)
 	struct dbl_scene ds;
 	struct dbl_eval dev;
 	struct dbl_pose dp;
-	const struct mot_timing *t;
-	int64_t stride = TICK_STRIDE, k0, k1, k;
+	int64_t stride;
 	mot_q32 *frame;
-	uint32_t nticks, i;
+	uint32_t nticks;
 	bool fixed;
 
 	if (argc < 3 || argc > 4 || (strcmp(argv[2], "fixed") && strcmp(argv[2], "double")) ||
 	    (argc == 4 && (atoi(argv[3]) < 1 || atoi(argv[3]) > 100000))) {
-		fprintf(stderr, "usage: scene_count arm|random1000|joints1000|kind_<k>1000 "
-				"fixed|double [REPS]\n");
+		fprintf(stderr, "usage: scene_count " SCENE_PICK_NAMES " fixed|double [REPS]\n");
 		return 2;
 	}
 	fixed = !strcmp(argv[2], "fixed");
-	if (!strcmp(argv[1], "arm")) {
-		synth_robot_arm(&sy, 1, 240);
-		stride = 1;
-	} else if (!strcmp(argv[1], "random1000")) {
-		synth_random(&sy, 1, NODES, FRAMES_1000);
-	} else if (!strcmp(argv[1], "joints1000")) {
-		synth_joints(&sy, 1, NODES, FRAMES_1000,
-			     1u << MOT_INTERP_LINEAR | 1u << MOT_INTERP_HERMITE);
-	} else {
-		for (i = 0; i < 6; i++) {
-			char name[32];
-
-			snprintf(name, sizeof(name), "kind_%s1000", kind[i]);
-			if (!strcmp(argv[1], name))
-				break;
-		}
-		if (i == 6) {
-			fprintf(stderr, "scene_count: no scene %s\n", argv[1]);
-			return 2;
-		}
-		synth_joints(&sy, 1, NODES, FRAMES_1000, 1u << i);
+	stride = scene_pick(&sy, argv[1]);
+	if (!stride) {
+		fprintf(stderr, "scene_count: no scene %s\n", argv[1]);
+		return 2;
 	}
 	if (scene_build(&b, &sy.d, &e) || scene_eval_new(&ev, &b.sc) ||
 	    scene_pose_new(&pose, &b.sc) || dbl_scene_new(&ds, &sy.d) || dbl_eval_new(&dev, &ds) ||
@@ -127,15 +102,9 @@ int main(int argc, char **argv)
 		fprintf(stderr, "scene_count: cannot set up %s\n", argv[1]);
 		return 1;
 	}
-	t = &b.sc.timing;
-	k0 = mot_timing_trigger_tick(t, (int64_t)sy.d.frame_first);
-	k1 = mot_timing_trigger_tick(t, (int64_t)sy.d.frame_last);
-	nticks = (uint32_t)((k1 - k0) / stride + 1);
-	frame = calloc(nticks, sizeof(*frame));
+	frame = scene_pick_frames(&b.sc.timing, &sy, stride, &nticks);
 	if (!frame)
 		return 1;
-	for (k = 0; k < nticks; k++)
-		frame[k] = mot_timing_tick_frame(t, k0 + k * stride);
 	if (argc == 4) {
 		printf("TIME %s %s %.2f ns/node/tick\n", argv[1], argv[2],
 		       fastest(&b, &ev, &pose, &ds, &dev, &dp, frame, nticks, fixed, atoi(argv[3])));

@@ -12,8 +12,11 @@
 #                        and twin, counted by callgrind (bench/scene_count.c)
 #   make bench-time      the issue's scenes, core and twin, by the clock from
 #                        fresh copies of scene_count, medians (mk/bench-time.sh)
+#   make bench-ab AB_OTHER=DIR
+#                        this build's core against another tree's build in DIR,
+#                        pairs of plays in one process (bench/scene_ab.c)
 
-.PHONY: bench-fixmath bench-motion bench-play bench-count bench-systems bench-time
+.PHONY: bench-fixmath bench-motion bench-play bench-count bench-systems bench-time bench-ab
 
 BENCH_PROGS := $(BUILD)/bench/fixmath_chain $(BUILD)/bench/motion_bench $(BUILD)/bench/sys_bench
 # What the timed programs run under. On a shared machine
@@ -104,7 +107,8 @@ bench-play: $(BUILD)/strand $(BUILD)/bench/sleep_tick | $(BUILD)/.deps-bench-pla
 # scene_count_play(): instructions per node per tick, steadier than any
 # timing on a shared machine (mk/bench-count.sh). Needs Debian's valgrind,
 # which mk/deps.sh installs for these targets only.
-SC_SRC := bench/scene_count.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c tests/synth.c
+SC_SRC := bench/scene_count.c bench/scene_pick.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c \
+          tests/synth.c
 SC_OBJ := $(SC_SRC:%.c=$(BUILD)/bench/%.o)
 COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_hermite1000 \
                 kind_bspline1000 kind_beta1000 kind_bezier1000
@@ -131,3 +135,17 @@ TIME_OTHER ?=
 bench-time: $(BUILD)/bench/scene_count
 	$(Q)BENCH_PREFIX='$(BENCH_PREFIX)' sh mk/bench-time.sh $(TIME_ROUNDS) 40 "$(TIME_SCENES)" \
 		-- $< $(TIME_OTHER)
+
+# ---- the core against another build of it, in one process ---------------------------
+# Pairs of plays side by side, the ratio of each pair (bench/scene_ab.c): the
+# machine's drift cancels within a pair, where separate runs need many rounds.
+# AB_OTHER: the other tree's build directory (in that tree: make BUILD=DIR
+# DIR/libmotion.a); this build against itself (the default) is the control.
+AB_OTHER ?= $(BUILD)
+AB_SCENES ?= arm joints1000 random1000
+AB_PAIRS ?= 150
+AB_OBJ := $(BUILD)/bench/bench/scene_ab.o $(BUILD)/bench/bench/scene_pick.o \
+          $(BUILD)/bench/tests/synth.o
+bench-ab: $(AB_OBJ) $(MB_LINK)
+	$(Q)BENCH_PREFIX='$(BENCH_PREFIX)' sh mk/bench-ab.sh '$(AB_OTHER)/libmotion.a' \
+		'$(AB_SCENES)' $(AB_PAIRS) -- $(CC) $(AB_OBJ) $(MB_LINK) -lm
