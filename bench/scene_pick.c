@@ -16,6 +16,16 @@ int64_t scene_pick(struct synth *sy, const char *name)
 {
 	static const char *const kind[] = { "step", "linear", "hermite", "bspline", "beta",
 					    "bezier" };
+	/* joints1000's tree with every joint of one form */
+	static const struct {
+		const char *name;
+		enum synth_form form;
+	} form[] = {
+		{ "rev_axis1000", SYNTH_REV_AXIS },
+		{ "rev_tilt1000", SYNTH_REV_TILT },
+		{ "pri_axis1000", SYNTH_PRI_AXIS },
+		{ "pri_tilt1000", SYNTH_PRI_TILT },
+	};
 	unsigned i;
 
 	if (!strcmp(name, "arm")) {
@@ -31,6 +41,12 @@ int64_t scene_pick(struct synth *sy, const char *name)
 			     1u << MOT_INTERP_LINEAR | 1u << MOT_INTERP_HERMITE);
 		return TICK_STRIDE;
 	}
+	for (i = 0; i < sizeof(form) / sizeof(form[0]); i++)
+		if (!strcmp(name, form[i].name)) {
+			synth_joints_of(sy, 1, NODES, FRAMES_1000,
+					1u << MOT_INTERP_LINEAR | 1u << MOT_INTERP_HERMITE, form[i].form);
+			return TICK_STRIDE;
+		}
 	for (i = 0; i < 6; i++) {
 		char kname[32];
 

@@ -111,7 +111,8 @@ SC_SRC := bench/scene_count.c bench/scene_pick.c bench/dbl_scene.c bench/dbl_cur
           tests/synth.c
 SC_OBJ := $(SC_SRC:%.c=$(BUILD)/bench/%.o)
 COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_hermite1000 \
-                kind_bspline1000 kind_beta1000 kind_bezier1000
+                kind_bspline1000 kind_beta1000 kind_bezier1000 rev_axis1000 rev_tilt1000 \
+                pri_axis1000 pri_tilt1000
 
 $(BUILD)/bench/scene_count: $(SC_OBJ) $(MB_LINK)
 	$(Q)$(CC) $^ -lm -o $@

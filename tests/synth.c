@@ -263,7 +263,28 @@ void synth_random(struct synth *s, uint64_t seed, uint32_t n, double frames)
 	s->d.nodes = nodes;
 }
 
+/* The joint's form forced: its kind, and its axis a coordinate one (i mod
+ * 3) or a tilted one drawn as rand_axis() draws them. */
+static void force_form(uint64_t *st, struct sd_node *nd, uint32_t i, enum synth_form form)
+{
+	const bool tilt = form == SYNTH_REV_TILT || form == SYNTH_PRI_TILT;
+	uint32_t k;
+
+	nd->kind = form <= SYNTH_REV_TILT ? MOT_NODE_REVOLUTE : MOT_NODE_PRISMATIC;
+	if (tilt == (nd->axis_id == MOT_AXIS_VEC))
+		return;
+	nd->axis_id = tilt ? MOT_AXIS_VEC : (enum mot_axis)(i % 3);
+	for (k = 0; k < 3; k++)
+		nd->axis[k] = tilt ? uni(st, -1, 1) + 0.1 : (k == (uint32_t)nd->axis_id);
+}
+
 void synth_joints(struct synth *s, uint64_t seed, uint32_t n, double frames, unsigned kinds)
+{
+	synth_joints_of(s, seed, n, frames, kinds, SYNTH_ANY);
+}
+
+void synth_joints_of(struct synth *s, uint64_t seed, uint32_t n, double frames, unsigned kinds,
+		     enum synth_form form)
 {
 	uint64_t st = seed * 0x9e3779b97f4a7c15ull + 1;
 	enum mot_interp kind[MOT_INTERP_BEZIER + 1];
@@ -280,10 +301,13 @@ void synth_joints(struct synth *s, uint64_t seed, uint32_t n, double frames, uns
 	for (i = 0; i < n; i++) {
 		struct sd_node *nd = &nodes[i];
 		uint32_t roll = rand_node(s, &st, nd, depth, i, "j");
-		double range = roll < 80 ? 400 : 1; /* degrees or units */
+		double range;
 
 		nd->kind = roll < 80 ? MOT_NODE_REVOLUTE : MOT_NODE_PRISMATIC;
 		rand_axis(&st, nd);
+		if (form != SYNTH_ANY)
+			force_form(&st, nd, i, form);
+		range = nd->kind == MOT_NODE_REVOLUTE ? 400 : 1; /* degrees or units */
 		rand_curve(s, &st, &nd->value, kind[i % nkinds], -range, range, frames);
 	}
 	s->d.name = "joints";

@@ -44,6 +44,18 @@ void synth_random(struct synth *s, uint64_t seed, uint32_t n, double frames);
  */
 void synth_joints(struct synth *s, uint64_t seed, uint32_t n, double frames, unsigned kinds);
 
+/* One form of joint for every node of synth_joints()'s forest (the same
+ * parents, pivots and keys): what a joint of that form costs. */
+enum synth_form {
+	SYNTH_ANY,       /* synth_joints() itself */
+	SYNTH_REV_AXIS,  /* revolute about x, y or z */
+	SYNTH_REV_TILT,  /* revolute about a tilted axis */
+	SYNTH_PRI_AXIS,  /* prismatic along x, y or z */
+	SYNTH_PRI_TILT,  /* prismatic along a tilted axis */
+};
+void synth_joints_of(struct synth *s, uint64_t seed, uint32_t n, double frames, unsigned kinds,
+		     enum synth_form form);
+
 void synth_free(struct synth *s);
 
 #endif /* SYNTH_H */
