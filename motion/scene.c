@@ -1481,6 +1481,39 @@ static void prismatic_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 		prismatic_in(w, pos, par, o, p, v, false, sat);
 }
 
+/* t = v . axis, the offset of a prismatic joint */
+static void joint_offset(mot_q32 t[3], mot_q32 v, const mot_q32 axis[3], uint32_t *sat)
+{
+	unsigned k;
+
+	for (k = 0; k < 3; k++)
+		t[k] = mot_mul(v, axis[k], sat);
+}
+
+/* A prismatic joint along a tilted axis: its offset, then translate_world().
+ * In the small case the offset cannot leave its bound (memo_prepare()), so
+ * its products are rounded without mot_mul()'s saturation (the same bits)
+ * and the kernel is inline: one call where there were two and a switch. */
+static __attribute__((noinline)) void tilted_offset_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+				const struct mot_mat *restrict par, const struct mot_node *n,
+				mot_q32 v, bool small, uint32_t *sat)
+{
+	mot_q32 t[3];
+	unsigned k;
+
+	if (small_kernels && small) {
+		uint64_t unused = 0;
+
+		UNROLL3
+		for (k = 0; k < 3; k++)
+			t[k] = mot_acc_round_ov(mot_acc_mul(v, n->axis[k]), 32, &unused);
+		translate_world_in(w, pos, par, n->pivot, t, true, sat);
+		return;
+	}
+	joint_offset(t, v, n->axis, sat);
+	translate_world(w, pos, par, n->pivot, t, small, sat);
+}
+
 /*
  * A revolute joint about a coordinate axis o: R mixes two rows (a, b) of
  * whatever follows it and leaves the third alone,
@@ -1626,15 +1659,6 @@ static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	}
 }
 
-/* t = v . axis, the offset of a prismatic joint */
-static void joint_offset(mot_q32 t[3], mot_q32 v, const mot_q32 axis[3], uint32_t *sat)
-{
-	unsigned k;
-
-	for (k = 0; k < 3; k++)
-		t[k] = mot_mul(v, axis[k], sat);
-}
-
 void mot_node_local(struct mot_mat *out, const struct mot_scene *sc, struct mot_eval *ev,
 		    uint32_t node, mot_q32 frame, mot_q32 *value, mot_q32 *rpm)
 {
@@ -1726,7 +1750,6 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		const struct mot_mat *par = n->parent >= 0 ? &world[n->parent] : &mat_id;
 		const bool still = warm && (n->parent < 0 || !memo[n->parent].moved);
 		struct mot_mat local;
-		mot_q32 t[3];
 		const bool small = m->small;
 
 		/* nothing moved: a joint with its value, a free node without a
@@ -1749,8 +1772,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 				prismatic_world(w, *pos, par, n->axis_id, n->pivot, m->value, small,
 						&ev->sat);
 			} else {
-				joint_offset(t, m->value, n->axis, &ev->sat);
-				translate_world(w, *pos, par, n->pivot, t, small, &ev->sat);
+				tilted_offset_world(w, *pos, par, n, m->value, small, &ev->sat);
 			}
 			break;
 		default:
