@@ -11,7 +11,9 @@
 #include "motion/timing.h"
 #include "tests/synth.h"
 
-#define SCENE_PICK_NAMES "arm|random1000|joints1000|kind_<k>1000|rev_axis1000|rev_tilt1000|pri_axis1000|pri_tilt1000"
+#define SCENE_PICK_NAMES \
+	"arm|random1000|joints1000|kind_<k>1000|rev_axis1000|rev_tilt1000|" \
+	"pri_axis1000|pri_tilt1000"
 
 /* Fills sy with the scene called name and returns the tick stride it is
  * played at (every 16th tick for the 1,000-node scenes, as scene_bench.c),

@@ -107,8 +107,8 @@ bench-play: $(BUILD)/strand $(BUILD)/bench/sleep_tick | $(BUILD)/.deps-bench-pla
 # scene_count_play(): instructions per node per tick, steadier than any
 # timing on a shared machine (mk/bench-count.sh). Needs Debian's valgrind,
 # which mk/deps.sh installs for these targets only.
-SC_SRC := bench/scene_count.c bench/scene_pick.c bench/dbl_scene.c bench/dbl_curve.c bench/dbl_mat.c \
-          tests/synth.c
+SC_SRC := bench/scene_count.c bench/scene_pick.c bench/dbl_scene.c bench/dbl_curve.c \
+          bench/dbl_mat.c tests/synth.c
 SC_OBJ := $(SC_SRC:%.c=$(BUILD)/bench/%.o)
 COUNT_SCENES := arm joints1000 random1000 kind_step1000 kind_linear1000 kind_hermite1000 \
                 kind_bspline1000 kind_beta1000 kind_bezier1000 rev_axis1000 rev_tilt1000 \

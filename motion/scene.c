@@ -1494,9 +1494,10 @@ static void joint_offset(mot_q32 t[3], mot_q32 v, const mot_q32 axis[3], uint32_
  * In the small case the offset cannot leave its bound (memo_prepare()), so
  * its products are rounded without mot_mul()'s saturation (the same bits)
  * and the kernel is inline: one call where there were two and a switch. */
-static __attribute__((noinline)) void tilted_offset_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
-				const struct mot_mat *restrict par, const struct mot_node *n,
-				mot_q32 v, bool small, uint32_t *sat)
+static __attribute__((noinline)) void
+tilted_offset_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		    const struct mot_mat *restrict par, const struct mot_node *n, mot_q32 v, bool small,
+		    uint32_t *sat)
 {
 	mot_q32 t[3];
 	unsigned k;
