@@ -40,7 +40,9 @@ void mot_quat_identity(struct mot_quat *out)
 static inline int64_t round_fits(mot_acc x, unsigned shift)
 {
 #if MOT_HAVE_INT128
-	return (int64_t)(uint64_t)(((mot_uacc)x + ((mot_uacc)1 << (shift - 1))) >> shift);
+	x = mot_acc_add(x, mot_acc_make(0, (uint64_t)1 << (shift - 1)));
+	return shift == 64 ? (int64_t)mot_acc_hi(x) :
+			     (int64_t)mot_dw_shr(mot_acc_hi(x), mot_acc_lo(x), shift);
 #else
 	return mot_acc_round(x, shift, NULL);
 #endif

@@ -39,11 +39,7 @@ void mot_quat_to_rot_q62_sat(int64_t r[3][3], const struct mot_quat *q, uint32_t
  * the high word's low bit): round(y / 2) for y = x - 1 */
 static inline int64_t mot_quat_half_floor(mot_acc x)
 {
-#if MOT_HAVE_INT128
-	return (int64_t)(uint64_t)((mot_uacc)x >> 1);
-#else
-	return (int64_t)((mot_acc_lo(x) >> 1) | (mot_acc_hi(x) << 63));
-#endif
+	return (int64_t)mot_dw_shr(mot_acc_hi(x), mot_acc_lo(x), 1);
 }
 
 /* The entries round((a b + c d) / 2) and round((a b - c d) / 2), Q2.62,

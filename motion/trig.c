@@ -79,12 +79,8 @@ static inline int64_t mulsh(int64_t a, int64_t b, unsigned shift)
 	mot_acc p = mot_acc_mul(a, b);
 	uint64_t hi = mot_acc_hi(p), lo = mot_acc_lo(p);
 
-#if MOT_HAVE_INT128
-	if (shift <= 64) /* one double-word shift where the two-word form takes three */
-		return (int64_t)(uint64_t)((mot_uacc)p >> shift);
-#endif
 	if (shift < 64)
-		return (int64_t)((lo >> shift) | (hi << (64 - shift)));
+		return (int64_t)mot_dw_shr(hi, lo, shift);
 	if (shift == 64)
 		return (int64_t)hi;
 	return (int64_t)hi >> (shift - 64);

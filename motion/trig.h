@@ -109,12 +109,7 @@ static inline int64_t mot_trig_mulsh(int64_t a, int64_t b, unsigned shift)
 {
 	mot_acc p = mot_acc_mul(a, b);
 
-#if MOT_HAVE_INT128
-	/* one double-word shift where the two-word form takes three */
-	return (int64_t)(uint64_t)((mot_uacc)p >> shift);
-#else
-	return (int64_t)((mot_acc_lo(p) >> shift) | (mot_acc_hi(p) << (64 - shift)));
-#endif
+	return (int64_t)mot_dw_shr(mot_acc_hi(p), mot_acc_lo(p), shift);
 }
 
 /*
