@@ -151,6 +151,27 @@ int mot_scene_validate(const struct mot_scene *sc)
 #define SMALL_LIM ((uint64_t)1 << 62)
 #define SMALL_OFFSET ((uint64_t)1 << 61)
 
+/*
+ * A pre-scale for the small kernels on x86-64: a factor known to be below
+ * 2^(63 - PRE_SHIFT) raw (a revolute joint's sine or cosine; the pivot of
+ * an axis joint where it is below 2 units, the memo's pre) is taken times
+ * 2^PRE_SHIFT, and the sum it joins is rounded at 2^(32 + PRE_SHIFT)
+ * instead of 2^32: the same exact sums, so the same bits (and, in the
+ * small case, products below 2^125 and sums that fit). Why: the low word
+ * of a 128-bit value shifted by 62 is a shift and an LEA of the high word
+ * times 4, where a shift by 32 takes two shifts, an add and copies (fix.h's
+ * mot_dw_shr()). make bench-ab on this project's Zen 3 VM: the sines 2 to
+ * 3% off the arm's and the 1,000 joints' time, the pivots 4 to 5% more
+ * off the arm's, 4% off the axis joints'. Elsewhere (ARM's EXTR, or two
+ * 32-bit words) the shift costs the same either way and the scaling would
+ * not pay: 0, and the copies that take it are left out.
+ */
+#if defined(__x86_64__)
+#define PRE_SHIFT 30
+#else
+#define PRE_SHIFT 0
+#endif
+
 static uint64_t add_sat(uint64_t a, uint64_t b)
 {
 	return a + b < a ? UINT64_MAX : a + b;
@@ -355,6 +376,9 @@ static void memo_prepare(struct mot_node_memo *m, const struct mot_scene *sc,
 	sum = add_sat(add_sat(bt, mul_up(sum, max_u64(lp, m->lin))), 2);
 	m->small = lp < SMALL_LIM && m->lin < SMALL_LIM && off && sum < SMALL_LIM;
 	m->bound = m->small ? sum : UINT64_MAX;
+	m->pre = PRE_SHIFT && m->small;
+	for (k = 0; k < 3; k++)
+		m->pre = m->pre && (uint64_t)mot_abs(n->pivot[k]) < (uint64_t)1 << (63 - PRE_SHIFT);
 }
 
 /* ---- a joint's curve: the piece memo ----------------------------------------- */
@@ -1300,21 +1324,29 @@ static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_m
 /*
  * The sums of one translation entry: start(P_t) + products, rounded, with
  * the overflow test; or, small, start(0) + products rounded and P_t added
- * after. Constant `small` where inlined: one of the two remains.
+ * after. Constant `small` where inlined: one of the two remains. ps: the
+ * pivot's pre-scale (PRE_SHIFT, small only; the sum rounded at 2^(32 + ps)).
  */
-static inline __attribute__((always_inline)) mot_acc trans_start(mot_q32 yt, bool small)
+static inline __attribute__((always_inline)) mot_acc trans_start(mot_q32 yt, bool small,
+								 unsigned ps)
 {
-	return mot_acc_start(small ? 0 : yt, 32);
+	return mot_acc_start(small ? 0 : yt, 32 + ps);
 }
 
 static inline __attribute__((always_inline)) mot_q32 trans_end(mot_acc x, mot_q32 yt, bool small,
-							       uint64_t *ov)
+							       unsigned ps, uint64_t *ov)
 {
 	uint64_t unused = 0;
 
 	if (small)
-		return mot_acc_floor_ov(x, 32, &unused) + yt;
+		return mot_acc_floor_ov(x, 32 + ps, &unused) + yt;
 	return mot_acc_floor_ov(x, 32, ov);
+}
+
+/* v times 2^ps (PRE_SHIFT's pre-scale, |v| < 2^(63 - ps)) */
+static inline __attribute__((always_inline)) int64_t prescale(mot_q32 v, unsigned ps)
+{
+	return (int64_t)((uint64_t)v << ps);
 }
 
 /* Any linear part M (free nodes, tilted joints); M must not alias W. W's
@@ -1370,14 +1402,14 @@ node_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mo
 	for (j = 0; j < 3; j++) {
 		/* at most three products and an addend, then three more from a
 		 * sum that fits (else ov is set already): no wrap goes unseen */
-		mot_acc x = mot_acc_mac(trans_start(y[3][j], small), q[0], y[0][j]);
+		mot_acc x = mot_acc_mac(trans_start(y[3][j], small, 0), q[0], y[0][j]);
 
 		x = mot_acc_mac(mot_acc_mac(x, q[1], y[1][j]), q[2], y[2][j]);
-		pos[j] = trans_end(x, y[3][j], small, &ov);
+		pos[j] = trans_end(x, y[3][j], small, 0, &ov);
 		x = mot_acc_sub(x, mot_acc_mul(p[0], wl[0][j]));
 		x = mot_acc_sub(x, mot_acc_mul(p[1], wl[1][j]));
 		x = mot_acc_sub(x, mot_acc_mul(p[2], wl[2][j]));
-		w->m[3][j] = trans_end(x, y[3][j], small, &ov);
+		w->m[3][j] = trans_end(x, y[3][j], small, 0, &ov);
 	}
 	if (!small && ov)
 		node_world_sat(w, pos, par, m, p, t, sat);
@@ -1394,7 +1426,8 @@ static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 }
 
 /* A revolute joint about a tilted axis: its rotation, then node_world()
- * with t = 0. */
+ * with t = 0. (The pivot's pre-scale, PRE_SHIFT, would save 3 instructions
+ * of its 510 and no time measurably: left out.) */
 static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 			 const struct mot_mat *restrict par, const struct mot_node *n, mot_q32 s,
 			 mot_q32 c, bool small, uint32_t *sat)
@@ -1427,12 +1460,12 @@ translate_world_in(struct mot_mat *restrict w, mot_q32 *restrict pos,
 
 	UNROLL3
 	for (j = 0; j < 3; j++) {
-		mot_acc x = mot_acc_mac(trans_start(y[3][j], small), t[0], y[0][j]);
+		mot_acc x = mot_acc_mac(trans_start(y[3][j], small, 0), t[0], y[0][j]);
 
 		x = mot_acc_mac(mot_acc_mac(x, t[1], y[1][j]), t[2], y[2][j]);
-		w->m[3][j] = trans_end(x, y[3][j], small, &ov);
+		w->m[3][j] = trans_end(x, y[3][j], small, 0, &ov);
 		x = mot_acc_mac(mot_acc_mac(x, p[0], y[0][j]), p[1], y[1][j]);
-		pos[j] = trans_end(mot_acc_mac(x, p[2], y[2][j]), y[3][j], small, &ov);
+		pos[j] = trans_end(mot_acc_mac(x, p[2], y[2][j]), y[3][j], small, 0, &ov);
 		w->m[0][j] = y[0][j];
 		w->m[1][j] = y[1][j];
 		w->m[2][j] = y[2][j];
@@ -1538,23 +1571,10 @@ static void axis_rot(struct mot_mat *m, unsigned o, mot_q32 s, mot_q32 c)
 	m->m[b][b] = c;
 }
 
-/*
- * W_lin: rows a and b of the parent turned into each other, row o kept.
- * On x86-64 with s and c taken times 2^30 (a sine or cosine is about 2^32
- * raw at most, so the factor stays far below 2^63, and a product with any
- * entry below 2^125) and each sum rounded at 2^62 instead of 2^32: the
- * same exact sums, so the same bits and the same overflow test, but the
- * low word of a shift by 62 is a shift and an LEA of the high word times
- * 4, where a shift by 32 takes two shifts, an add and copies
- * (mot_dw_shr()). make bench-ab: 1,000 joints and the arm 2 to 3% faster.
- * Elsewhere (ARM's EXTR, or two 32-bit words) the shift costs the same
- * either way, and the scaling would not pay.
- */
-#if defined(__x86_64__)
-#define ROT_PRE 30
-#else
-#define ROT_PRE 0
-#endif
+/* W_lin: rows a and b of the parent turned into each other, row o kept;
+ * s and c times 2^PRE_SHIFT, each sum rounded at 2^(32 + PRE_SHIFT) (a sine
+ * or cosine is about 2^32 raw at most: the factor stays far below 2^63,
+ * and a product with any entry below 2^125) */
 static inline __attribute__((always_inline)) void
 revolute_rows(struct mot_mat *restrict w, const struct mot_mat *restrict par, unsigned o,
 	      mot_q32 s, mot_q32 c, bool small, uint64_t *ov)
@@ -1562,15 +1582,15 @@ revolute_rows(struct mot_mat *restrict w, const struct mot_mat *restrict par, un
 	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
 	const mot_q32(*restrict y)[3] = par->m;
 	mot_q32(*restrict x)[3] = w->m;
-	const int64_t cp = (int64_t)((uint64_t)c << ROT_PRE), sp = (int64_t)((uint64_t)s << ROT_PRE);
+	const int64_t cp = prescale(c, PRE_SHIFT), sp = prescale(s, PRE_SHIFT);
 	uint64_t unused = 0;
 	unsigned j;
 
 	UNROLL3
 	for (j = 0; j < 3; j++) {
-		x[a][j] = mot_sum2_ov(cp, y[a][j], sp, y[b][j], 0, 32 + ROT_PRE,
+		x[a][j] = mot_sum2_ov(cp, y[a][j], sp, y[b][j], 0, 32 + PRE_SHIFT,
 				      small ? &unused : ov);
-		x[b][j] = mot_sum2_ov(-sp, y[a][j], cp, y[b][j], 0, 32 + ROT_PRE,
+		x[b][j] = mot_sum2_ov(-sp, y[a][j], cp, y[b][j], 0, 32 + PRE_SHIFT,
 				      small ? &unused : ov);
 		x[o][j] = y[o][j];
 	}
@@ -1587,24 +1607,25 @@ revolute_rows(struct mot_mat *restrict w, const struct mot_mat *restrict par, un
 static inline __attribute__((always_inline)) void
 revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	      const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3], mot_q32 s,
-	      mot_q32 c, bool small, uint64_t *ov)
+	      mot_q32 c, bool small, unsigned ps, uint64_t *ov)
 {
 	const unsigned a = rev_rows[o][0], b = rev_rows[o][1];
 	const mot_q32(*restrict y)[3] = par->m;
 	mot_q32(*restrict x)[3] = w->m;
+	const int64_t pa = prescale(p[a], ps), pb = prescale(p[b], ps), po = prescale(p[o], ps);
 	unsigned j;
 
 	revolute_rows(w, par, o, s, c, small, ov);
 	__asm__("" : "+r"(x));
 	UNROLL3
 	for (j = 0; j < 3; j++) {
-		mot_acc u = mot_acc_mac(trans_start(y[3][j], small), p[a], y[a][j]);
+		mot_acc u = mot_acc_mac(trans_start(y[3][j], small, ps), pa, y[a][j]);
 
-		u = mot_acc_mac(u, p[b], y[b][j]);
+		u = mot_acc_mac(u, pb, y[b][j]);
 		/* U + p_o P_o fits, or ov is set: U - two products wraps visibly */
-		pos[j] = trans_end(mot_acc_mac(u, p[o], y[o][j]), y[3][j], small, ov);
-		u = mot_acc_sub(u, mot_acc_mul(p[a], x[a][j]));
-		x[3][j] = trans_end(mot_acc_sub(u, mot_acc_mul(p[b], x[b][j])), y[3][j], small, ov);
+		pos[j] = trans_end(mot_acc_mac(u, po, y[o][j]), y[3][j], small, ps, ov);
+		u = mot_acc_sub(u, mot_acc_mul(pa, x[a][j]));
+		x[3][j] = trans_end(mot_acc_sub(u, mot_acc_mul(pb, x[b][j])), y[3][j], small, ps, ov);
 	}
 }
 
@@ -1620,7 +1641,7 @@ revolute_cols(struct mot_mat *restrict w, mot_q32 *restrict pos,
 static inline __attribute__((always_inline)) void
 revolute_line(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	      const struct mot_mat *restrict par, unsigned o, unsigned k, mot_q32 pk, mot_q32 s,
-	      mot_q32 c)
+	      mot_q32 c, unsigned ps)
 {
 	const mot_q32(*restrict y)[3] = par->m;
 	mot_q32(*restrict x)[3] = w->m;
@@ -1628,30 +1649,33 @@ revolute_line(struct mot_mat *restrict w, mot_q32 *restrict pos,
 	unsigned j;
 
 	revolute_rows(w, par, o, s, c, true, &unused);
+	pk = prescale(pk, ps);
 	UNROLL3
 	for (j = 0; j < 3; j++) {
 		const mot_q32 yk = y[k][j], yt = y[3][j];
 
-		pos[j] = trans_end(mot_acc_mac(trans_start(yt, true), pk, yk), yt, true, &unused);
-		x[3][j] = trans_end(mot_acc_mac(trans_start(yt, true), pk, yk - x[k][j]), yt, true,
-				    &unused);
+		pos[j] = trans_end(mot_acc_mac(trans_start(yt, true, ps), pk, yk), yt, true, ps,
+				   &unused);
+		x[3][j] = trans_end(mot_acc_mac(trans_start(yt, true, ps), pk, yk - x[k][j]), yt, true,
+				    ps, &unused);
 	}
 }
 
 static inline __attribute__((always_inline)) void
 revolute_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_mat *restrict par,
-	    unsigned o, const mot_q32 p[3], mot_q32 s, mot_q32 c, bool small, uint32_t *sat)
+	    unsigned o, const mot_q32 p[3], mot_q32 s, mot_q32 c, bool small, unsigned ps,
+	    uint32_t *sat)
 {
 	uint64_t ov = 0;
 
 	if (!small_kernels)
-		revolute_cols(w, pos, par, o, p, s, c, small, &ov); /* one copy: less code */
+		revolute_cols(w, pos, par, o, p, s, c, small, 0, &ov); /* one copy: less code */
 	else if (o == MOT_AXIS_X)
-		revolute_cols(w, pos, par, MOT_AXIS_X, p, s, c, small, &ov);
+		revolute_cols(w, pos, par, MOT_AXIS_X, p, s, c, small, ps, &ov);
 	else if (o == MOT_AXIS_Y)
-		revolute_cols(w, pos, par, MOT_AXIS_Y, p, s, c, small, &ov);
+		revolute_cols(w, pos, par, MOT_AXIS_Y, p, s, c, small, ps, &ov);
 	else
-		revolute_cols(w, pos, par, MOT_AXIS_Z, p, s, c, small, &ov);
+		revolute_cols(w, pos, par, MOT_AXIS_Z, p, s, c, small, ps, &ov);
 	if (!small && ov) {
 		struct mot_mat m;
 		static const mot_q32 zero[3] = { 0, 0, 0 };
@@ -1661,21 +1685,35 @@ revolute_in(struct mot_mat *restrict w, mot_q32 *restrict pos, const struct mot_
 	}
 }
 
+/* revolute_line() for the axis o (a constant in each copy) */
+static inline __attribute__((always_inline)) void
+revolute_line_in(struct mot_mat *restrict w, mot_q32 *restrict pos,
+		 const struct mot_mat *restrict par, unsigned o, unsigned k, mot_q32 pk, mot_q32 s,
+		 mot_q32 c, unsigned ps)
+{
+	if (o == MOT_AXIS_X)
+		revolute_line(w, pos, par, MOT_AXIS_X, k, pk, s, c, ps);
+	else if (o == MOT_AXIS_Y)
+		revolute_line(w, pos, par, MOT_AXIS_Y, k, pk, s, c, ps);
+	else
+		revolute_line(w, pos, par, MOT_AXIS_Z, k, pk, s, c, ps);
+}
+
 static void revolute_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 			   const struct mot_mat *restrict par, unsigned o, const mot_q32 p[3],
-			   mot_q32 s, mot_q32 c, bool small, unsigned prow, uint32_t *sat)
+			   mot_q32 s, mot_q32 c, bool small, bool pre, unsigned prow, uint32_t *sat)
 {
-	if (small_kernels && small && prow < 3) {
-		if (o == MOT_AXIS_X)
-			revolute_line(w, pos, par, MOT_AXIS_X, prow, p[prow], s, c);
-		else if (o == MOT_AXIS_Y)
-			revolute_line(w, pos, par, MOT_AXIS_Y, prow, p[prow], s, c);
+	if (PRE_SHIFT && small_kernels && small && pre) {
+		if (prow < 3)
+			revolute_line_in(w, pos, par, o, prow, p[prow], s, c, PRE_SHIFT);
 		else
-			revolute_line(w, pos, par, MOT_AXIS_Z, prow, p[prow], s, c);
+			revolute_in(w, pos, par, o, p, s, c, true, PRE_SHIFT, sat);
+	} else if (small_kernels && small && prow < 3) {
+		revolute_line_in(w, pos, par, o, prow, p[prow], s, c, 0);
 	} else if (small_kernels && small) {
-		revolute_in(w, pos, par, o, p, s, c, true, sat);
+		revolute_in(w, pos, par, o, p, s, c, true, 0, sat);
 	} else {
-		revolute_in(w, pos, par, o, p, s, c, false, sat);
+		revolute_in(w, pos, par, o, p, s, c, false, 0, sat);
 	}
 }
 
@@ -1783,7 +1821,7 @@ void mot_scene_eval(const struct mot_scene *sc, struct mot_eval *ev, mot_q32 fra
 		case MOT_NODE_REVOLUTE:
 			if (n->axis_id != MOT_AXIS_VEC)
 				revolute_world(w, *pos, par, n->axis_id, n->pivot, m->s, m->c, small,
-					       m->prow, &ev->sat);
+					       m->pre, m->prow, &ev->sat);
 			else
 				tilted_world(w, *pos, par, n, m->s, m->c, small, &ev->sat);
 			break;

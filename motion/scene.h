@@ -115,6 +115,8 @@ struct mot_node_memo {
 	/* set by mot_eval_reset() from the scene (scene.c, the small case) */
 	uint8_t small;  /* every sum of the node's matrix is known to fit */
 	uint8_t prow;   /* the pivot's one nonzero component (any if none), 3: more */
+	uint8_t pre;    /* small, and the pivot below 2 units: the small kernels
+			 * take it pre-scaled (scene.c's PRE_SHIFT, x86-64) */
 	uint8_t free;   /* a free node's strand: what its channels are (scene.c);
 			 * MOT_MEMO_FREE_OWN below */
 	/* A joint's curve between the frames lo (included) and hi (excluded):

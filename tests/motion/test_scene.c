@@ -262,10 +262,11 @@ static void test_shortcuts(void **state)
 	for (kind = 0; kind < 4; kind++) {
 		struct scene_built b;
 		struct scene_build_err e;
-		struct mot_eval warm, cold, one, other;
+		struct mot_eval warm, cold, one, other, plain;
 		struct mot_pose pw, pc, shared;
 		const struct mot_timing *t;
 		uint32_t i, kept = 0, small = 0, total = 0, pieces = 0, line = 0, tri = 0, own = 0;
+		uint32_t pre = 0;
 		int64_t k, n;
 
 		if (kind == 0)
@@ -284,11 +285,14 @@ static void test_shortcuts(void **state)
 		assert_int_equal(scene_eval_new(&cold, &b.sc), 0);
 		assert_int_equal(scene_eval_new(&one, &b.sc), 0);
 		assert_int_equal(scene_eval_new(&other, &b.sc), 0);
+		assert_int_equal(scene_eval_new(&plain, &b.sc), 0);
 		assert_int_equal(scene_pose_new(&pw, &b.sc), 0);
 		assert_int_equal(scene_pose_new(&pc, &b.sc), 0);
 		assert_int_equal(scene_pose_new(&shared, &b.sc), 0);
 		for (i = 0; i < b.sc.nnodes; i++) {
 			small += warm.memo[i].small;
+			pre += warm.memo[i].pre;
+			assert_true(!warm.memo[i].pre || warm.memo[i].small);
 			line += warm.memo[i].small && warm.memo[i].prow < 3 &&
 				b.sc.nodes[i].kind == MOT_NODE_REVOLUTE &&
 				b.sc.nodes[i].axis_id != MOT_AXIS_VEC;
@@ -313,6 +317,12 @@ static void test_shortcuts(void **state)
 			}
 			mot_scene_eval(&b.sc, &cold, f, &pc);
 			assert_same_pose(&b.sc, &pw, &pc);
+			/* the small kernels without the pivot's pre-scale */
+			assert_int_equal(mot_eval_reset(&plain, &b.sc), MOT_OK);
+			for (i = 0; i < b.sc.nnodes; i++)
+				plain.memo[i].pre = 0;
+			mot_scene_eval(&b.sc, &plain, f, &pc);
+			assert_same_pose(&b.sc, &pw, &pc);
 			/* a memo follows its own pose: another evaluation
 			 * writing it in between (at another frame) is noticed */
 			mot_scene_eval(&b.sc, &one, f, &shared);
@@ -336,6 +346,12 @@ static void test_shortcuts(void **state)
 		/* the small case covers most nodes; the memo keeps some */
 		assert_true(small > b.sc.nnodes / 2 || kind == 0);
 		assert_true(small > 0);
+#if defined(__x86_64__)
+		/* pivots within 2 units (every synthetic scene's): pre-scaled */
+		assert_true(pre > small / 2);
+#else
+		assert_int_equal(pre, 0);
+#endif
 		/* the pivots on a line take their own kernel */
 		assert_true(kind < 3 || line > b.sc.nnodes / 4);
 		/* and free nodes that scale or shear without turning theirs */
@@ -351,6 +367,7 @@ static void test_shortcuts(void **state)
 		scene_eval_free(&cold);
 		scene_eval_free(&one);
 		scene_eval_free(&other);
+		scene_eval_free(&plain);
 		scene_built_free(&b);
 		synth_free(&sy);
 	}
