@@ -250,10 +250,11 @@ static inline bool mot_acc_is_neg(mot_acc x)
  * Bits shift..shift + 63 of the 128-bit word hi:lo, 0 < shift < 64: the
  * low word of a 128-bit shift. On x86-64 as two shifts and an add, not the
  * OR (or the 128-bit shift) that gcc makes one SHRD of: AMD's cores run
- * SHRD as several micro-ops (this project's Zen 3 VM: one every 2 to 3
- * cycles, where three simple operations take one), and the hot kernels
- * end every sum with one (make bench-ab: 1,000 joints 6% faster at 12%
- * more instructions). The bits do not overlap: the same value either way.
+ * SHRD as several micro-ops (this project's Zen 3 VM: four took 2.2 to 3.5
+ * ns where four adds took 0.4 to 0.8), and the hot kernels end every sum
+ * with one (make bench-ab, with PRE_SHIFT in scene.c: the arm 6 to 7%
+ * faster, the 1,000 joints 0 to 6% by the VM's state, at 9 to 13% more
+ * instructions). The bits do not overlap: the same value either way.
  */
 static inline uint64_t mot_dw_shr(uint64_t hi, uint64_t lo, unsigned shift)
 {

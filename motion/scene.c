@@ -160,11 +160,11 @@ int mot_scene_validate(const struct mot_scene *sc)
  * small case, products below 2^125 and sums that fit). Why: the low word
  * of a 128-bit value shifted by 62 is a shift and an LEA of the high word
  * times 4, where a shift by 32 takes two shifts, an add and copies (fix.h's
- * mot_dw_shr()). make bench-ab on this project's Zen 3 VM: the sines 2 to
- * 3% off the arm's and the 1,000 joints' time, the pivots 4 to 5% more
- * off the arm's, 4% off the axis joints'. Elsewhere (ARM's EXTR, or two
- * 32-bit words) the shift costs the same either way and the scaling would
- * not pay: 0, and the copies that take it are left out.
+ * mot_dw_shr()). make bench-ab on this project's Zen 3 VM, one set each:
+ * the sines 2 to 3% off the arm's and the 1,000 joints' time, the pivots
+ * 4 to 5% more off the arm's, 4% off the axis joints'. Elsewhere (ARM's
+ * EXTR, or two 32-bit words) the shift costs the same either way and the
+ * scaling would not pay: 0, and the copies that take it are left out.
  */
 #if defined(__x86_64__)
 #define PRE_SHIFT 30
