@@ -1325,7 +1325,8 @@ static void node_world_sat(struct mot_mat *w, mot_q32 pos[3], const struct mot_m
  * The sums of one translation entry: start(P_t) + products, rounded, with
  * the overflow test; or, small, start(0) + products rounded and P_t added
  * after. Constant `small` where inlined: one of the two remains. ps: the
- * pivot's pre-scale (PRE_SHIFT, small only; the sum rounded at 2^(32 + ps)).
+ * pivot's pre-scale (PRE_SHIFT; the small kernels only, 0 elsewhere), the sum
+ * rounded at 2^(32 + ps).
  */
 static inline __attribute__((always_inline)) mot_acc trans_start(mot_q32 yt, bool small,
 								 unsigned ps)
@@ -1340,7 +1341,7 @@ static inline __attribute__((always_inline)) mot_q32 trans_end(mot_acc x, mot_q3
 
 	if (small)
 		return mot_acc_floor_ov(x, 32 + ps, &unused) + yt;
-	return mot_acc_floor_ov(x, 32, ov);
+	return mot_acc_floor_ov(x, 32 + ps, ov);
 }
 
 /* v times 2^ps (PRE_SHIFT's pre-scale, |v| < 2^(63 - ps)) */
@@ -1426,8 +1427,8 @@ static void node_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 }
 
 /* A revolute joint about a tilted axis: its rotation, then node_world()
- * with t = 0. (The pivot's pre-scale, PRE_SHIFT, would save 3 instructions
- * of its 510 and no time measurably: left out.) */
+ * with t = 0. (The pivot's pre-scale, PRE_SHIFT, saved 3 instructions of
+ * its 520 and no time measurably: left out.) */
 static void tilted_world(struct mot_mat *restrict w, mot_q32 *restrict pos,
 			 const struct mot_mat *restrict par, const struct mot_node *n, mot_q32 s,
 			 mot_q32 c, bool small, uint32_t *sat)

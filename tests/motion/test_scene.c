@@ -236,6 +236,81 @@ static void pivots_on_lines(struct synth *sy)
 	}
 }
 
+/*
+ * The pivot's pre-scale at its edge (scene.c's PRE_SHIFT, x86-64): a pivot
+ * component of 2 - 2^-32 units (raw 2^33 - 1) takes it, one of 2 units
+ * does not; on a line and off one, the same bits as the tested kernels
+ * and as the small kernels without it.
+ */
+static void test_pre_edge(void **state)
+{
+	static const double edge[4][3] = {
+		{ 2 - 0x1p-32, -(2 - 0x1p-32), 0.5 }, /* pre */
+		{ 2, 0.25, 0 },                        /* not */
+		{ 0, -2, 0 },                          /* not, on a line */
+		{ 0, 0, 2 - 0x1p-32 },                 /* pre, on a line */
+	};
+	struct synth sy;
+	struct scene_built b;
+	struct scene_build_err e;
+	struct mot_eval warm, cold, plain;
+	struct mot_pose pw, pc;
+	uint32_t i, k, pre[4] = { 0 }, small[4] = { 0 };
+	int64_t tk, n;
+
+	(void)state;
+	synth_joints(&sy, 21, 200, 96, 0);
+	for (i = 0; i < sy.d.nnodes; i++) {
+		struct sd_node *nd = (struct sd_node *)&sy.d.nodes[i];
+
+		for (k = 0; k < 3; k++)
+			nd->pivot[k] = edge[i % 4][k];
+	}
+	assert_int_equal(scene_build(&b, &sy.d, &e), 0);
+	assert_int_equal(scene_eval_new(&warm, &b.sc), 0);
+	assert_int_equal(scene_eval_new(&cold, &b.sc), 0);
+	assert_int_equal(scene_eval_new(&plain, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&pw, &b.sc), 0);
+	assert_int_equal(scene_pose_new(&pc, &b.sc), 0);
+	for (i = 0; i < b.sc.nnodes; i++) {
+		pre[i % 4] += warm.memo[i].pre;
+		small[i % 4] += warm.memo[i].small;
+	}
+#if defined(__x86_64__)
+	assert_true(pre[0] > 0 && pre[0] == small[0]);
+	assert_true(pre[3] > 0 && pre[3] == small[3]);
+#else
+	assert_int_equal(pre[0] + pre[3], 0);
+#endif
+	assert_int_equal(pre[1] + pre[2], 0);
+	assert_true(small[1] > 0 && small[2] > 0);
+	n = mot_timing_trigger_tick(&b.sc.timing, 100);
+	for (tk = -5; tk < n; tk += 7) {
+		mot_q32 f = mot_timing_tick_frame(&b.sc.timing, tk);
+
+		mot_scene_eval(&b.sc, &warm, f, &pw);
+		assert_int_equal(mot_eval_reset(&cold, &b.sc), MOT_OK);
+		assert_int_equal(mot_eval_reset(&plain, &b.sc), MOT_OK);
+		for (i = 0; i < b.sc.nnodes; i++) {
+			cold.memo[i].small = 0;
+			cold.memo[i].pre = 0;
+			plain.memo[i].pre = 0;
+		}
+		mot_scene_eval(&b.sc, &cold, f, &pc);
+		assert_same_pose(&b.sc, &pw, &pc);
+		mot_scene_eval(&b.sc, &plain, f, &pc);
+		assert_same_pose(&b.sc, &pw, &pc);
+	}
+	assert_int_equal(warm.sat, 0);
+	scene_pose_free(&pw);
+	scene_pose_free(&pc);
+	scene_eval_free(&warm);
+	scene_eval_free(&cold);
+	scene_eval_free(&plain);
+	scene_built_free(&b);
+	synth_free(&sy);
+}
+
 /* A free node with scale or shear channels and no rotation: S . H is
  * lower-triangular (scene.c's node_world_in(), tri). */
 static bool free_scales_only(const struct mot_scene *sc, const struct mot_node *n)
@@ -928,7 +1003,7 @@ int main(void)
 		cmocka_unit_test(test_camera_pan),  cmocka_unit_test(test_bad_input),
 		cmocka_unit_test(test_no_keys),     cmocka_unit_test(test_wide_sums),
 		cmocka_unit_test(test_shortcuts),   cmocka_unit_test(test_scaled_small),
-		cmocka_unit_test(test_rot_memo),
+		cmocka_unit_test(test_rot_memo),    cmocka_unit_test(test_pre_edge),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
