@@ -151,6 +151,7 @@ refused() {
 }
 
 CASE=digest
+ptp_settle 10 || fail "ptp4l did not settle"
 sed 's/^# lock3.yaml - three boards/# lock3.yaml (changed) - three boards/' "$SCENE" >"$T/other.yaml"
 play a "$SCENE"
 play b "$SCENE"
@@ -158,6 +159,7 @@ play c "$T/other.yaml"
 refused "board 'c' loaded another scene than board 'a'"
 
 CASE=ptp
+ptp_settle 10 || fail "ptp4l did not settle"
 # a ptp4l of c's own on a link with no one at the other end, slaveOnly:
 # it listens for a master that never comes
 in_ns c ip link add "x$$" type veth peer name "y$$"
@@ -176,6 +178,7 @@ refused "board 'c': PTP is not locked: ptp4l's port is LISTENING"
 kill "$lone" 2>/dev/null
 
 CASE=clocks
+ptp_settle 10 || fail "ptp4l did not settle"
 play a "$SCENE"
 play b "$SCENE"
 PLAY_ENV=STRAND_LOCKSTEP_CLOCK_SKEW_NS=5000000
@@ -184,6 +187,7 @@ PLAY_ENV=
 refused "the clocks of board 'c' and board 'a' disagree by"
 
 CASE=past
+ptp_settle 10 || fail "ptp4l did not settle"
 sed 's/^lockstep: {start_ms: 300,/lockstep: {start_ms: 300, max_offset_us: 60000000,/' "$SCENE" >"$T/wide.yaml"
 play a "$T/wide.yaml"
 play b "$T/wide.yaml"
