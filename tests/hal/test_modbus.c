@@ -470,7 +470,7 @@ struct sender {
 static void *send_at_start(void *arg)
 {
 	const struct sender *s = arg;
-	struct timespec ms = { 0, 1000000 }, gap = { 0, 20000000 };
+	struct timespec ms = { 0, 1000000 }, gap = { 0, 20000000 }, settle = { 0, 250000000 };
 	struct mbp_write *w = NULL;
 	sigset_t set;
 	int i;
@@ -487,6 +487,12 @@ static void *send_at_start(void *arg)
 			break;
 		nanosleep(&ms, NULL);
 	}
+	/* The write is logged once answered; strand sends the coil's request
+	 * after that, and a loaded machine can hold it back for more than a
+	 * millisecond (a CI run signalled first: the coil never set). A
+	 * quarter second in, the request is out and its answer, 800 ms late,
+	 * is not: the signal comes while the start waits. */
+	nanosleep(&settle, NULL);
 	for (i = 0; i < s->count; i++) {
 		kill(getpid(), s->sig);
 		nanosleep(&gap, NULL);
@@ -503,8 +509,7 @@ static void on_stray(int sig)
 
 /*
  * SIGTERM, and then two SIGINTs, while strand's start waits for the drive
- * to answer the enable coil (half a second late, as from its second request
- * on): the start is given up, the coil set is cleared again, nothing more
+ * to answer the enable coil (800 ms late, as from its second request on): the start is given up, the coil set is cleared again, nothing more
  * is written, exit 5 with the start-up's message; and the handlers the
  * process had before are its handlers again afterwards (no signal reached
  * them: strand's caught every one).
@@ -532,7 +537,7 @@ static void test_signal_at_start(void **state)
 
 		tcp_setup(&s, "mb-signal");
 		mbp_scene(s.scene, 1000, s.conn, "response_timeout_ms: 3000\nanswer_ms: 0.2\n", NULL);
-		start_peer(&s, "--late-after 1 --late-ms 500");
+		start_peer(&s, "--late-after 1 --late-ms 800");
 		snd.log = s.log;
 		assert_int_equal(pthread_create(&th, NULL, send_at_start, &snd), 0);
 		play(&r, &s, "--clock virtual");
