@@ -509,8 +509,9 @@ static void on_stray(int sig)
 
 /*
  * SIGTERM, and then two SIGINTs, while strand's start waits for the drive
- * to answer the enable coil (800 ms late, as from its second request on): the start is given up, the coil set is cleared again, nothing more
- * is written, exit 5 with the start-up's message; and the handlers the
+ * to answer the enable coil (800 ms late, as from its second request on):
+ * the start is given up, the coil set is cleared again, nothing more is
+ * written, exit 5 with the start-up's message; and the handlers the
  * process had before are its handlers again afterwards (no signal reached
  * them: strand's caught every one).
  */
